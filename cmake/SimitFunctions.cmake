@@ -1,0 +1,29 @@
+# simit_add_library(<name> <sources>... [DEPENDS <targets>...] [LINK <libs>...])
+#
+# A shared library of the project. Every library links the shared libMLIR and
+# libLLVM (never the static component archives), so the build stays small and
+# one copy of LLVM's global state exists in every process.
+function(simit_add_library name)
+  cmake_parse_arguments(ARG "" "" "DEPENDS;LINK" ${ARGN})
+  add_library(${name} SHARED ${ARG_UNPARSED_ARGUMENTS})
+  if(ARG_DEPENDS)
+    add_dependencies(${name} ${ARG_DEPENDS})
+  endif()
+  target_link_libraries(${name} PUBLIC ${ARG_LINK} MLIR LLVM)
+  target_include_directories(${name} PUBLIC
+    $<BUILD_INTERFACE:${SIMIT_SOURCE_DIR}/include>
+    $<BUILD_INTERFACE:${SIMIT_BINARY_DIR}/include>
+    $<INSTALL_INTERFACE:include>)
+  set_target_properties(${name} PROPERTIES
+    EXPORT_NAME ${name}
+    BUILD_RPATH "${CMAKE_BINARY_DIR}/lib"
+    INSTALL_RPATH "\$ORIGIN")
+endfunction()
+
+# simit_add_tool(<name> <sources>... [LINK <libs>...])
+function(simit_add_tool name)
+  cmake_parse_arguments(ARG "" "" "LINK" ${ARGN})
+  add_executable(${name} ${ARG_UNPARSED_ARGUMENTS})
+  target_link_libraries(${name} PRIVATE ${ARG_LINK} MLIR LLVM)
+  set_target_properties(${name} PROPERTIES INSTALL_RPATH "\$ORIGIN/../lib")
+endfunction()

@@ -1,1 +1,50 @@
-# Installation and the find_package(Simit CONFIG) package.
+# Installation: headers (sources and generated .inc), the libraries, the tools,
+# and a CMake package so that another project can `find_package(Simit CONFIG)`
+# and link `Simit::MLIRSimitDialect` without the frontend or runtime.
+include(CMakePackageConfigHelpers)
+include(GNUInstallDirs)
+
+set(SIMIT_INSTALL_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/simit)
+
+install(DIRECTORY ${SIMIT_SOURCE_DIR}/include/simit
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+  FILES_MATCHING PATTERN "*.h" PATTERN "*.td")
+install(DIRECTORY ${SIMIT_BINARY_DIR}/include/simit
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+  FILES_MATCHING PATTERN "*.inc")
+
+set(simit_installed_libraries)
+foreach(lib MLIRSimitDialect MLIRSimitTransforms SimitFrontend SimitRuntime SimitJIT)
+  if(TARGET ${lib})
+    list(APPEND simit_installed_libraries ${lib})
+  endif()
+endforeach()
+install(TARGETS ${simit_installed_libraries}
+  EXPORT SimitTargets
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+
+set(simit_installed_tools)
+foreach(tool simit-opt simit-translate simit-run)
+  if(TARGET ${tool})
+    list(APPEND simit_installed_tools ${tool})
+  endif()
+endforeach()
+install(TARGETS ${simit_installed_tools} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+
+install(EXPORT SimitTargets
+  NAMESPACE Simit::
+  DESTINATION ${SIMIT_INSTALL_CMAKE_DIR})
+
+configure_package_config_file(
+  ${SIMIT_SOURCE_DIR}/cmake/SimitConfig.cmake.in
+  ${SIMIT_BINARY_DIR}/SimitConfig.cmake
+  INSTALL_DESTINATION ${SIMIT_INSTALL_CMAKE_DIR})
+write_basic_package_version_file(
+  ${SIMIT_BINARY_DIR}/SimitConfigVersion.cmake
+  VERSION ${PROJECT_VERSION}
+  COMPATIBILITY SameMinorVersion)
+install(FILES
+  ${SIMIT_BINARY_DIR}/SimitConfig.cmake
+  ${SIMIT_BINARY_DIR}/SimitConfigVersion.cmake
+  DESTINATION ${SIMIT_INSTALL_CMAKE_DIR})

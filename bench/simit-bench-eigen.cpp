@@ -20,33 +20,38 @@
 using namespace simit::bench;
 namespace cl = llvm::cl;
 
-static cl::opt<std::string>
-    sceneName("scene", cl::Required,
-              cl::desc("springs-bunny, fem-dragon or fem-bar"));
-static cl::opt<int> frames("frames", cl::init(10),
+static cl::OptionCategory benchCategory("simit-bench-eigen options");
+
+static cl::opt<std::string> sceneName("scene", cl::Required,
+                                      cl::cat(benchCategory),
+                                      cl::desc("springs-bunny, fem-dragon "
+                                               "or fem-bar"));
+static cl::opt<int> frames("frames", cl::init(10), cl::cat(benchCategory),
                            cl::desc("Time steps to simulate (default 10)"));
-static cl::opt<int>
-    cgMaxIters("cg-max-iters", cl::init(0),
-               cl::desc("CG iteration cap (default: the scene's, 50 or 100)"));
-static cl::opt<double> cgTol("cg-tol", cl::init(1e-12),
+static cl::opt<int> cgMaxIters(
+    "cg-max-iters", cl::init(0), cl::cat(benchCategory),
+    cl::desc("CG iteration cap (default: the scene's, 50 or 100)"));
+static cl::opt<double> cgTol("cg-tol", cl::init(1e-12), cl::cat(benchCategory),
                              cl::desc("CG stops when r.r <= this"));
-static cl::opt<int> refine("refine", cl::init(0),
+static cl::opt<int> refine("refine", cl::init(0), cl::cat(benchCategory),
                            cl::desc("1-to-8 tet refinements (FEM scenes)"));
 static cl::opt<std::string>
-    solverName("solver", cl::init("cg"),
+    solverName("solver", cl::init("cg"), cl::cat(benchCategory),
                cl::desc("cg, jacobi-cg or direct (sparse LDL^T)"));
 static cl::opt<std::string> meshDir("meshes", cl::init(SIMIT_DEFAULT_MESH_DIR),
+                                    cl::cat(benchCategory),
                                     cl::desc("Directory of the mesh files"));
 static cl::opt<std::string>
-    outPath("out", cl::desc("Write the final positions, x,y,z per vertex"));
-static cl::opt<bool> useFloat("float32",
+    outPath("out", cl::cat(benchCategory),
+            cl::desc("Write the final positions, x,y,z per vertex"));
+static cl::opt<bool> useFloat("float32", cl::cat(benchCategory),
                               cl::desc("Simulate in single precision"));
 static cl::opt<bool> referenceDirect(
-    "reference-direct",
+    "reference-direct", cl::cat(benchCategory),
     cl::desc("Also run the scene with the direct solver in double precision "
              "and report |x - x_ref| / |x_ref - x_0|"));
 static cl::opt<std::string> errorOf(
-    "error-of",
+    "error-of", cl::cat(benchCategory),
     cl::desc("Report the error of the positions in this file (x,y,z per "
              "vertex) measured against this run's final positions"));
 
@@ -198,7 +203,7 @@ template <typename Scalar> static int run(const SceneOptions &options) {
 
   Positions x = scene.positions().template cast<double>();
   Positions x0 = scene.initialPositions().template cast<double>();
-  double error = -1;
+  double error = 0;
   if (referenceDirect) {
     llvm::Expected<Positions> reference = directSolution(options);
     if (!reference) {
@@ -225,17 +230,25 @@ template <typename Scalar> static int run(const SceneOptions &options) {
     llvm::errs() << "simit-bench-eigen: " << outPath << ": cannot write\n";
     return 1;
   }
+  // One line for scripts (run-bench.sh); error is "-" without
+  // --reference-direct.
+  char errorText[32] = "-";
+  if (referenceDirect)
+    std::snprintf(errorText, sizeof errorText, "%.3e", error);
   std::printf("RESULT scene=%s precision=%s solver=%s cap=%d frames=%d "
-              "assembly_ms=%.3f solve_ms=%.3f total_ms=%.3f iterations=%g "
-              "error=%.3e\n",
+              "mesh_ms=%.3f setup_ms=%.3f assembly_ms=%.3f solve_ms=%.3f "
+              "total_ms=%.3f iterations=%g error=%s\n",
               options.name.c_str(), precision,
               solverLabel(options.solver.kind), options.solver.maxIterations,
-              frames.getValue(), median(assembly), median(solve),
-              median(total), median(iterations), error);
+              frames.getValue(), loaded->meshLoadMs + loaded->refineMs,
+              setup.restShapeMs + setup.massMs + setup.sparsityMs,
+              median(assembly), median(solve), median(total),
+              median(iterations), errorText);
   return 0;
 }
 
 int main(int argc, char **argv) {
+  cl::HideUnrelatedOptions(benchCategory);
   cl::ParseCommandLineOptions(argc, argv,
                               "Eigen reference implementation of the Simit "
                               "benchmark scenes\n");

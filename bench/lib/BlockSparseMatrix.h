@@ -1,4 +1,4 @@
-//===--- BlockSparseMatrix.h - Fixed-pattern 3x3-block sparse matrix -*- C++ -*-===//
+//===--- BlockSparseMatrix.h - Fixed-pattern 3x3-block matrix -*- C++ -*-===//
 //
 // A sparse matrix of 3x3 blocks over the vertices of a mesh, stored as a
 // scalar row-major Eigen::SparseMatrix whose pattern is built once at set-up.
@@ -56,7 +56,6 @@ public:
 
   Matrix &matrix() { return matrix_; }
   const Matrix &matrix() const { return matrix_; }
-  int numBlockRows() const { return static_cast<int>(rowStride_.size()); }
   int numBlocks() const { return static_cast<int>(matrix_.nonZeros() / 9); }
 
 private:

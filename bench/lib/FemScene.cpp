@@ -23,7 +23,8 @@ FemScene<Scalar>::FemScene(const Mesh &mesh, const FemParams &params,
   for (int v = 0; v < numPoints; ++v) {
     this->fixed_[v] = mesh.points[v][1] < params.fixedBelowY;
     for (int axis = 0; axis < 3; ++axis) {
-      this->positions_[3 * v + axis] = static_cast<Scalar>(mesh.points[v][axis]);
+      this->positions_[3 * v + axis] =
+          static_cast<Scalar>(mesh.points[v][axis]);
       this->velocities_[3 * v + axis] =
           this->fixed_[v] ? Scalar(0)
                           : static_cast<Scalar>(params.initialVelocity[axis]);

@@ -34,13 +34,11 @@ public:
   FemScene(const Mesh &mesh, const FemParams &params,
            SolverOptions solverOptions);
 
-  int numTets() const { return static_cast<int>(tets_.size()); }
   Scalar mass(int vertex) const { return mass_[vertex]; }
 
 private:
   void assemble() override;
 
-  using Base = ImplicitScene<Scalar>;
   FemParams params_;
   NeoHookeanMaterial material_;
   std::vector<std::array<int, 4>> tets_;

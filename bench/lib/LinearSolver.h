@@ -1,4 +1,4 @@
-//===--- LinearSolver.h - CG, Jacobi CG and sparse direct solves -*- C++ -*-===//
+//===--- LinearSolver.h - CG, Jacobi CG and direct solves -----*- C++ -*-===//
 //
 // The solvers of bench/scenes.md: conjugate gradients from the current
 // iterate, stopping when r.r <= tolerance or after an iteration cap, with or
@@ -48,7 +48,6 @@ public:
   /// iterate on entry.
   SolveResult solve(const Matrix &a, const Vector &b, Vector &x);
 
-  const SolverOptions &options() const { return options_; }
 
 private:
   using ColMajorMatrix = Eigen::SparseMatrix<Scalar, Eigen::ColMajor, int>;

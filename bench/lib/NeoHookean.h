@@ -1,4 +1,4 @@
-//===--- NeoHookean.h - Neo-Hookean tetrahedron force and stiffness -*- C++ -*-===//
+//===--- NeoHookean.h - Neo-Hookean tet force and stiffness ---*- C++ -*-===//
 //
 // The linear-tetrahedron Neo-Hookean model of bench/scenes.md (the paper's
 // appendix A, with its dPdF typo corrected): rest data B = Dm^-1 and
@@ -18,6 +18,7 @@
 #define SIMIT_BENCH_NEOHOOKEAN_H
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 
 #include <array>
@@ -90,10 +91,16 @@ void tetElasticity(const std::array<Vec3<Scalar>, 4> &x,
   const Scalar mu = static_cast<Scalar>(material.mu);
   const Scalar lambda = static_cast<Scalar>(material.lambda);
   Mat3<Scalar> f = edgeMatrix(x) * rest.inverseDm;
-  Scalar j = f.determinant();
+  // F^-T is the cofactor matrix over J: one determinant, no pivoting.
+  Mat3<Scalar> cofactor;
+  cofactor.col(0) = f.col(1).cross(f.col(2));
+  cofactor.col(1) = f.col(2).cross(f.col(0));
+  cofactor.col(2) = f.col(0).cross(f.col(1));
+  Scalar j = f.col(0).dot(cofactor.col(0));
   Scalar logJ = std::log(j);
-  Mat3<Scalar> inverseTranspose = f.inverse().transpose();
-  Mat3<Scalar> p = mu * (f - inverseTranspose) + lambda * logJ * inverseTranspose;
+  Mat3<Scalar> inverseTranspose = cofactor / j;
+  Mat3<Scalar> p =
+      mu * (f - inverseTranspose) + lambda * logJ * inverseTranspose;
 
   std::array<Vec3<Scalar>, 4> b = shapeGradients(rest.inverseDm);
   Mat3<Scalar> wp = rest.volume * p;

@@ -70,7 +70,7 @@ llvm::Expected<LoadedScene<Scalar>> createScene(const SceneOptions &options) {
     loaded.numElements = static_cast<int>(mesh->edges.size());
     loaded.scene = std::make_unique<SpringsScene<Scalar>>(
         *mesh, SpringsParams(), options.solver);
-    return std::move(loaded);
+    return loaded;
   }
 
   if (mesh->tets.empty())
@@ -90,7 +90,7 @@ llvm::Expected<LoadedScene<Scalar>> createScene(const SceneOptions &options) {
   loaded.numElements = static_cast<int>(mesh->tets.size());
   loaded.scene =
       std::make_unique<FemScene<Scalar>>(*mesh, params, options.solver);
-  return std::move(loaded);
+  return loaded;
 }
 
 template llvm::Expected<LoadedScene<float>>

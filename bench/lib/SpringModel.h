@@ -1,4 +1,4 @@
-//===--- SpringModel.h - Linear spring force and implicit stiffness -*- C++ -*-===//
+//===--- SpringModel.h - Spring force and stiffness ------------*- C++ -*-===//
 //
 // The spring of bench/scenes.md (springs-bunny): energy k (l - l0)^2 / 2 with
 // d = x1 - x0, l = |d|, U = d / l and tension f = k (l - l0). Endpoint 0

@@ -81,11 +81,13 @@ SpringsScene<Scalar>::SpringsScene(const Mesh &mesh,
   // MD: (m + h viscous) I for free points, I for fixed ones.
   auto &matrix = this->system_->matrix();
   for (int v = 0; v < numPoints; ++v) {
-    double diagonal =
-        this->fixed_[v] ? 1.0 : mass[v] + params.timeStep * params.viscousDamping;
+    double diagonal = this->fixed_[v] ? 1.0
+                                      : mass[v] + params.timeStep *
+                                                      params.viscousDamping;
     int offset = system.blockOffset(v, v), stride = system.rowStride(v);
     for (int r = 0; r < 3; ++r)
-      matrix.valuePtr()[offset + r * stride + r] = static_cast<Scalar>(diagonal);
+      matrix.valuePtr()[offset + r * stride + r] =
+          static_cast<Scalar>(diagonal);
   }
   diagonalValues_.assign(matrix.valuePtr(),
                          matrix.valuePtr() + matrix.nonZeros());

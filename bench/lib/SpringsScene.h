@@ -1,4 +1,4 @@
-//===--- SpringsScene.h - springs-bunny: implicit mass-spring system -*- C++ -*-===//
+//===--- SpringsScene.h - springs-bunny: implicit springs ----*- C++ -*-===//
 //
 // bench/scenes.md, springs-bunny: positions normalised per axis to [0, 1],
 // one spring per mesh edge, masses from the springs' volumes, points with

@@ -63,6 +63,8 @@ Set::Set(llvm::StringRef name, llvm::ArrayRef<Set *> endpointList)
 
 Set::~Set() {
   for (Set *endpointSet : endpointSets) {
+    if (!endpointSet)
+      continue; // destroyed first
     auto &list = endpointSet->dependents;
     list.erase(std::remove(list.begin(), list.end(), this), list.end());
   }

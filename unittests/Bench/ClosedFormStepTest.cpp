@@ -74,7 +74,8 @@ TEST_P(ClosedFormStep, TetCornerFalls) {
     ASSERT_TRUE(scene.isFixed(vertex));
 
   const double e = 1e6, nu = 0.45, h = 0.01, w = 1.0 / 6;
-  const double mu = e / (2 * (1 + nu)), lambda = e * nu / ((1 + nu) * (1 - 2 * nu));
+  const double mu = e / (2 * (1 + nu));
+  const double lambda = e * nu / ((1 + nu) * (1 - 2 * nu));
   const double m = 1000 * w / 4;
   EXPECT_NEAR(scene.mass(1), m, 1e-12);
   const double soft = m + h * h * w * mu;

@@ -1,5 +1,6 @@
 //===--- SceneTest.cpp - The benchmark scenes on the shipped meshes -------===//
 
+#include "FemScene.h"
 #include "Scenes.h"
 #include "SpringsScene.h"
 
@@ -79,10 +80,12 @@ TEST(FemBar, ConvergedCGMatchesDirectSolve) {
   const Eigen::VectorXd &x0 = direct.scene->initialPositions();
   EXPECT_LT((x - ref).norm() / (ref - x0).norm(), 1e-9);
   EXPECT_GT((ref - x0).norm(), 1e-3);
-  for (int v = 0; v < direct.scene->numVertices(); ++v)
-    if (direct.scene->isFixed(v))
-      for (int axis = 0; axis < 3; ++axis)
-        EXPECT_EQ(ref[3 * v + axis], x0[3 * v + axis]);
+  for (int v = 0; v < direct.scene->numVertices(); ++v) {
+    if (!direct.scene->isFixed(v))
+      continue;
+    for (int axis = 0; axis < 3; ++axis)
+      EXPECT_EQ(ref[3 * v + axis], x0[3 * v + axis]);
+  }
 }
 
 TEST(FemBar, SinglePrecisionStaysCloseToDouble) {
@@ -104,6 +107,25 @@ TEST(FemBar, RefinementMultipliesTets) {
   ASSERT_TRUE(refined.scene);
   EXPECT_EQ(refined.numElements, 8 * 1151);
   EXPECT_GT(refined.scene->numVertices(), 439);
+}
+
+// scenes.md: capped at 50 iterations, CG leaves fem-dragon 0.73 of the
+// motion away from the exact solve after 10 frames. Capped CG amplifies
+// rounding (about 1e-2 between instruction sets), hence the band.
+TEST(FemDragon, CappedCGErrorMatchesScenesMd) {
+  LoadedScene<double> direct = load("fem-dragon", kDirect);
+  LoadedScene<double> cg = load("fem-dragon", {SolverKind::CG, 50, 1e-12});
+  ASSERT_TRUE(direct.scene && cg.scene);
+  EXPECT_EQ(direct.scene->numVertices(), 11083);
+  for (int frame = 0; frame < 10; ++frame) {
+    ASSERT_TRUE(direct.scene->step().succeeded);
+    EXPECT_EQ(cg.scene->step().iterations, 50);
+  }
+  const Eigen::VectorXd &ref = direct.scene->positions();
+  double error = (cg.scene->positions() - ref).norm() /
+                 (ref - direct.scene->initialPositions()).norm();
+  EXPECT_GT(error, 0.70);
+  EXPECT_LT(error, 0.76);
 }
 
 TEST(SpringsBunny, NormalisedPositionsMassesAndFixedPoints) {
@@ -147,10 +169,12 @@ TEST(Scenes, ErrorsNameTheProblem) {
     llvm::Expected<LoadedScene<double>> loaded = createScene<double>(options);
     return loaded ? std::string() : llvm::toString(loaded.takeError());
   };
-  EXPECT_NE(message({"fem-cow", kMeshDir, 0, {}}).find("unknown scene 'fem-cow'"),
-            std::string::npos);
-  EXPECT_NE(message({"springs-bunny", kMeshDir, 1, {}}).find("cannot be refined"),
-            std::string::npos);
+  EXPECT_NE(
+      message({"fem-cow", kMeshDir, 0, {}}).find("unknown scene 'fem-cow'"),
+      std::string::npos);
+  EXPECT_NE(
+      message({"springs-bunny", kMeshDir, 1, {}}).find("cannot be refined"),
+      std::string::npos);
   EXPECT_NE(message({"fem-bar", "/nonexistent", 0, {}}).find("/nonexistent"),
             std::string::npos);
 }

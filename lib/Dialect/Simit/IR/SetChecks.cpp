@@ -37,7 +37,7 @@ LogicalResult mlir::simit::verifyElementOfSet(Operation *op, Type elementType,
 }
 
 LogicalResult mlir::simit::verifyEndpointTuple(Operation *op, SetType set,
-                                              TupleType tuple) {
+                                              simit::TupleType tuple) {
   if (set.getCardinality() == 0)
     return op->emitOpError() << "set '" << set.getName().getValue()
                              << "' is a vertex set and has no endpoints";

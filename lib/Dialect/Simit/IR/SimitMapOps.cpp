@@ -147,11 +147,18 @@ static LogicalResult verifyMapLike(Operation *op,
     return op->emitOpError()
            << callee << " has " << params.size() << " parameters but the map "
            << "passes " << numExtras << " extra arguments and the element";
-  for (auto [i, extra] : llvm::enumerate(extras))
-    if (extra.getType() != params[i])
+  for (auto [i, extra] : llvm::enumerate(extras)) {
+    Type type = extra.getType();
+    if (!isTensorOrScalarType(type) && !isa<simit::OpaqueType>(type))
+      return op->emitOpError() << "extra argument #" << i
+                               << " must be a tensor, a scalar or an opaque "
+                                  "handle, got "
+                               << type;
+    if (type != params[i])
       return op->emitOpError()
              << "passes extra argument #" << i << " of type " << extra.getType()
              << " but " << callee << " expects " << params[i];
+  }
   if (params[numExtras] != set.getElementType())
     return op->emitOpError()
            << callee << " takes " << params[numExtras]
@@ -171,7 +178,7 @@ static LogicalResult verifyMapLike(Operation *op,
                                << " as its last parameter";
     ++numPassed;
   } else if (set.getCardinality() != 0 && params.size() > numPassed) {
-    auto tuple = dyn_cast<TupleType>(params[numPassed]);
+    auto tuple = dyn_cast<simit::TupleType>(params[numPassed]);
     if (!tuple)
       return op->emitOpError() << callee << " takes " << params[numPassed]
                                << " where the map passes the endpoint tuple";

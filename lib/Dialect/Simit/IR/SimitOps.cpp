@@ -185,6 +185,8 @@ LogicalResult SliceOp::verify() {
                          << kept.size();
   if (llvm::none_of(kept, [](bool k) { return k; }))
     return emitOpError() << "keeps no dimension; use simit.extract";
+  if (llvm::all_of(kept, [](bool k) { return k; }))
+    return emitOpError() << "indexes no dimension; use the tensor itself";
   Type component = getComponentType(tensorType);
   if (getBlockType(tensorType) != component)
     return emitOpError() << "cannot slice the blocked tensor " << tensorType;
@@ -298,7 +300,7 @@ LogicalResult ElemWriteOp::verify() {
 }
 
 LogicalResult TupleGetOp::verify() {
-  TupleType tuple = getTuple().getType();
+  simit::TupleType tuple = getTuple().getType();
   uint64_t index = getIndex();
   if (index >= tuple.size())
     return emitOpError() << "index " << index << " is out of range for a "

@@ -331,7 +331,7 @@ SmallVector<int64_t> SystemTensorType::getBlockShape() const {
 // TupleType
 //===----------------------------------------------------------------------===//
 
-Type TupleType::parse(AsmParser &parser) {
+Type simit::TupleType::parse(AsmParser &parser) {
   SmallVector<StringAttr> names;
   SmallVector<Type> types;
   if (parser.parseLess())
@@ -371,7 +371,7 @@ Type TupleType::parse(AsmParser &parser) {
                     parser.getContext(), types, names);
 }
 
-void TupleType::print(AsmPrinter &printer) const {
+void simit::TupleType::print(AsmPrinter &printer) const {
   printer << "<";
   if (isNamed())
     printNamedTypeList(printer, getNames(), getElementTypes());
@@ -380,7 +380,7 @@ void TupleType::print(AsmPrinter &printer) const {
   printer << ">";
 }
 
-LogicalResult TupleType::verify(function_ref<InFlightDiagnostic()> emitError,
+LogicalResult simit::TupleType::verify(function_ref<InFlightDiagnostic()> emitError,
                                 ArrayRef<Type> elementTypes,
                                 ArrayRef<StringAttr> names) {
   if (elementTypes.empty())
@@ -407,7 +407,7 @@ LogicalResult TupleType::verify(function_ref<InFlightDiagnostic()> emitError,
 LogicalResult RefType::verify(function_ref<InFlightDiagnostic()> emitError,
                               Type valueType) {
   if (isTensorOrScalarType(valueType) ||
-      isa<OpaqueType, StringType>(valueType))
+      isa<simit::OpaqueType, StringType>(valueType))
     return success();
   return emitError() << "!simit.ref must hold a scalar, a tensor, an opaque "
                         "handle or a string, got "

@@ -46,7 +46,7 @@ def Simit_GetSetOp : Simit_Op<"get_set",
   }];
   let arguments = (ins FlatSymbolRefAttr:$global);
   let results = (outs Simit_SetType:$result);
-  let assemblyFormat = "$global attr-dict `:` type($result)";
+  let assemblyFormat = "$global attr-dict `:` qualified(type($result))";
 }
 
 def Simit_ExternRefOp : Simit_Op<"extern_ref",
@@ -62,7 +62,7 @@ def Simit_ExternRefOp : Simit_Op<"extern_ref",
   }];
   let arguments = (ins FlatSymbolRefAttr:$global);
   let results = (outs Simit_RefType:$result);
-  let assemblyFormat = "$global attr-dict `:` type($result)";
+  let assemblyFormat = "$global attr-dict `:` qualified(type($result))";
 }
 
 //===----------------------------------------------------------------------===//
@@ -80,7 +80,7 @@ def Simit_AllocOp : Simit_Op<"alloc"> {
     ```
   }];
   let results = (outs Res<Simit_RefType, "the new slot", [MemAlloc]>:$ref);
-  let assemblyFormat = "attr-dict `:` type($ref)";
+  let assemblyFormat = "attr-dict `:` qualified(type($ref))";
 }
 
 def Simit_LoadOp : Simit_Op<"load", [
@@ -94,7 +94,7 @@ def Simit_LoadOp : Simit_Op<"load", [
   }];
   let arguments = (ins Arg<Simit_RefType, "the slot", [MemRead]>:$ref);
   let results = (outs AnyType:$result);
-  let assemblyFormat = "$ref attr-dict `:` type($ref)";
+  let assemblyFormat = "$ref attr-dict `:` qualified(type($ref))";
 }
 
 def Simit_StoreOp : Simit_Op<"store", [
@@ -108,7 +108,7 @@ def Simit_StoreOp : Simit_Op<"store", [
   }];
   let arguments = (ins AnyType:$value,
                        Arg<Simit_RefType, "the slot", [MemWrite]>:$ref);
-  let assemblyFormat = "$value `,` $ref attr-dict `:` type($ref)";
+  let assemblyFormat = "$value `,` $ref attr-dict `:` qualified(type($ref))";
 }
 
 //===----------------------------------------------------------------------===//
@@ -123,7 +123,7 @@ def Simit_ZerosOp : Simit_Op<"zeros", [Pure]> {
     ```
   }];
   let results = (outs Simit_TensorLike:$result);
-  let assemblyFormat = "attr-dict `:` type($result)";
+  let assemblyFormat = "attr-dict `:` qualified(type($result))";
 }
 
 def Simit_BroadcastOp : Simit_Op<"broadcast", [Pure]> {
@@ -137,7 +137,7 @@ def Simit_BroadcastOp : Simit_Op<"broadcast", [Pure]> {
   }];
   let arguments = (ins Simit_ScalarType:$value);
   let results = (outs Simit_TensorLike:$result);
-  let assemblyFormat = "$value attr-dict `:` type($value) `->` type($result)";
+  let assemblyFormat = "$value attr-dict `:` qualified(type($value)) `->` qualified(type($result))";
   let hasVerifier = 1;
 }
 
@@ -159,8 +159,8 @@ def Simit_ExtractOp : Simit_Op<"extract", [Pure]> {
   let arguments = (ins Simit_TensorLike:$tensor, Variadic<AnyType>:$indices);
   let results = (outs AnyType:$result);
   let assemblyFormat = [{
-    $tensor `[` $indices `]` attr-dict `:` type($tensor) `,` `(` type($indices) `)`
-    `->` type($result)
+    $tensor `[` $indices `]` attr-dict `:` qualified(type($tensor)) `,` `(` qualified(type($indices)) `)`
+    `->` qualified(type($result))
   }];
   let hasVerifier = 1;
 }
@@ -182,8 +182,8 @@ def Simit_InsertOp : Simit_Op<"insert",
                        Variadic<AnyType>:$indices);
   let results = (outs Simit_TensorLike:$result);
   let assemblyFormat = [{
-    $value `into` $tensor `[` $indices `]` attr-dict `:` type($value) `into`
-    type($tensor) `,` `(` type($indices) `)`
+    $value `into` $tensor `[` $indices `]` attr-dict `:` qualified(type($value)) `into`
+    qualified(type($tensor)) `,` `(` qualified(type($indices)) `)`
   }];
   let hasVerifier = 1;
 }
@@ -207,7 +207,7 @@ def Simit_SliceOp : Simit_Op<"slice", [Pure]> {
   let results = (outs Simit_TensorLike:$result);
   let assemblyFormat = [{
     $tensor `[` custom<SliceIndices>($indices, $kept) `]` attr-dict `:`
-    type($tensor) `,` `(` type($indices) `)` `->` type($result)
+    qualified(type($tensor)) `,` `(` qualified(type($indices)) `)` `->` qualified(type($result))
   }];
   let hasVerifier = 1;
 }
@@ -230,7 +230,7 @@ def Simit_FieldReadOp : Simit_Op<"field_read", [MemoryEffects<[MemRead]>]> {
   }];
   let arguments = (ins Simit_SetType:$set, StrAttr:$field);
   let results = (outs Simit_SystemTensorType:$result);
-  let assemblyFormat = "$set `[` $field `]` attr-dict `:` type($set) `->` type($result)";
+  let assemblyFormat = "$set `[` $field `]` attr-dict `:` qualified(type($set)) `->` qualified(type($result))";
   let hasVerifier = 1;
 }
 
@@ -249,7 +249,7 @@ def Simit_FieldWriteOp : Simit_Op<"field_write", [MemoryEffects<[MemWrite]>]> {
   }];
   let arguments = (ins AnyType:$value, Simit_SetType:$set, StrAttr:$field);
   let assemblyFormat = [{
-    $value `,` $set `[` $field `]` attr-dict `:` type($value) `,` type($set)
+    $value `,` $set `[` $field `]` attr-dict `:` qualified(type($value)) `,` qualified(type($set))
   }];
   let hasVerifier = 1;
 }
@@ -263,7 +263,7 @@ def Simit_ElemReadOp : Simit_Op<"elem_read", [MemoryEffects<[MemRead]>]> {
   }];
   let arguments = (ins Simit_ElementType:$element, StrAttr:$field);
   let results = (outs AnyType:$result);
-  let assemblyFormat = "$element `[` $field `]` attr-dict `:` type($element) `->` type($result)";
+  let assemblyFormat = "$element `[` $field `]` attr-dict `:` qualified(type($element)) `->` qualified(type($result))";
   let hasVerifier = 1;
 }
 
@@ -279,7 +279,7 @@ def Simit_ElemWriteOp : Simit_Op<"elem_write", [MemoryEffects<[MemWrite]>]> {
   }];
   let arguments = (ins AnyType:$value, Simit_ElementType:$element, StrAttr:$field);
   let assemblyFormat = [{
-    $value `,` $element `[` $field `]` attr-dict `:` type($value) `,` type($element)
+    $value `,` $element `[` $field `]` attr-dict `:` qualified(type($value)) `,` qualified(type($element))
   }];
   let hasVerifier = 1;
 }
@@ -297,7 +297,7 @@ def Simit_TupleGetOp : Simit_Op<"tuple_get", [Pure]> {
   let arguments = (ins Simit_TupleType:$tuple,
                        ConfinedAttr<I64Attr, [IntNonNegative]>:$index);
   let results = (outs Simit_ElementType:$result);
-  let assemblyFormat = "$tuple `[` $index `]` attr-dict `:` type($tuple) `->` type($result)";
+  let assemblyFormat = "$tuple `[` $index `]` attr-dict `:` qualified(type($tuple)) `->` qualified(type($result))";
   let hasVerifier = 1;
 }
 
@@ -310,7 +310,7 @@ def Simit_SetSizeOp : Simit_Op<"set_size", [Pure]> {
   }];
   let arguments = (ins Simit_SetType:$set);
   let results = (outs Index:$result);
-  let assemblyFormat = "$set attr-dict `:` type($set)";
+  let assemblyFormat = "$set attr-dict `:` qualified(type($set))";
 }
 
 def Simit_SetElementOp : Simit_Op<"set_element", [Pure,
@@ -327,7 +327,7 @@ def Simit_SetElementOp : Simit_Op<"set_element", [Pure,
   }];
   let arguments = (ins Simit_SetType:$set, Index:$index);
   let results = (outs Simit_ElementType:$result);
-  let assemblyFormat = "$set `[` $index `]` attr-dict `:` type($set) `->` type($result)";
+  let assemblyFormat = "$set `[` $index `]` attr-dict `:` qualified(type($set)) `->` qualified(type($result))";
 }
 
 def Simit_EndpointsOp : Simit_Op<"endpoints", [Pure,
@@ -346,7 +346,7 @@ def Simit_EndpointsOp : Simit_Op<"endpoints", [Pure,
   }];
   let arguments = (ins Simit_SetType:$set, Simit_ElementType:$element);
   let results = (outs Simit_TupleType:$result);
-  let assemblyFormat = "$set `[` $element `]` attr-dict `:` type($set) `->` type($result)";
+  let assemblyFormat = "$set `[` $element `]` attr-dict `:` qualified(type($set)) `->` qualified(type($result))";
   let hasVerifier = 1;
 }
 
@@ -365,7 +365,7 @@ def Simit_GridPointOp : Simit_Op<"grid_point", [Pure,
   let arguments = (ins Simit_SetType:$grid, Simit_ElementType:$point,
                        DenseI64ArrayAttr:$offsets);
   let results = (outs Simit_ElementType:$result);
-  let assemblyFormat = "$grid `,` $point $offsets attr-dict `:` type($grid) `,` type($point)";
+  let assemblyFormat = "$grid `,` $point $offsets attr-dict `:` qualified(type($grid)) `,` qualified(type($point))";
   let hasVerifier = 1;
 }
 
@@ -386,7 +386,7 @@ def Simit_GridEdgeOp : Simit_Op<"grid_edge", [Pure,
                        DenseI64ArrayAttr:$offsets, DenseI64ArrayAttr:$dir);
   let results = (outs Simit_ElementType:$result);
   let assemblyFormat = [{
-    $grid `,` $point $offsets `dir` $dir attr-dict `:` type($grid) `,` type($point)
+    $grid `,` $point $offsets `dir` $dir attr-dict `:` qualified(type($grid)) `,` qualified(type($point))
   }];
   let hasVerifier = 1;
 }
@@ -423,13 +423,13 @@ def Simit_MapOp : Simit_MapLikeOp<"map", [MemoryEffects<[MemRead, MemWrite]>]> {
     effects on fields.
 
     ```mlir
-    simit.map @move(%dt) to %points : (f64), !simit.set<"points", !Point>
+    simit.map @move(%dt) to %points : (f64, !simit.set<"points", !Point>) -> ()
     %w = simit.map @weight() to %springs
-        : (), !simit.set<"springs", !Spring, ["points", "points"]>
-          -> (!simit.tensor<["springs"] x f64>)
+        : (!simit.set<"springs", !Spring, ["points", "points"]>)
+          -> !simit.tensor<["springs"] x f64>
     %A = simit.map @stencil() to %points through %cells
-        : (), !simit.set<"points", !Point>, !simit.set<"cells", !Cell, grid 2 over "points">
-          -> (!simit.tensor<["points", "points"] x f64>)
+        : (!simit.set<"points", !Point>, !simit.set<"cells", !Cell, grid 2 over "points">)
+          -> !simit.tensor<["points", "points"] x f64>
     ```
   }];
   let arguments = (ins FlatSymbolRefAttr:$callee, Variadic<AnyType>:$extras,
@@ -437,8 +437,7 @@ def Simit_MapOp : Simit_MapLikeOp<"map", [MemoryEffects<[MemRead, MemWrite]>]> {
   let results = (outs Variadic<Simit_TensorOrScalar>:$results);
   let assemblyFormat = [{
     $callee `(` $extras `)` `to` $set (`through` $grid^)? attr-dict `:`
-    `(` type($extras) `)` `,` type($set) (`,` type($grid)^)?
-    (`->` `(` type($results)^ `)`)?
+    functional-type(operands, results)
   }];
 }
 
@@ -454,7 +453,7 @@ def Simit_AssembleOp : Simit_MapLikeOp<"assemble", [MemoryEffects<[MemRead, MemW
 
     ```mlir
     %K, %f = simit.assemble @springForce(%k) to %springs reduce <add>
-        : (f64), !simit.set<"springs", !Spring, ["points", "points"]>
+        : (f64, !simit.set<"springs", !Spring, ["points", "points"]>)
           -> (!simit.tensor<["points", "points"] x tensor<3x3xf64>>,
               !simit.tensor<["points"] x tensor<3xf64>>)
     ```
@@ -465,8 +464,7 @@ def Simit_AssembleOp : Simit_MapLikeOp<"assemble", [MemoryEffects<[MemRead, MemW
   let results = (outs Variadic<Simit_TensorOrScalar>:$results);
   let assemblyFormat = [{
     $callee `(` $extras `)` `to` $set (`through` $grid^)? `reduce` $reduction
-    attr-dict `:` `(` type($extras) `)` `,` type($set) (`,` type($grid)^)?
-    `->` `(` type($results) `)`
+    attr-dict `:` functional-type(operands, results)
   }];
   let hasVerifier = 1;
 }
@@ -541,7 +539,7 @@ def Simit_YieldOp : Simit_Op<"yield", [Pure, Terminator, ReturnLike,
     ```
   }];
   let arguments = (ins Simit_ScalarType:$value);
-  let assemblyFormat = "$value attr-dict `:` type($value)";
+  let assemblyFormat = "$value attr-dict `:` qualified(type($value))";
 }
 
 //===----------------------------------------------------------------------===//
@@ -561,7 +559,7 @@ class Simit_ElementwiseBinaryOp<string mnemonic, string what>
   }];
   let arguments = (ins Simit_TensorLike:$lhs, Simit_TensorLike:$rhs);
   let results = (outs Simit_TensorLike:$result);
-  let assemblyFormat = "$lhs `,` $rhs attr-dict `:` type($result)";
+  let assemblyFormat = "$lhs `,` $rhs attr-dict `:` qualified(type($result))";
   let hasVerifier = 1;
 }
 
@@ -583,7 +581,7 @@ def Simit_NegOp : Simit_Op<"neg", [Pure, SameOperandsAndResultType]> {
   }];
   let arguments = (ins Simit_TensorLike:$operand);
   let results = (outs Simit_TensorLike:$result);
-  let assemblyFormat = "$operand attr-dict `:` type($result)";
+  let assemblyFormat = "$operand attr-dict `:` qualified(type($result))";
   let hasVerifier = 1;
   let hasFolder = 1;
 }
@@ -601,7 +599,7 @@ def Simit_ScaleOp : Simit_Op<"scale", [Pure, AllTypesMatch<["tensor", "result"]>
   }];
   let arguments = (ins Simit_ScalarType:$scalar, Simit_TensorLike:$tensor);
   let results = (outs Simit_TensorLike:$result);
-  let assemblyFormat = "$scalar `,` $tensor attr-dict `:` type($scalar) `,` type($tensor)";
+  let assemblyFormat = "$scalar `,` $tensor attr-dict `:` qualified(type($scalar)) `,` qualified(type($tensor))";
   let hasVerifier = 1;
   let hasFolder = 1;
   let hasCanonicalizer = 1;
@@ -622,7 +620,7 @@ def Simit_MatVecOp : Simit_Op<"matvec", [Pure]> {
   let arguments = (ins Simit_TensorLike:$matrix, Simit_TensorLike:$vector);
   let results = (outs Simit_TensorLike:$result);
   let assemblyFormat = [{
-    $matrix `,` $vector attr-dict `:` type($matrix) `,` type($vector) `->` type($result)
+    $matrix `,` $vector attr-dict `:` qualified(type($matrix)) `,` qualified(type($vector)) `->` qualified(type($result))
   }];
   let hasVerifier = 1;
 }
@@ -637,7 +635,7 @@ def Simit_MatMulOp : Simit_Op<"matmul", [Pure]> {
   let arguments = (ins Simit_TensorLike:$lhs, Simit_TensorLike:$rhs);
   let results = (outs Simit_TensorLike:$result);
   let assemblyFormat = [{
-    $lhs `,` $rhs attr-dict `:` type($lhs) `,` type($rhs) `->` type($result)
+    $lhs `,` $rhs attr-dict `:` qualified(type($lhs)) `,` qualified(type($rhs)) `->` qualified(type($result))
   }];
   let hasVerifier = 1;
 }
@@ -653,7 +651,7 @@ def Simit_TransposeOp : Simit_Op<"transpose", [Pure]> {
   }];
   let arguments = (ins Simit_TensorLike:$operand);
   let results = (outs Simit_TensorLike:$result);
-  let assemblyFormat = "$operand attr-dict `:` type($operand) `->` type($result)";
+  let assemblyFormat = "$operand attr-dict `:` qualified(type($operand)) `->` qualified(type($result))";
   let hasVerifier = 1;
   let hasFolder = 1;
 }
@@ -668,7 +666,7 @@ def Simit_DotOp : Simit_Op<"dot", [Pure]> {
   let arguments = (ins Simit_TensorLike:$lhs, Simit_TensorLike:$rhs);
   let results = (outs Simit_ScalarType:$result);
   let assemblyFormat = [{
-    $lhs `,` $rhs attr-dict `:` type($lhs) `,` type($rhs) `->` type($result)
+    $lhs `,` $rhs attr-dict `:` qualified(type($lhs)) `,` qualified(type($rhs)) `->` qualified(type($result))
   }];
   let hasVerifier = 1;
 }
@@ -683,7 +681,7 @@ def Simit_OuterOp : Simit_Op<"outer", [Pure]> {
   let arguments = (ins Simit_TensorLike:$lhs, Simit_TensorLike:$rhs);
   let results = (outs Simit_TensorLike:$result);
   let assemblyFormat = [{
-    $lhs `,` $rhs attr-dict `:` type($lhs) `,` type($rhs) `->` type($result)
+    $lhs `,` $rhs attr-dict `:` qualified(type($lhs)) `,` qualified(type($rhs)) `->` qualified(type($result))
   }];
   let hasVerifier = 1;
 }
@@ -700,7 +698,7 @@ def Simit_NormOp : Simit_Op<"norm", [Pure]> {
   }];
   let arguments = (ins Simit_TensorLike:$operand);
   let results = (outs AnyFloat:$result);
-  let assemblyFormat = "$operand attr-dict `:` type($operand) `->` type($result)";
+  let assemblyFormat = "$operand attr-dict `:` qualified(type($operand)) `->` qualified(type($result))";
   let hasVerifier = 1;
 }
 
@@ -719,7 +717,7 @@ def Simit_SolveOp : Simit_Op<"solve", [Pure]> {
   let arguments = (ins Simit_TensorLike:$matrix, Simit_TensorLike:$rhs);
   let results = (outs Simit_TensorLike:$result);
   let assemblyFormat = [{
-    $matrix `,` $rhs attr-dict `:` type($matrix) `,` type($rhs) `->` type($result)
+    $matrix `,` $rhs attr-dict `:` qualified(type($matrix)) `,` qualified(type($rhs)) `->` qualified(type($result))
   }];
   let hasVerifier = 1;
 }
@@ -733,7 +731,7 @@ def Simit_DetOp : Simit_Op<"det", [Pure]> {
   }];
   let arguments = (ins AnyRankedTensor:$operand);
   let results = (outs AnyFloat:$result);
-  let assemblyFormat = "$operand attr-dict `:` type($operand) `->` type($result)";
+  let assemblyFormat = "$operand attr-dict `:` qualified(type($operand)) `->` qualified(type($result))";
   let hasVerifier = 1;
 }
 
@@ -746,7 +744,7 @@ def Simit_InvOp : Simit_Op<"inv", [Pure, SameOperandsAndResultType]> {
   }];
   let arguments = (ins AnyRankedTensor:$operand);
   let results = (outs AnyRankedTensor:$result);
-  let assemblyFormat = "$operand attr-dict `:` type($result)";
+  let assemblyFormat = "$operand attr-dict `:` qualified(type($result))";
   let hasVerifier = 1;
 }
 
@@ -759,7 +757,7 @@ def Simit_CrossOp : Simit_Op<"cross", [Pure, SameOperandsAndResultType]> {
   }];
   let arguments = (ins AnyRankedTensor:$lhs, AnyRankedTensor:$rhs);
   let results = (outs AnyRankedTensor:$result);
-  let assemblyFormat = "$lhs `,` $rhs attr-dict `:` type($result)";
+  let assemblyFormat = "$lhs `,` $rhs attr-dict `:` qualified(type($result))";
   let hasVerifier = 1;
 }
 
@@ -779,7 +777,7 @@ def Simit_PrintOp : Simit_Op<"print", [MemoryEffects<[MemWrite]>]> {
     ```
   }];
   let arguments = (ins Variadic<AnyType>:$values, UnitAttr:$newline);
-  let assemblyFormat = "$values attr-dict `:` type($values)";
+  let assemblyFormat = "$values attr-dict `:` qualified(type($values))";
   let hasVerifier = 1;
 }
 

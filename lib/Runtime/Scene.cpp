@@ -1,0 +1,838 @@
+//===--- Scene.cpp - Reading and checking scene files ---------------------===//
+//
+// Every check that needs only the JSON happens here, so that a scene with a
+// typo fails before any mesh is loaded. Errors read
+// "<file>: <json.path>: expected ...".
+//
+//===----------------------------------------------------------------------===//
+
+#include "simit/Runtime/Scene.h"
+
+#include "llvm/ADT/STLExtras.h"
+#include "llvm/ADT/SmallString.h"
+#include "llvm/Support/MemoryBuffer.h"
+#include "llvm/Support/Path.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+using namespace simit;
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+class SceneParser {
+public:
+  SceneParser(llvm::StringRef name, llvm::StringRef directory)
+      : name(name.str()), directory(directory.str()) {}
+
+  llvm::Error parse(const Json &root, SceneDescription &scene);
+
+private:
+  llvm::Error error(const std::string &path, const llvm::Twine &message) {
+    return llvm::createStringError(name + ": " + path + ": " + message);
+  }
+  static std::string child(const std::string &path, llvm::StringRef key) {
+    return path.empty() ? key.str() : path + "." + key.str();
+  }
+  static std::string element(const std::string &path, size_t index) {
+    return path + "[" + std::to_string(index) + "]";
+  }
+  std::string resolve(llvm::StringRef file) const {
+    if (llvm::sys::path::is_absolute(file) || directory.empty())
+      return file.str();
+    llvm::SmallString<256> full(directory);
+    llvm::sys::path::append(full, file);
+    return std::string(full);
+  }
+
+  llvm::Error checkKeys(const Json &object, const std::string &path,
+                        std::initializer_list<llvm::StringRef> allowed);
+  llvm::Error expectObject(const Json &value, const std::string &path);
+  llvm::Expected<std::string> getString(const Json &value,
+                                        const std::string &path);
+  llvm::Expected<int> getInt(const Json &value, const std::string &path,
+                             int minimum);
+  llvm::Expected<std::vector<std::string>>
+  getNames(const Json &value, const std::string &path);
+  llvm::Expected<std::vector<int>> getShape(const Json &value,
+                                            const std::string &path);
+  /// Flattens a number, a boolean or a (nested) array of them into
+  /// `values`, appending the nesting's shape to `shape`.
+  struct Kinds {
+    bool anyBoolean = false, anyNumber = false, anyFraction = false;
+  };
+  llvm::Error flatten(const Json &value, const std::string &path,
+                      std::vector<double> &values, std::vector<int> &shape,
+                      Kinds &kinds);
+  /// Reads a constant of `type` and `shape` (inferred when empty and
+  /// `inferShape`).
+  llvm::Error readConstant(const Json &value, const std::string &path,
+                           ComponentType type, std::vector<int> &shape,
+                           bool inferShape, std::vector<double> &values);
+
+  llvm::Error parseMeshes(const Json &value, SceneDescription &scene);
+  llvm::Error parseSets(const Json &value, SceneDescription &scene);
+  llvm::Error parseSet(const Json &value, const std::string &path,
+                       SetSpec &set, const SceneDescription &scene);
+  llvm::Error parseField(const Json &value, const std::string &path,
+                         const SetSpec &set, FieldSpec &field);
+  llvm::Error parseExterns(const Json &value, SceneDescription &scene);
+  llvm::Error parseOutput(const Json &value, const std::string &path,
+                          const SceneDescription &scene, OutputSpec &output);
+
+  std::string name, directory;
+};
+
+const char *jsonKind(const Json &value) {
+  switch (value.type()) {
+  case Json::value_t::null:
+    return "null";
+  case Json::value_t::object:
+    return "an object";
+  case Json::value_t::array:
+    return "an array";
+  case Json::value_t::string:
+    return "a string";
+  case Json::value_t::boolean:
+    return "a boolean";
+  default:
+    return "a number";
+  }
+}
+
+std::string shapeText(llvm::ArrayRef<int> shape) {
+  std::string text = "[";
+  for (size_t i = 0; i < shape.size(); ++i)
+    text += (i ? ", " : "") + std::to_string(shape[i]);
+  return text + "]";
+}
+
+size_t product(llvm::ArrayRef<int> shape) {
+  size_t n = 1;
+  for (int d : shape)
+    n *= d;
+  return n;
+}
+
+std::optional<ComponentType> parseType(llvm::StringRef text) {
+  if (text == "float64" || text == "float" || text == "double")
+    return ComponentType::Float64;
+  if (text == "float32")
+    return ComponentType::Float32;
+  if (text == "int32" || text == "int")
+    return ComponentType::Int32;
+  if (text == "bool")
+    return ComponentType::Bool;
+  return std::nullopt;
+}
+
+llvm::Error SceneParser::checkKeys(const Json &object, const std::string &path,
+                                   std::initializer_list<llvm::StringRef> allowed) {
+  for (auto it = object.begin(); it != object.end(); ++it)
+    if (!llvm::is_contained(allowed, llvm::StringRef(it.key()))) {
+      std::string list;
+      for (llvm::StringRef key : allowed)
+        list += (list.empty() ? "" : ", ") + key.str();
+      return error(child(path, it.key()),
+                   "unknown key (expected one of " + list + ")");
+    }
+  return llvm::Error::success();
+}
+
+llvm::Error SceneParser::expectObject(const Json &value,
+                                      const std::string &path) {
+  if (value.is_object())
+    return llvm::Error::success();
+  return error(path, llvm::Twine("expected an object, found ") +
+                         jsonKind(value));
+}
+
+llvm::Expected<std::string> SceneParser::getString(const Json &value,
+                                                   const std::string &path) {
+  if (!value.is_string() || value.get<std::string>().empty())
+    return error(path, llvm::Twine("expected a non-empty string, found ") +
+                           (value.is_string() ? "\"\"" : jsonKind(value)));
+  return value.get<std::string>();
+}
+
+llvm::Expected<int> SceneParser::getInt(const Json &value,
+                                        const std::string &path, int minimum) {
+  if (!value.is_number_integer() || value.get<long long>() < minimum ||
+      value.get<long long>() > INT32_MAX)
+    return error(path, "expected an integer of at least " +
+                           llvm::Twine(minimum));
+  return static_cast<int>(value.get<long long>());
+}
+
+llvm::Expected<std::vector<std::string>>
+SceneParser::getNames(const Json &value, const std::string &path) {
+  std::vector<std::string> names;
+  if (value.is_string()) {
+    auto single = getString(value, path);
+    if (!single)
+      return single.takeError();
+    names.push_back(*single);
+    return names;
+  }
+  if (!value.is_array())
+    return error(path, llvm::Twine("expected a name or an array of names, "
+                                   "found ") +
+                           jsonKind(value));
+  for (size_t i = 0; i < value.size(); ++i) {
+    auto entry = getString(value[i], element(path, i));
+    if (!entry)
+      return entry.takeError();
+    names.push_back(*entry);
+  }
+  return names;
+}
+
+llvm::Expected<std::vector<int>> SceneParser::getShape(const Json &value,
+                                                       const std::string &path) {
+  if (!value.is_array())
+    return error(path, llvm::Twine("expected an array of positive integers, "
+                                   "found ") +
+                           jsonKind(value));
+  std::vector<int> shape;
+  for (size_t i = 0; i < value.size(); ++i) {
+    auto dim = getInt(value[i], element(path, i), 1);
+    if (!dim)
+      return dim.takeError();
+    shape.push_back(*dim);
+  }
+  return shape;
+}
+
+llvm::Error SceneParser::flatten(const Json &value, const std::string &path,
+                                 std::vector<double> &values,
+                                 std::vector<int> &shape, Kinds &kinds) {
+  if (value.is_boolean()) {
+    values.push_back(value.get<bool>() ? 1.0 : 0.0);
+    kinds.anyBoolean = true;
+    return llvm::Error::success();
+  }
+  if (value.is_number()) {
+    double number = value.get<double>();
+    values.push_back(number);
+    kinds.anyNumber = true;
+    kinds.anyFraction |= std::floor(number) != number;
+    return llvm::Error::success();
+  }
+  if (!value.is_array() || value.empty())
+    return error(path, llvm::Twine("expected a number, a boolean or a "
+                                   "non-empty array of them, found ") +
+                           (value.is_array() ? "an empty array"
+                                             : jsonKind(value)));
+  // Every row of a nested array must have the first row's shape.
+  std::vector<int> rowShape;
+  for (size_t i = 0; i < value.size(); ++i) {
+    std::vector<int> thisShape;
+    if (auto err = flatten(value[i], element(path, i), values, thisShape,
+                           kinds))
+      return err;
+    if (i == 0)
+      rowShape = thisShape;
+    else if (thisShape != rowShape)
+      return error(element(path, i), "expected shape " +
+                                         shapeText(rowShape) +
+                                         " like the first entry, found " +
+                                         shapeText(thisShape));
+  }
+  shape.push_back(static_cast<int>(value.size()));
+  shape.insert(shape.end(), rowShape.begin(), rowShape.end());
+  return llvm::Error::success();
+}
+
+llvm::Error SceneParser::readConstant(const Json &value,
+                                      const std::string &path,
+                                      ComponentType type,
+                                      std::vector<int> &shape, bool inferShape,
+                                      std::vector<double> &values) {
+  std::vector<int> found;
+  Kinds kinds;
+  values.clear();
+  if (auto err = flatten(value, path, values, found, kinds))
+    return err;
+  if (inferShape && shape.empty())
+    shape = found;
+  // A flat list of the right length also fills a matrix block.
+  size_t expected = product(shape);
+  bool shapeMatches = found == shape ||
+                      (found.size() == 1 && values.size() == expected);
+  if (!shapeMatches) {
+    const char *unit = type == ComponentType::Bool    ? "boolean"
+                       : type == ComponentType::Int32 ? "integer"
+                                                      : "number";
+    std::string what;
+    if (shape.empty())
+      what = std::string("a single ") + unit;
+    else if (shape.size() == 1)
+      what = "an array of " + std::to_string(expected) + " " + unit + "s";
+    else
+      what = "an array of shape " + shapeText(shape) + " (or a flat array " +
+             "of " + std::to_string(expected) + ") of " + unit + "s";
+    return error(path, "expected " + what + ", found " +
+                           (found.empty() ? std::string("a single value")
+                                          : "an array of shape " +
+                                                shapeText(found)));
+  }
+  switch (type) {
+  case ComponentType::Bool:
+    if (kinds.anyNumber)
+      return error(path, "expected true or false for a bool value");
+    break;
+  case ComponentType::Int32:
+    if (kinds.anyBoolean || kinds.anyFraction)
+      return error(path, "expected integers for an int32 value");
+    break;
+  case ComponentType::Float64:
+  case ComponentType::Float32:
+    if (kinds.anyBoolean)
+      return error(path, "expected numbers for a " +
+                             componentTypeName(type) + " value, found a "
+                                                       "boolean");
+    break;
+  }
+  return llvm::Error::success();
+}
+
+//===--- Sections ---------------------------------------------------------===//
+
+llvm::Error SceneParser::parseMeshes(const Json &value,
+                                     SceneDescription &scene) {
+  if (auto err = expectObject(value, "meshes"))
+    return err;
+  for (auto it = value.begin(); it != value.end(); ++it) {
+    std::string path = child("meshes", it.key());
+    MeshSpec mesh;
+    mesh.name = it.key();
+    const Json &entry = it.value();
+    if (entry.is_string()) {
+      mesh.path = resolve(entry.get<std::string>());
+    } else {
+      if (!entry.is_object())
+        return error(path, llvm::Twine("expected a file name or an object, "
+                                       "found ") +
+                               jsonKind(entry));
+      if (auto err = checkKeys(entry, path, {"file", "refine"}))
+        return err;
+      if (!entry.contains("file"))
+        return error(path, "expected a \"file\"");
+      auto file = getString(entry["file"], child(path, "file"));
+      if (!file)
+        return file.takeError();
+      mesh.path = resolve(*file);
+      if (entry.contains("refine")) {
+        auto refine = getInt(entry["refine"], child(path, "refine"), 0);
+        if (!refine)
+          return refine.takeError();
+        mesh.refine = *refine;
+      }
+    }
+    scene.meshes.push_back(std::move(mesh));
+  }
+  return llvm::Error::success();
+}
+
+llvm::Error SceneParser::parseField(const Json &value, const std::string &path,
+                                    const SetSpec &set, FieldSpec &field) {
+  field.jsonPath = path;
+  FieldInit &init = field.init;
+  if (!value.is_object()) {
+    // A bare constant: float64 (or bool for true/false) of its own shape.
+    if (value.is_boolean() ||
+        (value.is_array() && !value.empty() && value[0].is_boolean()))
+      field.type = ComponentType::Bool;
+    init.kind = FieldInit::Constant;
+    return readConstant(value, path, field.type, field.shape, true,
+                        init.values);
+  }
+  if (auto err = checkKeys(value, path,
+                           {"type", "shape", "value", "coordinates", "file",
+                            "expr", "if", "then", "else", "space"}))
+    return err;
+  if (value.contains("type")) {
+    auto text = getString(value["type"], child(path, "type"));
+    if (!text)
+      return text.takeError();
+    auto type = parseType(*text);
+    if (!type)
+      return error(child(path, "type"), "expected float64, float32, int32 "
+                                        "or bool, found \"" +
+                                            *text + "\"");
+    field.type = *type;
+  }
+  bool explicitShape = value.contains("shape");
+  if (explicitShape) {
+    auto shape = getShape(value["shape"], child(path, "shape"));
+    if (!shape)
+      return shape.takeError();
+    field.shape = std::move(*shape);
+  }
+
+  const char *kinds[] = {"value", "coordinates", "file", "expr", "if"};
+  std::vector<std::string> present;
+  for (const char *kind : kinds)
+    if (value.contains(kind))
+      present.push_back(kind);
+  if (present.size() > 1)
+    return error(path, "expected one of value, coordinates, file, expr or "
+                       "if, found both \"" +
+                           present[0] + "\" and \"" + present[1] + "\"");
+  llvm::StringRef kind = present.empty() ? "" : llvm::StringRef(present[0]);
+  if (kind != "if" && (value.contains("then") || value.contains("else")))
+    return error(path, "expected \"then\" and \"else\" only with \"if\"");
+
+  if (value.contains("space")) {
+    if (kind != "expr" && kind != "if")
+      return error(child(path, "space"),
+                   "expected \"space\" only with \"expr\" or \"if\"");
+    auto space = getString(value["space"], child(path, "space"));
+    if (!space)
+      return space.takeError();
+    if (*space != "mesh" && *space != "normalized")
+      return error(child(path, "space"),
+                   "expected \"mesh\" or \"normalized\", found \"" + *space +
+                       "\"");
+    init.normalized = *space == "normalized";
+  }
+
+  bool meshBacked =
+      set.kind == SetSpec::Points || set.kind == SetSpec::Elements;
+  if ((kind == "coordinates" || kind == "expr" || kind == "if") &&
+      !meshBacked)
+    return error(child(path, kind),
+                 "expected a set built from a mesh, which has coordinates");
+  bool isFloat = field.type == ComponentType::Float64 ||
+                 field.type == ComponentType::Float32;
+
+  if (kind.empty()) {
+    init.kind = FieldInit::Zero;
+  } else if (kind == "value") {
+    init.kind = FieldInit::Constant;
+    return readConstant(value["value"], child(path, "value"), field.type,
+                        field.shape, !explicitShape, init.values);
+  } else if (kind == "coordinates") {
+    init.kind = FieldInit::Coordinates;
+    auto space = getString(value["coordinates"], child(path, "coordinates"));
+    if (!space)
+      return space.takeError();
+    if (*space != "mesh" && *space != "normalized")
+      return error(child(path, "coordinates"),
+                   "expected \"mesh\" or \"normalized\", found \"" + *space +
+                       "\"");
+    init.normalized = *space == "normalized";
+    if (!explicitShape)
+      field.shape = {3};
+    if (field.shape != std::vector<int>{3} || !isFloat)
+      return error(path, "expected a float64 or float32 field of shape [3] "
+                         "for coordinates");
+  } else if (kind == "file") {
+    init.kind = FieldInit::File;
+    auto file = getString(value["file"], child(path, "file"));
+    if (!file)
+      return file.takeError();
+    init.file = resolve(*file);
+  } else if (kind == "expr") {
+    init.kind = FieldInit::Expression;
+    auto text = getString(value["expr"], child(path, "expr"));
+    if (!text)
+      return text.takeError();
+    auto expression = SceneExpression::parse(*text);
+    if (!expression)
+      return error(child(path, "expr"),
+                   llvm::toString(expression.takeError()));
+    if (!field.shape.empty())
+      return error(path, "expected a scalar field (shape []) for \"expr\"");
+    if (field.type == ComponentType::Bool && !expression->isBoolean())
+      return error(child(path, "expr"),
+                   "expected a boolean expression for a bool field");
+    init.expression =
+        std::make_shared<const SceneExpression>(std::move(*expression));
+  } else {
+    init.kind = FieldInit::Select;
+    auto text = getString(value["if"], child(path, "if"));
+    if (!text)
+      return text.takeError();
+    auto expression = SceneExpression::parse(*text);
+    if (!expression)
+      return error(child(path, "if"), llvm::toString(expression.takeError()));
+    if (!expression->isBoolean())
+      return error(child(path, "if"), "expected a boolean condition");
+    init.expression =
+        std::make_shared<const SceneExpression>(std::move(*expression));
+    if (!value.contains("then") || !value.contains("else"))
+      return error(path, "expected both \"then\" and \"else\" with \"if\"");
+    if (auto err = readConstant(value["then"], child(path, "then"),
+                                field.type, field.shape, !explicitShape,
+                                init.then))
+      return err;
+    return readConstant(value["else"], child(path, "else"), field.type,
+                        field.shape, false, init.otherwise);
+  }
+  return llvm::Error::success();
+}
+
+llvm::Error SceneParser::parseSet(const Json &value, const std::string &path,
+                                  SetSpec &set, const SceneDescription &scene) {
+  if (auto err = expectObject(value, path))
+    return err;
+  if (auto err = checkKeys(value, path,
+                           {"mesh", "elements", "endpoints", "size", "grid",
+                            "fields"}))
+    return err;
+  bool hasMesh = value.contains("mesh"), hasSize = value.contains("size"),
+       hasGrid = value.contains("grid");
+  if (hasMesh + hasSize + hasGrid != 1)
+    return error(path, "expected exactly one of \"mesh\", \"size\" or "
+                       "\"grid\"");
+  if (hasMesh) {
+    auto mesh = getString(value["mesh"], child(path, "mesh"));
+    if (!mesh)
+      return mesh.takeError();
+    if (!llvm::any_of(scene.meshes,
+                      [&](const MeshSpec &m) { return m.name == *mesh; }))
+      return error(child(path, "mesh"),
+                   "expected the name of a mesh in \"meshes\", found \"" +
+                       *mesh + "\"");
+    set.mesh = *mesh;
+    set.kind = value.contains("elements") ? SetSpec::Elements
+                                          : SetSpec::Points;
+  } else if (hasSize) {
+    set.kind = SetSpec::Sized;
+    auto size = getInt(value["size"], child(path, "size"), 0);
+    if (!size)
+      return size.takeError();
+    set.size = *size;
+  } else {
+    set.kind = SetSpec::Grid;
+    auto dims = getShape(value["grid"], child(path, "grid"));
+    if (!dims)
+      return dims.takeError();
+    if (dims->empty())
+      return error(child(path, "grid"), "expected at least one dimension");
+    set.dims = std::move(*dims);
+  }
+
+  if (value.contains("elements")) {
+    if (set.kind != SetSpec::Elements)
+      return error(child(path, "elements"),
+                   "expected \"elements\" only with \"mesh\"");
+    auto elements = getString(value["elements"], child(path, "elements"));
+    if (!elements)
+      return elements.takeError();
+    if (*elements != "edges" && *elements != "triangles" &&
+        *elements != "tets")
+      return error(child(path, "elements"),
+                   "expected \"edges\", \"triangles\" or \"tets\", found \"" +
+                       *elements + "\"");
+    set.elements = *elements;
+  }
+  bool needsEndpoints =
+      set.kind == SetSpec::Elements || set.kind == SetSpec::Grid;
+  if (needsEndpoints != value.contains("endpoints"))
+    return error(path, needsEndpoints
+                           ? "expected \"endpoints\": the name of the point "
+                             "set"
+                           : "expected \"endpoints\" only with "
+                             "\"elements\" or \"grid\"");
+  if (needsEndpoints) {
+    auto endpoints = getString(value["endpoints"], child(path, "endpoints"));
+    if (!endpoints)
+      return endpoints.takeError();
+    set.endpoints = *endpoints;
+  }
+
+  if (value.contains("fields")) {
+    const Json &fields = value["fields"];
+    std::string fieldsPath = child(path, "fields");
+    if (auto err = expectObject(fields, fieldsPath))
+      return err;
+    for (auto it = fields.begin(); it != fields.end(); ++it) {
+      FieldSpec field;
+      field.name = it.key();
+      if (auto err = parseField(it.value(), child(fieldsPath, it.key()), set,
+                                field))
+        return err;
+      set.fields.push_back(std::move(field));
+    }
+  }
+  return llvm::Error::success();
+}
+
+llvm::Error SceneParser::parseSets(const Json &value,
+                                   SceneDescription &scene) {
+  if (auto err = expectObject(value, "sets"))
+    return err;
+  for (auto it = value.begin(); it != value.end(); ++it) {
+    SetSpec set;
+    set.name = it.key();
+    if (auto err = parseSet(it.value(), child("sets", it.key()), set, scene))
+      return err;
+    scene.sets.push_back(std::move(set));
+  }
+  // Endpoints name vertex sets; mesh elements index their own mesh's points.
+  for (const SetSpec &set : scene.sets) {
+    if (set.endpoints.empty())
+      continue;
+    std::string path = child(child("sets", set.name), "endpoints");
+    const SetSpec *target = scene.findSet(set.endpoints);
+    if (!target)
+      return error(path, "expected the name of a set in \"sets\", found \"" +
+                             set.endpoints + "\"");
+    if (target->kind == SetSpec::Elements || target->kind == SetSpec::Grid)
+      return error(path, "expected a vertex set, found the edge set \"" +
+                             set.endpoints + "\"");
+    if (set.kind == SetSpec::Elements &&
+        (target->kind != SetSpec::Points || target->mesh != set.mesh))
+      return error(path, "expected a set of the points of mesh \"" +
+                             set.mesh + "\"");
+  }
+  return llvm::Error::success();
+}
+
+llvm::Error SceneParser::parseExterns(const Json &value,
+                                      SceneDescription &scene) {
+  if (auto err = expectObject(value, "externs"))
+    return err;
+  for (auto it = value.begin(); it != value.end(); ++it) {
+    std::string path = child("externs", it.key());
+    ExternTensor tensor;
+    const Json *constant = &it.value();
+    if (it.value().is_object()) {
+      if (auto err = checkKeys(it.value(), path, {"type", "value"}))
+        return err;
+      if (!it.value().contains("value"))
+        return error(path, "expected a \"value\"");
+      if (it.value().contains("type")) {
+        auto text = getString(it.value()["type"], child(path, "type"));
+        if (!text)
+          return text.takeError();
+        auto type = parseType(*text);
+        if (!type)
+          return error(child(path, "type"), "expected float64, float32, "
+                                            "int32 or bool, found \"" +
+                                                *text + "\"");
+        tensor.type = *type;
+      }
+      constant = &it.value()["value"];
+      path = child(path, "value");
+    } else if (it.value().is_boolean()) {
+      tensor.type = ComponentType::Bool;
+    }
+    if (auto err = readConstant(*constant, path, tensor.type, tensor.shape,
+                                true, tensor.values))
+      return err;
+    tensor.store();
+    scene.externs.emplace_back(it.key(), std::move(tensor));
+  }
+  return llvm::Error::success();
+}
+
+llvm::Error SceneParser::parseOutput(const Json &value,
+                                     const std::string &path,
+                                     const SceneDescription &scene,
+                                     OutputSpec &output) {
+  output.jsonPath = path;
+  if (auto err = expectObject(value, path))
+    return err;
+  if (auto err = checkKeys(value, path,
+                           {"format", "path", "set", "position", "cells",
+                            "fields", "cell_fields", "every", "last"}))
+    return err;
+  for (const char *key : {"format", "path", "set"})
+    if (!value.contains(key))
+      return error(path, llvm::Twine("expected a \"") + key + "\"");
+  auto format = getString(value["format"], child(path, "format"));
+  if (!format)
+    return format.takeError();
+  if (*format != "vtk" && *format != "csv")
+    return error(child(path, "format"),
+                 "expected \"vtk\" or \"csv\", found \"" + *format + "\"");
+  output.kind = *format == "vtk" ? OutputSpec::VTK : OutputSpec::CSV;
+  bool vtk = output.kind == OutputSpec::VTK;
+  auto file = getString(value["path"], child(path, "path"));
+  if (!file)
+    return file.takeError();
+  output.path = *file;
+  auto set = getString(value["set"], child(path, "set"));
+  if (!set)
+    return set.takeError();
+  output.set = *set;
+  const SetSpec *setSpec = scene.findSet(output.set);
+  if (!setSpec)
+    return error(child(path, "set"),
+                 "expected the name of a set in \"sets\", found \"" +
+                     output.set + "\"");
+  if (!vtk)
+    for (const char *key : {"position", "cells", "cell_fields"})
+      if (value.contains(key))
+        return error(child(path, key), "expected only with \"format\": "
+                                       "\"vtk\"");
+  if (value.contains("position")) {
+    auto position = getString(value["position"], child(path, "position"));
+    if (!position)
+      return position.takeError();
+    output.position = *position;
+  }
+  if (value.contains("fields")) {
+    auto fields = getNames(value["fields"], child(path, "fields"));
+    if (!fields)
+      return fields.takeError();
+    output.fields = std::move(*fields);
+  }
+  if (value.contains("cells")) {
+    auto cells = getNames(value["cells"], child(path, "cells"));
+    if (!cells)
+      return cells.takeError();
+    output.cells = std::move(*cells);
+    for (size_t i = 0; i < output.cells.size(); ++i) {
+      const SetSpec *cellSet = scene.findSet(output.cells[i]);
+      if (!cellSet || cellSet->endpoints != output.set)
+        return error(element(child(path, "cells"), i),
+                     "expected an edge set over \"" + output.set +
+                         "\", found \"" + output.cells[i] + "\"");
+    }
+  }
+  if (value.contains("cell_fields")) {
+    auto cellFields = getNames(value["cell_fields"],
+                               child(path, "cell_fields"));
+    if (!cellFields)
+      return cellFields.takeError();
+    output.cellFields = std::move(*cellFields);
+    if (output.cells.size() != 1)
+      return error(child(path, "cell_fields"),
+                   "expected exactly one set in \"cells\" to take cell "
+                   "fields from");
+  }
+  if (vtk && setSpec->kind != SetSpec::Points &&
+      setSpec->kind != SetSpec::Sized)
+    return error(child(path, "set"), "expected a vertex set for VTK output");
+  if (value.contains("every")) {
+    auto every = getInt(value["every"], child(path, "every"), 1);
+    if (!every)
+      return every.takeError();
+    output.every = *every;
+  }
+  if (value.contains("last")) {
+    if (!value["last"].is_boolean())
+      return error(child(path, "last"), "expected true or false");
+    output.lastOnly = value["last"].get<bool>();
+  }
+  bool manyFiles = !output.lastOnly && (vtk || output.path.find("{frame}") !=
+                                                   std::string::npos);
+  if (manyFiles && output.path.find("{frame}") == std::string::npos)
+    return error(child(path, "path"), "expected \"{frame}\" in the path of "
+                                      "a VTK output written every frame "
+                                      "(or \"last\": true)");
+  return llvm::Error::success();
+}
+
+llvm::Error SceneParser::parse(const Json &root, SceneDescription &scene) {
+  if (!root.is_object())
+    return llvm::createStringError(name + ": expected a JSON object, found " +
+                                   jsonKind(root));
+  if (auto err = checkKeys(root, "",
+                           {"program", "meshes", "sets", "externs", "init",
+                            "step", "frames", "outputs"}))
+    return err;
+  if (root.contains("program")) {
+    auto program = getString(root["program"], "program");
+    if (!program)
+      return program.takeError();
+    scene.program = resolve(*program);
+  }
+  if (root.contains("meshes"))
+    if (auto err = parseMeshes(root["meshes"], scene))
+      return err;
+  if (!root.contains("sets"))
+    return llvm::createStringError(name + ": expected a \"sets\" object");
+  if (auto err = parseSets(root["sets"], scene))
+    return err;
+  if (root.contains("externs"))
+    if (auto err = parseExterns(root["externs"], scene))
+      return err;
+  for (auto [key, list] : {std::pair<const char *, std::vector<std::string> *>{
+                               "init", &scene.init},
+                           {"step", &scene.step}})
+    if (root.contains(key)) {
+      auto names = getNames(root[key], key);
+      if (!names)
+        return names.takeError();
+      *list = std::move(*names);
+    }
+  if (root.contains("frames")) {
+    auto frames = getInt(root["frames"], "frames", 0);
+    if (!frames)
+      return frames.takeError();
+    scene.frames = *frames;
+  }
+  if (scene.frames > 0 && scene.step.empty())
+    return error("frames", "expected a \"step\" function to run per frame");
+  if (root.contains("outputs")) {
+    const Json &outputs = root["outputs"];
+    if (!outputs.is_array())
+      return error("outputs", llvm::Twine("expected an array, found ") +
+                                  jsonKind(outputs));
+    for (size_t i = 0; i < outputs.size(); ++i) {
+      OutputSpec output;
+      if (auto err = parseOutput(outputs[i], element("outputs", i), scene,
+                                 output))
+        return err;
+      scene.outputs.push_back(std::move(output));
+    }
+  }
+  return llvm::Error::success();
+}
+
+} // namespace
+
+const SetSpec *SceneDescription::findSet(llvm::StringRef setName) const {
+  for (const SetSpec &set : sets)
+    if (set.name == setName)
+      return &set;
+  return nullptr;
+}
+
+llvm::Expected<SceneDescription> simit::parseScene(llvm::StringRef text,
+                                                   llvm::StringRef name,
+                                                   llvm::StringRef directory) {
+  Json root;
+  try {
+    root = Json::parse(text.begin(), text.end());
+  } catch (const Json::parse_error &e) {
+    // Turn the byte offset into line:column.
+    size_t offset = std::min<size_t>(e.byte ? e.byte - 1 : 0, text.size());
+    llvm::StringRef before = text.take_front(offset);
+    size_t line = before.count('\n') + 1;
+    size_t lineStart = before.rfind('\n');
+    size_t column = offset - (lineStart == llvm::StringRef::npos
+                                  ? 0
+                                  : lineStart + 1) +
+                    1;
+    llvm::StringRef what = e.what();
+    size_t colon = what.find(": ");
+    if (colon != llvm::StringRef::npos)
+      what = what.drop_front(colon + 2);
+    return llvm::createStringError(name + ":" + llvm::Twine(line) + ":" +
+                                   llvm::Twine(column) +
+                                   ": invalid JSON: " + what);
+  }
+  SceneDescription scene;
+  scene.path = name.str();
+  scene.directory = directory.str();
+  if (auto err = SceneParser(name, directory).parse(root, scene))
+    return std::move(err);
+  return scene;
+}
+
+llvm::Expected<SceneDescription> simit::loadScene(llvm::StringRef path) {
+  auto buffer = llvm::MemoryBuffer::getFile(path, /*IsText=*/true);
+  if (!buffer)
+    return llvm::createStringError(path + ": cannot open: " +
+                                   buffer.getError().message());
+  return parseScene((*buffer)->getBuffer(), path,
+                    llvm::sys::path::parent_path(path));
+}

@@ -1,0 +1,258 @@
+//===--- OutputTest.cpp - VTK, CSV and per-frame scene outputs ------------===//
+
+#include "simit/Runtime/CSV.h"
+#include "simit/Runtime/SceneOutput.h"
+#include "simit/Runtime/VTK.h"
+
+#include "TestFiles.h"
+
+#include "gmock/gmock.h"
+
+#include "llvm/Support/MemoryBuffer.h"
+
+#include <sstream>
+
+using namespace simit;
+using namespace simit::test;
+using ::testing::HasSubstr;
+
+namespace {
+
+/// The numbers inside the <DataArray> whose opening tag contains `tag`, or
+/// inside the element `tag` (such as "<Points>").
+std::vector<double> dataArray(const std::string &xml, const std::string &tag) {
+  size_t at = xml.find(tag);
+  if (at == std::string::npos) {
+    ADD_FAILURE() << "no DataArray with " << tag;
+    return {};
+  }
+  // A tag around the array (<Points>) leads to the DataArray inside it.
+  if (tag.find("DataArray") == std::string::npos && tag[0] == '<')
+    at = xml.find("<DataArray", at);
+  size_t begin = xml.find('>', at) + 1;
+  size_t end = xml.find("</DataArray>", begin);
+  std::istringstream in(xml.substr(begin, end - begin));
+  std::vector<double> values;
+  for (double v; in >> v;)
+    values.push_back(v);
+  return values;
+}
+
+std::string readFile(const std::string &path) {
+  auto buffer = llvm::MemoryBuffer::getFile(path);
+  if (!buffer) {
+    ADD_FAILURE() << path << ": " << buffer.getError().message();
+    return "";
+  }
+  return (*buffer)->getBuffer().str();
+}
+
+/// Three points, a tet over four (one repeated would be degenerate, so use
+/// four points), two springs and a triangle.
+struct SmallMesh {
+  Set points{"points"};
+  Set tets{"tets", {&points, &points, &points, &points}};
+  Set springs{"springs", {&points, &points}};
+  Set faces{"faces", {&points, &points, &points}};
+
+  SmallMesh() {
+    auto x = points.addField<double, 3>("x");
+    auto temperature = points.addField<float>("T");
+    auto fixed = points.addField<bool>("fixed");
+    auto volume = tets.addField<double>("W");
+    for (int i = 0; i < 4; ++i) {
+      points.add();
+      x.set(i, {double(i == 1), double(i == 2), double(i == 3) + 0.125});
+      temperature.set(i, 20.5f + i);
+      fixed.set(i, i == 0);
+    }
+    volume.set(tets.add(0, 1, 2, 3), 1.0 / 6);
+    springs.add(0, 1);
+    springs.add(2, 3);
+    faces.add(1, 2, 3);
+  }
+};
+
+TEST(VTK, CellTypes) {
+  EXPECT_EQ(vtkCellType(1), 1);
+  EXPECT_EQ(vtkCellType(2), 3);
+  EXPECT_EQ(vtkCellType(3), 5);
+  EXPECT_EQ(vtkCellType(4), 10);
+  EXPECT_EQ(vtkCellType(5), -1);
+}
+
+TEST(VTK, WritesPointsCellsAndData) {
+  SmallMesh mesh;
+  VTKOptions options;
+  options.cellSets = {&mesh.tets, &mesh.springs, &mesh.faces};
+  options.pointFields = {"T", "fixed"};
+  std::string xml;
+  llvm::raw_string_ostream os(xml);
+  ASSERT_FALSE(bool(writeVTU(os, mesh.points, options)));
+  os.flush();
+  EXPECT_THAT(xml, HasSubstr("<VTKFile type=\"UnstructuredGrid\""));
+  EXPECT_THAT(xml, HasSubstr("<Piece NumberOfPoints=\"4\" "
+                             "NumberOfCells=\"4\">"));
+  EXPECT_EQ(dataArray(xml, "<Points>"),
+            (std::vector<double>{0, 0, 0.125, 1, 0, 0.125, 0, 1, 0.125, 0, 0,
+                                 1.125}));
+  EXPECT_EQ(dataArray(xml, "Name=\"connectivity\""),
+            (std::vector<double>{0, 1, 2, 3, 0, 1, 2, 3, 1, 2, 3}));
+  EXPECT_EQ(dataArray(xml, "Name=\"offsets\""),
+            (std::vector<double>{4, 6, 8, 11}));
+  EXPECT_EQ(dataArray(xml, "Name=\"types\""),
+            (std::vector<double>{10, 3, 3, 5}));
+  EXPECT_THAT(xml, HasSubstr("type=\"Float32\" Name=\"T\" "
+                             "NumberOfComponents=\"1\""));
+  EXPECT_EQ(dataArray(xml, "Name=\"T\""),
+            (std::vector<double>{20.5, 21.5, 22.5, 23.5}));
+  EXPECT_THAT(xml, HasSubstr("type=\"UInt8\" Name=\"fixed\""));
+  EXPECT_EQ(dataArray(xml, "Name=\"fixed\""),
+            (std::vector<double>{1, 0, 0, 0}));
+  EXPECT_THAT(xml, HasSubstr("</VTKFile>\n"));
+}
+
+TEST(VTK, CellFieldsAndFullPrecision) {
+  SmallMesh mesh;
+  VTKOptions options;
+  options.cellSets = {&mesh.tets};
+  options.cellFields = {"W"};
+  std::string xml;
+  llvm::raw_string_ostream os(xml);
+  ASSERT_FALSE(bool(writeVTU(os, mesh.points, options)));
+  os.flush();
+  std::vector<double> w = dataArray(xml, "Name=\"W\"");
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0], 1.0 / 6) << "17 significant digits read back exactly";
+}
+
+TEST(VTK, OptionErrors) {
+  SmallMesh mesh;
+  VTKOptions options;
+  options.positionField = "y";
+  EXPECT_THAT(errorOf(checkVTKOptions(mesh.points, options)),
+              HasSubstr("VTK output of set 'points': no position field 'y'"));
+  options.positionField = "T";
+  EXPECT_THAT(errorOf(checkVTKOptions(mesh.points, options)),
+              HasSubstr("the position field 'T' is not a float vector of 3"));
+  options = VTKOptions();
+  options.pointFields = {"v"};
+  EXPECT_THAT(errorOf(checkVTKOptions(mesh.points, options)),
+              HasSubstr("no point field 'v'"));
+  options = VTKOptions();
+  Set other("other");
+  Set links("links", {&mesh.points, &other});
+  options.cellSets = {&links};
+  EXPECT_THAT(errorOf(checkVTKOptions(mesh.points, options)),
+              HasSubstr("set 'links' is not an edge set over it"));
+  options = VTKOptions();
+  options.cellSets = {&mesh.tets, &mesh.springs};
+  options.cellFields = {"W"};
+  EXPECT_THAT(errorOf(checkVTKOptions(mesh.points, options)),
+              HasSubstr("cell fields need exactly one cell set"));
+  options.cellSets = {&mesh.springs};
+  EXPECT_THAT(errorOf(checkVTKOptions(mesh.points, options)),
+              HasSubstr("no cell field 'W' on set 'springs'"));
+  TempDir dir;
+  options = VTKOptions();
+  EXPECT_THAT(errorOf(writeVTU(dir.path("missing/dir/a.vtu"), mesh.points,
+                               options)),
+              HasSubstr("a.vtu: cannot write"));
+}
+
+TEST(CSV, HeaderAndRows) {
+  Set set("s");
+  auto b = set.addField<double, 2, 2>("B");
+  auto n = set.addField<int32_t>("n");
+  set.add();
+  set.add();
+  b.set(1, {1.0 / 3, 2, 3, 4});
+  n.set(1, -7);
+  EXPECT_EQ(csvHeader(set, {"n", "B"}, true),
+            "frame,element,n,B_0_0,B_0_1,B_1_0,B_1_1\n");
+  std::string text;
+  llvm::raw_string_ostream os(text);
+  ASSERT_FALSE(bool(writeCSVRows(os, set, {"n", "B"}, 5)));
+  os.flush();
+  EXPECT_EQ(text, "5,0,0,0,0,0,0\n"
+                  "5,1,-7,0.33333333333333331,2,3,4\n");
+  EXPECT_EQ(std::stod("0.33333333333333331"), 1.0 / 3);
+}
+
+TEST(CSV, WholeFileAndErrors) {
+  Set set("s");
+  auto x = set.addField<double, 3>("x");
+  x.set(set.add(), {1, 2, 3});
+  TempDir dir;
+  ASSERT_FALSE(bool(writeCSV(dir.path("x.csv"), set, {"x"})));
+  EXPECT_EQ(readFile(dir.path("x.csv")), "element,x_0,x_1,x_2\n0,1,2,3\n");
+  EXPECT_THAT(errorOf(writeCSV(dir.path("y.csv"), set, {"y"})),
+              HasSubstr("CSV output of set 's': no field 'y'"));
+  EXPECT_THAT(errorOf(writeCSV(dir.path("no/such/dir.csv"), set, {"x"})),
+              HasSubstr("dir.csv: cannot write"));
+}
+
+TEST(SceneOutput, WritesFramesAsTheSceneSays) {
+  TempDir dir;
+  dir.write("m.node", "4 3 0 0\n0 0 0 0\n1 1 0 0\n2 0 1 0\n3 0 0 1\n");
+  dir.write("m.ele", "1 4 0\n0 0 1 2 3\n");
+  auto scene = loadScene(dir.write("scene.json", R"({
+    "meshes": {"m": "m.node"},
+    "sets": {
+      "verts": {"mesh": "m", "fields": {"x": {"coordinates": "mesh"},
+                                        "c": {"type": "int32", "value": 0}}},
+      "tets": {"mesh": "m", "elements": "tets", "endpoints": "verts"}
+    },
+    "step": "step", "frames": 4,
+    "outputs": [
+      {"format": "vtk", "path": "vtk/f{frame}.vtu", "set": "verts",
+       "cells": "tets", "fields": "c", "every": 2},
+      {"format": "csv", "path": "all.csv", "set": "verts", "fields": ["c"]},
+      {"format": "csv", "path": "csv/c{frame}.csv", "set": "verts",
+       "fields": ["c"], "last": true}
+    ]
+  })"));
+  ASSERT_TRUE(bool(scene)) << llvm::toString(scene.takeError());
+  SetRegistry registry;
+  ASSERT_FALSE(bool(buildSets(*scene, registry)));
+  std::string out = dir.path("out");
+  auto writer = SceneOutputWriter::create(*scene, registry, out);
+  ASSERT_TRUE(bool(writer)) << llvm::toString(writer.takeError());
+  auto c = registry.find("verts")->field<int32_t>("c");
+  for (int frame = 0; frame <= 4; ++frame) {
+    for (int p = 0; p < 4; ++p)
+      c.set(p, frame * 10 + p);
+    ASSERT_FALSE(bool((*writer)->writeFrame(frame, frame == 4)));
+  }
+  // VTK at frames 0, 2, 4; the CSV with every frame; the last-only CSV.
+  std::vector<std::string> expected = {
+      out + "/all.csv", out + "/vtk/f0.vtu", out + "/vtk/f2.vtu",
+      out + "/vtk/f4.vtu", out + "/csv/c4.csv"};
+  EXPECT_EQ((*writer)->writtenFiles(), expected);
+  EXPECT_EQ(dataArray(readFile(out + "/vtk/f2.vtu"), "Name=\"c\""),
+            (std::vector<double>{20, 21, 22, 23}));
+  std::string all = readFile(out + "/all.csv");
+  EXPECT_THAT(all, HasSubstr("frame,element,c\n0,0,0\n0,1,1\n"));
+  EXPECT_THAT(all, HasSubstr("\n3,2,32\n"));
+  EXPECT_THAT(all, HasSubstr("\n4,3,43\n"));
+  EXPECT_EQ(readFile(out + "/csv/c4.csv"),
+            "element,c\n0,40\n1,41\n2,42\n3,43\n");
+}
+
+TEST(SceneOutput, FieldsAreCheckedAgainstTheBuiltSets) {
+  TempDir dir;
+  auto scene = loadScene(dir.write("scene.json", R"({
+    "sets": {"p": {"size": 2}},
+    "outputs": [{"format": "csv", "path": "p.csv", "set": "p",
+                 "fields": ["v"]}]
+  })"));
+  ASSERT_TRUE(bool(scene)) << llvm::toString(scene.takeError());
+  SetRegistry registry;
+  ASSERT_FALSE(bool(buildSets(*scene, registry)));
+  std::string err =
+      errorOf(SceneOutputWriter::create(*scene, registry, dir.path("o")));
+  EXPECT_THAT(err, HasSubstr("scene.json: outputs[0]: CSV output of set 'p': "
+                             "no field 'v'"));
+}
+
+} // namespace

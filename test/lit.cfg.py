@@ -13,7 +13,6 @@ config.test_source_root = os.path.dirname(__file__)
 config.test_exec_root = os.path.join(config.simit_obj_root, "test")
 
 config.substitutions.append(("%PATH%", config.environment["PATH"]))
-config.substitutions.append(("%shlibext", config.llvm_shlib_ext))
 config.substitutions.append(("%simit_src", config.simit_src_root))
 config.substitutions.append(("%simit_obj", config.simit_obj_root))
 config.substitutions.append(("%shared", config.shared_dir))

@@ -326,6 +326,6 @@ llvm::Expected<Mesh> simit::loadGmsh(llvm::StringRef path) {
     return reader.takeError();
   Mesh mesh;
   if (auto err = GmshReader(*reader).read(mesh))
-    return std::move(err);
+    return err;
   return mesh;
 }

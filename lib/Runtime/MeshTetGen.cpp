@@ -195,17 +195,17 @@ llvm::Expected<Mesh> simit::loadTetGen(llvm::StringRef basePath) {
   Mesh mesh;
   std::string base = basePath.str();
   if (auto err = readNodes(base + ".node", mesh))
-    return std::move(err);
+    return err;
   if (llvm::sys::fs::exists(base + ".ele"))
     if (auto err = readElements(base + ".ele", mesh))
-      return std::move(err);
+      return err;
   if (llvm::sys::fs::exists(base + ".edge"))
     if (auto err = readFacets<2>(base + ".edge", "edge", mesh.points.size(),
                                  mesh.edges))
-      return std::move(err);
+      return err;
   if (llvm::sys::fs::exists(base + ".face"))
     if (auto err = readFacets<3>(base + ".face", "face", mesh.points.size(),
                                  mesh.triangles))
-      return std::move(err);
+      return err;
   return mesh;
 }

@@ -824,7 +824,7 @@ llvm::Expected<SceneDescription> simit::parseScene(llvm::StringRef text,
   scene.path = name.str();
   scene.directory = directory.str();
   if (auto err = SceneParser(name, directory).parse(root, scene))
-    return std::move(err);
+    return err;
   return scene;
 }
 

@@ -124,7 +124,7 @@ private:
     if (!condition)
       return condition.takeError();
     if (auto err = expectType(**condition, true, at, "condition after 'if'"))
-      return std::move(err);
+      return err;
     if (!accept("else"))
       return error("expected 'else'");
     size_t elseAt = pos;
@@ -154,7 +154,7 @@ private:
         return lhs;
       if (auto err = expectType(**lhs, true, at,
                                 isOr ? "operand of 'or'" : "operand of 'and'"))
-        return std::move(err);
+        return err;
       skipSpace();
       at = pos;
       auto rhs = isOr ? parseLogic(false) : parseNot();
@@ -162,7 +162,7 @@ private:
         return rhs.takeError();
       if (auto err = expectType(**rhs, true, at,
                                 isOr ? "operand of 'or'" : "operand of 'and'"))
-        return std::move(err);
+        return err;
       lhs = make(isOr ? Node::Or : Node::And, true, std::move(*lhs),
                  std::move(*rhs));
     }
@@ -178,7 +178,7 @@ private:
     if (!operand)
       return operand.takeError();
     if (auto err = expectType(**operand, true, at, "operand of 'not'"))
-      return std::move(err);
+      return err;
     return make(Node::Not, true, std::move(*operand));
   }
 
@@ -205,14 +205,14 @@ private:
     else
       return lhs;
     if (auto err = expectType(**lhs, false, at, "operand of a comparison"))
-      return std::move(err);
+      return err;
     skipSpace();
     at = pos;
     auto rhs = parseSum();
     if (!rhs)
       return rhs.takeError();
     if (auto err = expectType(**rhs, false, at, "operand of a comparison"))
-      return std::move(err);
+      return err;
     return make(kind, true, std::move(*lhs), std::move(*rhs));
   }
 
@@ -237,14 +237,14 @@ private:
       else
         return lhs;
       if (auto err = expectType(**lhs, false, at, "arithmetic operand"))
-        return std::move(err);
+        return err;
       skipSpace();
       at = pos;
       auto rhs = isSum ? parseArithmetic(false) : parseUnary();
       if (!rhs)
         return rhs.takeError();
       if (auto err = expectType(**rhs, false, at, "arithmetic operand"))
-        return std::move(err);
+        return err;
       lhs = make(kind, false, std::move(*lhs), std::move(*rhs));
     }
   }
@@ -262,7 +262,7 @@ private:
     if (!operand)
       return operand.takeError();
     if (auto err = expectType(**operand, false, at, "operand of '-'"))
-      return std::move(err);
+      return err;
     return make(Node::Negate, false, std::move(*operand));
   }
 

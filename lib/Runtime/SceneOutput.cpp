@@ -70,7 +70,7 @@ SceneOutputWriter::create(const SceneDescription &scene,
     }
     writer->csvStreams.push_back(std::move(stream));
   }
-  return std::move(writer);
+  return writer;
 }
 
 std::string SceneOutputWriter::pathFor(const OutputSpec &output,

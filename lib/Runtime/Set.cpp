@@ -122,7 +122,7 @@ Set::makeGrid(Set &points, llvm::ArrayRef<int> dims, llvm::StringRef name) {
                            : p + stride[a];
       grid->add(static_cast<int>(p), static_cast<int>(next));
     }
-  return std::move(grid);
+  return grid;
 }
 
 void Set::fatal(const llvm::Twine &message) const {

@@ -12,6 +12,7 @@
 
 #include "simit/Frontend/Types.h"
 
+#include "llvm/ADT/StringRef.h"
 #include "llvm/Support/Casting.h"
 #include "llvm/Support/SMLoc.h"
 
@@ -169,7 +170,8 @@ public:
   std::vector<std::unique_ptr<VarDecl>> params;
   std::vector<std::unique_ptr<VarDecl>> results;
   std::unique_ptr<Block> body; // null for extern functions
-  const char *sourceBegin = nullptr; // start of `func`, to re-parse instances
+  /// The declaration's source text, to re-parse a copy per instance.
+  llvm::StringRef source;
 
   // Sema.
   unsigned order = 0; // position among top-level declarations
@@ -569,6 +571,8 @@ public:
   std::vector<std::unique_ptr<VarDecl>> globals; // externs and constants
   std::vector<std::unique_ptr<FuncDecl>> funcs;
   std::vector<TestLine> tests;
+  /// Intrinsic function declarations (calls may point at them).
+  std::vector<std::unique_ptr<FuncDecl>> intrinsics;
   /// Every top-level declaration in source order.
   std::vector<Decl *> order;
 };

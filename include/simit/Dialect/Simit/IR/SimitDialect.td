@@ -37,7 +37,6 @@ def Simit_Dialect : Dialect {
   }];
   let useDefaultTypePrinterParser = 1;
   let useDefaultAttributePrinterParser = 1;
-  let hasConstantMaterializer = 0;
   let extraClassDeclaration = [{
   private:
     void registerTypes();

@@ -2,10 +2,8 @@
 
 #include "simit/Runtime/Mesh.h"
 
-#include "llvm/ADT/StringSwitch.h"
 #include "llvm/Support/Path.h"
 
-#include <cmath>
 #include <unordered_map>
 
 using namespace simit;

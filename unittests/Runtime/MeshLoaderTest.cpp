@@ -364,6 +364,23 @@ TEST(GmshLoader, MissingFormatSectionIsAnError) {
   EXPECT_THAT(err, HasSubstr("m.msh:1: expected $MeshFormat before $Nodes"));
 }
 
+TEST(GmshLoader, ElementsBeforeNodesIsAnError) {
+  TempDir dir;
+  std::string err = errorOf(loadGmsh(dir.write(
+      "m.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Elements\n0\n"
+               "$EndElements\n")));
+  EXPECT_THAT(err, HasSubstr("m.msh:4: expected $Nodes before $Elements"));
+}
+
+TEST(GmshLoader, MissingSectionEndIsAnError) {
+  TempDir dir;
+  std::string err = errorOf(loadGmsh(dir.write(
+      "m.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n1\n"
+               "1 0 0 0\n$Elements\n")));
+  EXPECT_THAT(err, HasSubstr("m.msh:7: expected $EndNodes, found "
+                             "'$Elements'"));
+}
+
 TEST(GmshLoader, NonNumberCoordinateIsAnError) {
   TempDir dir;
   std::string text = kGmsh2;

@@ -6,6 +6,8 @@
 
 #include "gmock/gmock.h"
 
+#include "llvm/Support/MemoryBuffer.h"
+
 #include <cmath>
 
 using namespace simit;
@@ -275,6 +277,23 @@ TEST_F(SceneTest, SpringsBunnyFixedPoints) {
   }
   EXPECT_GT(count, 0);
   EXPECT_LT(count, 3607);
+}
+
+TEST_F(SceneTest, TheDocumentedExampleParses) {
+  // The first JSON block of docs/scene-format.md, resolved from docs/.
+  std::string docs = SIMIT_SOURCE_DIR "/docs";
+  auto buffer = llvm::MemoryBuffer::getFile(docs + "/scene-format.md");
+  ASSERT_TRUE(bool(buffer));
+  llvm::StringRef text = (*buffer)->getBuffer();
+  size_t begin = text.find("```json\n");
+  ASSERT_NE(begin, llvm::StringRef::npos);
+  begin += 8;
+  llvm::StringRef json = text.slice(begin, text.find("```", begin));
+  auto scene = parseScene(json, "scene-format.md", docs);
+  ASSERT_TRUE(bool(scene)) << llvm::toString(scene.takeError());
+  EXPECT_EQ(scene->sets.size(), 2u);
+  EXPECT_EQ(scene->externs.size(), 8u);
+  EXPECT_EQ(scene->outputs.size(), 2u);
 }
 
 //===--- Parse errors -----------------------------------------------------===//

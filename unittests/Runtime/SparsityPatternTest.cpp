@@ -1,5 +1,6 @@
 //===--- SparsityPatternTest.cpp - BCSR index, location tables, SpMV ------===//
 
+#include "simit/Runtime/Mesh.h"
 #include "simit/Runtime/SparsityPattern.h"
 
 #include "TestFiles.h"
@@ -117,6 +118,42 @@ TEST(SparsityPattern, HeterogeneousRowsAndColumns) {
     ASSERT_TRUE(bool(p)) << llvm::toString(p.takeError());
     SCOPED_TRACE(rows->name().str() + " x " + cols->name().str());
     checkPattern(**p, links, *rows, *cols);
+  }
+}
+
+TEST(SparsityPattern, SharedMeshBlockCounts) {
+  // A vertex-vertex pattern has one diagonal block per vertex and two blocks
+  // per distinct mesh edge. bunny.1.edge lists 19,233 distinct edges; the
+  // tets of dragon40k have 73,964 - 11,083 distinct edges (one refinement
+  // midpoint each, scenes.md).
+  struct Case {
+    const char *base;
+    int cardinality;
+    int expectedBlocks;
+  } cases[] = {{"bunny.1", 2, 3607 + 2 * 19233},
+               {"dragon40k", 4, 11083 + 2 * (73964 - 11083)}};
+  for (const Case &c : cases) {
+    auto mesh = loadTetGen(sharedPath(std::string("data/meshes/") + c.base));
+    ASSERT_TRUE(bool(mesh)) << llvm::toString(mesh.takeError());
+    Set verts("verts");
+    std::vector<Set *> ends(c.cardinality, &verts);
+    Set elements("elements", ends);
+    verts.reserve(mesh->points.size());
+    for (size_t i = 0; i < mesh->points.size(); ++i)
+      verts.add();
+    if (c.cardinality == 2)
+      for (auto e : mesh->edges)
+        elements.add(e[0], e[1]);
+    else
+      for (auto t : mesh->tets)
+        elements.add(t[0], t[1], t[2], t[3]);
+    auto p = SparsityPattern::get(elements, verts, verts);
+    ASSERT_TRUE(bool(p));
+    EXPECT_EQ((*p)->numBlocks(), c.expectedBlocks) << c.base;
+    // Symmetric: (r, c) present iff (c, r) is.
+    for (int r = 0; r < (*p)->numRows(); ++r)
+      for (int k = (*p)->rowPointers()[r]; k < (*p)->rowPointers()[r + 1]; ++k)
+        ASSERT_GE((*p)->findBlock((*p)->columnIndices()[k], r), 0);
   }
 }
 

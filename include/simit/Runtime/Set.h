@@ -255,17 +255,24 @@ public:
       std::copy(value.begin(), value.end(), p);
   }
   /// The element's block, in place; valid until the set changes structure.
-  T *ptr(int e) const {
-    return static_cast<T *>(set_->fieldData(fieldName)) +
-           static_cast<size_t>(e) * kBlockSize;
-  }
+  T *ptr(int e) const { return base() + static_cast<size_t>(e) * kBlockSize; }
   llvm::StringRef name() const { return fieldName; }
 
 private:
   friend class Set;
   FieldRef(Set *set, llvm::StringRef name) : set_(set), fieldName(name) {}
+  /// The field array, looked up again only after a structural change.
+  T *base() const {
+    if (cachedVersion != set_->version()) {
+      cachedBase = static_cast<T *>(set_->fieldData(fieldName));
+      cachedVersion = set_->version();
+    }
+    return cachedBase;
+  }
   Set *set_ = nullptr;
   std::string fieldName;
+  mutable T *cachedBase = nullptr;
+  mutable uint64_t cachedVersion = UINT64_MAX;
 };
 
 /// A field whose shape is known only at run time.
@@ -282,17 +289,25 @@ public:
     std::copy(value.begin(), value.begin() + blockElements, ptr(e));
   }
   T *ptr(int e) const {
-    return static_cast<T *>(set_->fieldData(fieldName)) +
-           static_cast<size_t>(e) * blockElements;
+    return base() + static_cast<size_t>(e) * blockElements;
   }
 
 private:
   friend class Set;
   DynamicFieldRef(Set *set, llvm::StringRef name, size_t blockSize)
       : set_(set), fieldName(name), blockElements(blockSize) {}
+  T *base() const {
+    if (cachedVersion != set_->version()) {
+      cachedBase = static_cast<T *>(set_->fieldData(fieldName));
+      cachedVersion = set_->version();
+    }
+    return cachedBase;
+  }
   Set *set_ = nullptr;
   std::string fieldName;
   size_t blockElements = 0;
+  mutable T *cachedBase = nullptr;
+  mutable uint64_t cachedVersion = UINT64_MAX;
 };
 
 template <typename T>

@@ -965,7 +965,7 @@ ExprPtr Parser::parsePostfix() {
     take();
     SMLoc fieldLoc = tok().loc();
     std::string field = take().text.str();
-    expr = std::make_unique<FieldExpr>(fieldLoc, std::move(expr), field,
+    expr = std::make_unique<FieldExpr>(expr->loc, std::move(expr), field,
                                        fieldLoc);
   } else if (is(TK::LBracket)) {
     SMLoc loc = take().loc();
@@ -981,13 +981,13 @@ ExprPtr Parser::parsePostfix() {
     expr = std::move(read);
   }
   if (is(TK::Dot)) {
-    if (llvm::isa<ReadExpr>(expr.get()) && !tupleLike)
+    if (llvm::isa<ReadExpr>(expr.get()) && !expr->parenthesized && !tupleLike)
       fail(tok().loc(), "a field access cannot follow an index; write the "
                         "field first (S.f(p))");
     take();
     SMLoc fieldLoc = tok().loc();
     std::string field = expectIdent("a field name");
-    expr = std::make_unique<FieldExpr>(fieldLoc, std::move(expr), field,
+    expr = std::make_unique<FieldExpr>(expr->loc, std::move(expr), field,
                                        fieldLoc);
   }
   while (is(TK::LParen))

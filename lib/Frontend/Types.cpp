@@ -160,7 +160,7 @@ std::string Type::str() const {
   return "?";
 }
 
-bool simit::frontend::equal(const TypePtr &a, const TypePtr &b,
+bool simit::frontend::typesEqual(const TypePtr &a, const TypePtr &b,
                             bool orientation) {
   if (!a || !b)
     return a == b;
@@ -180,7 +180,7 @@ bool simit::frontend::equal(const TypePtr &a, const TypePtr &b,
       return false;
     if (!a->block || !b->block)
       return !a->block && !b->block;
-    return equal(a->block, b->block, orientation);
+    return typesEqual(a->block, b->block, orientation);
   case Type::Kind::Set:
     return a->element == b->element && a->endpoints == b->endpoints &&
            a->gridRank == b->gridRank;
@@ -190,7 +190,7 @@ bool simit::frontend::equal(const TypePtr &a, const TypePtr &b,
     if (a->results.size() != b->results.size())
       return false;
     for (size_t i = 0; i < a->results.size(); ++i)
-      if (!equal(a->results[i], b->results[i], orientation))
+      if (!typesEqual(a->results[i], b->results[i], orientation))
         return false;
     return true;
   }

@@ -20,6 +20,9 @@ bool check(Program &program, DiagnosticEngine &diags);
 /// Is `e` a literal (after folding unary `-`/`+` and `'`)?
 bool isLiteral(const Expr &e);
 
+/// Which intrinsic a function declaration is (None for user functions).
+Intrinsic intrinsicOf(const FuncDecl &func);
+
 } // namespace simit::frontend
 
 #endif // SIMIT_FRONTEND_SEMA_H

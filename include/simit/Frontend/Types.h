@@ -145,7 +145,7 @@ public:
 /// Type equality: same kind, component, order, dimension hierarchies, block
 /// structure and (when `orientation`) vector orientation; elements by
 /// declaration; origins ignored.
-bool equal(const TypePtr &a, const TypePtr &b, bool orientation = true);
+bool typesEqual(const TypePtr &a, const TypePtr &b, bool orientation = true);
 
 /// The same tensor type with a flipped (vector) or swapped (matrix) shape.
 TypePtr transposed(const TypePtr &t);

@@ -5,10 +5,17 @@
 
 #include "simit/Dialect/Simit/IR/Simit.h"
 
+#include "mlir/Dialect/Arith/IR/Arith.h"
+#include "mlir/Dialect/Func/IR/FuncOps.h"
+#include "mlir/Dialect/Math/IR/Math.h"
+#include "mlir/Dialect/MemRef/IR/MemRef.h"
+#include "mlir/Dialect/SCF/IR/SCF.h"
+#include "mlir/Dialect/Vector/IR/VectorOps.h"
 #include "mlir/IR/BuiltinOps.h"
 #include "mlir/Pass/Pass.h"
 
 namespace mlir {
+class OpPassManager;
 namespace simit {
 
 #define GEN_PASS_DECL
@@ -16,6 +23,14 @@ namespace simit {
 
 #define GEN_PASS_REGISTRATION
 #include "simit/Dialect/Simit/Transforms/Passes.h.inc"
+
+/// Registers the simit dialect's inliner interface (every simit op may be
+/// inlined) together with func's, as a dialect extension.
+void registerSimitInlinerInterface(DialectRegistry &registry);
+
+/// Adds the passes from simit IR down to the LLVM dialect for the CPU:
+/// inlining, linear algebra to index expressions, fusion, loops, LLVM.
+void buildSimitCpuPipeline(OpPassManager &pm);
 
 } // namespace simit
 } // namespace mlir

@@ -23,4 +23,165 @@ def SimitCheckSetNames : Pass<"simit-check-set-names", "::mlir::ModuleOp"> {
   let dependentDialects = ["::mlir::simit::SimitDialect"];
 }
 
+def SimitInlineFunctions : Pass<"simit-inline-functions", "::mlir::ModuleOp"> {
+  let summary = "Inlines every call of a function with a body";
+  let description = [{
+    Simit has no recursion, so every `func.call` of a function defined in the
+    module is inlined (bottom-up through nested calls), after which system
+    matrices flow from their assembly to their uses inside one function.
+    Private functions that no operation references any more are erased;
+    element functions referenced by `simit.map` / `simit.assemble` stay (the
+    loop lowering inlines them into the set loops). The pass registers the
+    dialect's inliner interface (registerSimitInlinerInterface).
+  }];
+  let dependentDialects = ["::mlir::simit::SimitDialect",
+                           "::mlir::func::FuncDialect"];
+}
+
+def SimitLinalgToIndexExpr : Pass<"simit-linalg-to-index-expr", "::mlir::ModuleOp"> {
+  let summary = "Rewrites linear algebra on system tensors as index expressions";
+  let description = [{
+    `simit.add`, `sub`, `mul`, `div`, `neg`, `scale`, `matvec`, `matmul`,
+    `transpose`, `dot`, `outer` and `norm` whose operands have a set
+    dimension become `simit.index_expr` (a norm becomes the index expression
+    of the sum of squares, then `math.sqrt`). Operations on local (builtin)
+    tensors are left to the loop lowering.
+  }];
+  let dependentDialects = ["::mlir::simit::SimitDialect",
+                           "::mlir::arith::ArithDialect",
+                           "::mlir::math::MathDialect"];
+}
+
+def SimitFuseIndexExpr : Pass<"simit-fuse-index-expr", "::mlir::ModuleOp"> {
+  let summary = "Fuses chains of index expressions into one loop nest";
+  let description = [{
+    An index expression whose result is used only as an input of another
+    index expression, indexed by that expression's variables, is inlined into
+    its consumer: its reduction variables become a `simit.index_sum` inside
+    the consumer's body, so `x + A * b` becomes one loop nest with a scalar
+    temporary per row and no vector temporary (the paper's Figure 10).
+  }];
+  let dependentDialects = ["::mlir::simit::SimitDialect"];
+}
+
+def ConvertSimitToLoops : Pass<"convert-simit-to-loops", "::mlir::ModuleOp"> {
+  let summary = "Lowers the simit dialect to loops over sets and BCSR memrefs";
+  let description = [{
+    Produces func/scf/arith/math/memref/vector IR. Vectors over sets become
+    memref<?x block x T> field-shaped arrays, matrices assembled from an edge
+    set become BCSR value arrays over the set's pattern (rowptr, colidx and a
+    per-edge location table bound by the host), matrices assembled from a
+    vertex set become diagonal block arrays. Maps and assemblies become
+    scf.parallel loops over the set with the element function inlined.
+    Exported (public) functions take the data they touch as arguments,
+    described by their `simit.bindings` attribute (docs/lowering.md).
+  }];
+  let dependentDialects = ["::mlir::func::FuncDialect",
+                           "::mlir::scf::SCFDialect",
+                           "::mlir::arith::ArithDialect",
+                           "::mlir::math::MathDialect",
+                           "::mlir::memref::MemRefDialect",
+                           "::mlir::vector::VectorDialect"];
+}
+
+def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
+  let summary = "Runs every Simit lowering down to the LLVM dialect";
+  let description = [{
+    Inlines functions, rewrites linear algebra as index expressions, fuses
+    them, lowers to loops and then to the LLVM dialect (scf to cf, vector,
+    arith, math, memref, func and cf to LLVM, reconcile casts). The pipeline
+    is buildSimitCpuPipeline(), which the JIT runs as well.
+  }];
+}
+
+//===----------------------------------------------------------------------===//
+// The GPU path: set loops to gpu.launch, NVVM and PTX (docs/gpu.md)
+//===----------------------------------------------------------------------===//
+
+def SimitGpuScatterAtomics : Pass<"simit-gpu-scatter-atomics", "::mlir::ModuleOp"> {
+  let summary = "Makes accumulations that iterations of a set loop share atomic";
+  let description = [{
+    In an `scf.parallel` loop, an accumulation `M[i] = M[i] + x` (or `- x`)
+    into a memref defined outside the loop becomes `memref.atomic_rmw addf`
+    (`addi` for integers) unless the store's indices contain every induction
+    variable of the outermost parallel loop, so that no two iterations can
+    write one location. This is what makes assembly scatters (through a
+    location table or endpoint indices) safe when the iterations run in
+    parallel. Thread-private memrefs (allocated inside the loop) are left.
+  }];
+  let dependentDialects = ["::mlir::memref::MemRefDialect",
+                           "::mlir::arith::ArithDialect"];
+}
+
+def SimitParallelLoopsToGpu : Pass<"simit-parallel-loops-to-gpu", "::mlir::ModuleOp"> {
+  let summary = "Maps outermost scf.parallel loops of host functions to gpu.launch";
+  let description = [{
+    Every outermost `scf.parallel` in a `func.func` becomes a one-dimensional
+    `gpu.launch` of `ceil(trip count / block-size)` blocks of `block-size`
+    threads; thread `blockIdx.x * block-size + threadIdx.x` runs the
+    iteration of that linear index (multi-dimensional loops are linearised,
+    the last dimension fastest) when it is in range. Scalar reductions
+    (`scf.reduce` with an `arith.addf` or `arith.addi` combiner) become a
+    per-thread partial (the identity for threads out of range), a
+    `gpu.all_reduce add` over the block, and one `memref.atomic_rmw` per
+    block into a scalar accumulator that starts at the loop's initial value;
+    the loop's result is loaded from it after the launch. Other combiners are
+    reported as errors. Run `simit-gpu-scatter-atomics` first.
+  }];
+  let options = [
+    Option<"blockSize", "block-size", "int64_t", /*default=*/"256",
+           "Threads per block">
+  ];
+  let dependentDialects = ["::mlir::gpu::GPUDialect",
+                           "::mlir::memref::MemRefDialect",
+                           "::mlir::arith::ArithDialect",
+                           "::mlir::scf::SCFDialect"];
+}
+
+def SimitGpuDeviceMemory : Pass<"simit-gpu-device-memory", "::mlir::ModuleOp"> {
+  let summary = "Gives every host memref that a kernel uses a device copy";
+  let description = [{
+    For each memref defined outside the `gpu.launch` ops of a function and
+    used inside one, the pass allocates a device buffer (`gpu.alloc`) where
+    the memref is defined, copies the host contents in (`gpu.memcpy`) unless
+    the memref was freshly allocated, and makes the kernels use the device
+    buffer. The data stays on the device between launches. Host operations
+    that touch the memref are bracketed by copies: device to host before the
+    outermost enclosing host-only operation (when a kernel writes the
+    memref), host to device after it (when the host may write). Before the
+    end of the defining block (a function argument's: the return), data that
+    kernels wrote is copied back and the device buffer is freed; a memref
+    with `memref.dealloc` frees its device buffer there instead. Memrefs
+    with a non-identity layout or a memory space are reported as errors.
+  }];
+  let dependentDialects = ["::mlir::gpu::GPUDialect",
+                           "::mlir::memref::MemRefDialect",
+                           "::mlir::arith::ArithDialect"];
+}
+
+def SimitGpuPipeline : Pass<"simit-gpu-pipeline", "::mlir::ModuleOp"> {
+  let summary = "Lowers loops-level IR to LLVM with kernels compiled to PTX";
+  let description = [{
+    Runs simit-gpu-scatter-atomics, simit-parallel-loops-to-gpu,
+    simit-gpu-device-memory, gpu-launch-sink-index-computations,
+    gpu-kernel-outlining and gpu-async-region, then MLIR's NVVM pipeline
+    (gpu-lower-to-nvvm-pipeline): host code to the LLVM dialect with GPU
+    runtime calls (mgpu*), kernels to NVVM, and `gpu-module-to-binary`, which
+    with format=isa embeds PTX text and needs no CUDA installation.
+  }];
+  let options = [
+    Option<"chip", "chip", "std::string", /*default=*/"\"sm_90\"",
+           "NVIDIA GPU architecture of the kernels">,
+    Option<"features", "features", "std::string", /*default=*/"\"+ptx80\"",
+           "PTX ISA version feature">,
+    Option<"format", "format", "std::string", /*default=*/"\"isa\"",
+           "gpu-module-to-binary format: isa (PTX text), bin or fatbin "
+           "(these two need CUDA's ptxas)">,
+    Option<"optLevel", "opt-level", "int", /*default=*/"3",
+           "Optimisation level of the kernel compilation">,
+    Option<"blockSize", "block-size", "int64_t", /*default=*/"256",
+           "Threads per block">
+  ];
+}
+
 #endif // SIMIT_DIALECT_SIMIT_TRANSFORMS_PASSES_TD

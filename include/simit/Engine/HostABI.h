@@ -1,0 +1,95 @@
+//===--- HostABI.h - Arguments of a compiled Simit function -----*- C++ -*-===//
+//
+// The lowering gives every exported function one argument per piece of host
+// data it touches and describes each with an entry of the function's
+// `simit.bindings` attribute (docs/lowering.md): set sizes, field arrays,
+// endpoint arrays, the BCSR pattern arrays of assembled matrices, extern
+// tensors and the function's own parameters. A HostSignature is that
+// description read back from the IR, with each argument's machine type, so
+// the engine can fill the arguments from Sets and host buffers in place.
+//
+//===----------------------------------------------------------------------===//
+
+#ifndef SIMIT_ENGINE_HOSTABI_H
+#define SIMIT_ENGINE_HOSTABI_H
+
+#include "simit/Runtime/Set.h"
+
+#include "llvm/Support/Error.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace mlir {
+class Type;
+namespace func {
+class FuncOp;
+} // namespace func
+} // namespace mlir
+
+namespace simit {
+
+/// The scalar types that cross the host boundary.
+enum class ScalarKind : uint8_t { Float64, Float32, Int32, Int64, Index, Bool };
+
+/// Bytes per value in memory (Bool: one byte).
+size_t scalarSize(ScalarKind kind);
+/// "f64", "f32", "i32", "i64", "index", "i1".
+llvm::StringRef scalarKindName(ScalarKind kind);
+/// The runtime component type stored by arrays of `kind`, if there is one
+/// (Int64 and Index have none).
+bool componentTypeFor(ScalarKind kind, ComponentType &type);
+
+/// The machine type of one argument or result: a scalar or a memref.
+struct ValueType {
+  static constexpr int64_t kDynamic = -1;
+
+  ScalarKind scalar = ScalarKind::Float64;
+  bool isMemRef = false;
+  /// Memref dimensions, kDynamic for `?`; empty for a scalar or rank 0.
+  std::vector<int64_t> shape;
+
+  int64_t rank() const { return static_cast<int64_t>(shape.size()); }
+  /// "memref<?x3xf64>", "f64".
+  std::string str() const;
+};
+
+/// Reads an MLIR type (index, i1/i32/i64, f32/f64 or a memref of them with
+/// the identity layout) as a ValueType.
+llvm::Expected<ValueType> toValueType(mlir::Type type);
+
+/// What one argument carries.
+struct ArgumentBinding {
+  enum class Kind {
+    SetSize,          // index: the number of elements of `set`
+    Field,            // memref<?x b...>: field `field` of `set`
+    Endpoints,        // memref<?xc x i32>: the endpoints of edge set `set`
+    PatternRowPtr,    // memref<?xi32>: BCSR row pointers of (set; rows, cols)
+    PatternColIdx,    // memref<?xi32>: BCSR block columns
+    PatternLocations, // memref<?x(c*c)xi32>: per-edge block locations
+    Extern,           // an extern tensor `name`
+    Parameter,        // the function's own parameter `name`
+  };
+  Kind kind = Kind::Parameter;
+  std::string set, field, rows, cols, name;
+  ValueType type;
+
+  /// How errors name it: "field 'points.x'", "extern 'h'", ...
+  std::string describe() const;
+};
+
+/// The host ABI of one compiled function.
+struct HostSignature {
+  std::string function;
+  std::vector<ArgumentBinding> arguments;
+  std::vector<ValueType> results;
+};
+
+/// Reads `func`'s signature and `simit.bindings` attribute. Errors name the
+/// function and the malformed entry.
+llvm::Expected<HostSignature> readHostSignature(mlir::func::FuncOp func);
+
+} // namespace simit
+
+#endif // SIMIT_ENGINE_HOSTABI_H

@@ -1,0 +1,76 @@
+//===--- Program.h - Loading and compiling Simit programs -------*- C++ -*-===//
+//
+// The paper's section 5 API: a Program holds one Simit program (a .sim
+// source, or MLIR in the simit dialect or already lowered to loops) and
+// compiles its exported functions: frontend -> simit dialect -> simit passes
+// -> loops over sets -> LLVM dialect -> mlir::ExecutionEngine at -O3.
+//
+//   simit::Program program;
+//   if (llvm::Error err = program.loadFile("springs.sim")) ...
+//   llvm::Expected<simit::Function> step = program.compile("step");
+//
+// The whole module is compiled once, by the first compile(); later calls
+// share the machine code.
+//
+//===----------------------------------------------------------------------===//
+
+#ifndef SIMIT_ENGINE_PROGRAM_H
+#define SIMIT_ENGINE_PROGRAM_H
+
+#include "simit/Engine/Function.h"
+
+#include "llvm/ADT/StringRef.h"
+#include "llvm/Support/Error.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace simit {
+
+/// The precision of Simit's `float` (language.md 4.1): a whole-program
+/// setting that also fixes the type of bound float fields and externs.
+enum class FloatPrecision { Double, Single };
+
+struct ProgramOptions {
+  FloatPrecision precision = FloatPrecision::Double;
+};
+
+/// Where --emit stops: the simit dialect as imported, the loops over sets
+/// (after convert-simit-to-loops), or the LLVM dialect handed to the JIT.
+enum class Stage { Simit, Loops, LLVM };
+
+class Program {
+public:
+  explicit Program(ProgramOptions options = {});
+  Program(Program &&);
+  Program &operator=(Program &&);
+  ~Program();
+
+  /// Loads a .sim file, or an .mlir file of simit or lowered IR.
+  llvm::Error loadFile(llvm::StringRef path);
+  /// Loads Simit source; `bufferName` names it in diagnostics.
+  llvm::Error loadString(llvm::StringRef source,
+                         llvm::StringRef bufferName = "<string>");
+  /// Loads MLIR text (simit dialect, or loops with simit.bindings).
+  llvm::Error loadMLIR(llvm::StringRef text,
+                       llvm::StringRef bufferName = "<mlir>");
+
+  /// The IR at `stage` as text.
+  llvm::Expected<std::string> emit(Stage stage);
+
+  /// Compiles the module (once) and returns exported function `name`; an
+  /// unknown name is an error listing the exported functions.
+  llvm::Expected<Function> compile(llvm::StringRef name);
+
+  /// The exported functions of the compiled module, sorted by name.
+  llvm::Expected<std::vector<std::string>> exportedFunctions();
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl;
+};
+
+} // namespace simit
+
+#endif // SIMIT_ENGINE_PROGRAM_H

@@ -1,0 +1,35 @@
+//===--- RuntimeFunctions.h - Host functions of lowered Simit code -*- C++ -*-===//
+//
+// Functions JIT-compiled Simit code calls, with C linkage. The engine
+// registers them with every ExecutionEngine, so lowered code declares them
+// as `func.func private` and calls them by name (docs/api.md lists the MLIR
+// declarations).
+//
+//===----------------------------------------------------------------------===//
+
+#ifndef SIMIT_ENGINE_RUNTIMEFUNCTIONS_H
+#define SIMIT_ENGINE_RUNTIMEFUNCTIONS_H
+
+#include "mlir/ExecutionEngine/CRunnerUtils.h"
+
+#include <cstdint>
+
+extern "C" {
+
+/// Solves A x = b by unpreconditioned conjugate gradients, in place, for a
+/// BCSR matrix with square blocks of B x B doubles:
+///   rowptr: memref<?xi32> (rows + 1), colidx: memref<?xi32> (blocks),
+///   values: memref<?xBxBxf64>, b and x: memref<?xBxf64> (x holds the
+///   initial guess and receives the solution). Stops after maxIterations or
+///   once r.r <= tolerance. Returns the iterations done.
+/// MLIR: func.func private @simit_rt_cg_solve_bcsr(memref<?xi32>,
+///   memref<?xi32>, memref<?x?x?xf64>, memref<?x?xf64>, memref<?x?xf64>,
+///   f64, i32) -> i32 attributes {llvm.emit_c_interface}
+int32_t _mlir_ciface_simit_rt_cg_solve_bcsr(
+    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
+    StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *b,
+    StridedMemRefType<double, 2> *x, double tolerance, int32_t maxIterations);
+
+} // extern "C"
+
+#endif // SIMIT_ENGINE_RUNTIMEFUNCTIONS_H

@@ -1,0 +1,911 @@
+//===- ConvertSimitToLoops.cpp - simit to loops over sets -----------------===//
+//
+// The driver of convert-simit-to-loops: every exported (public) function is
+// rebuilt with the data it touches as arguments (its `simit.bindings`),
+// element functions are inlined into the set loops of their maps, and the
+// element functions and externs are then erased. This file holds the
+// bindings, structured control flow and the host-level operations on system
+// vectors; the other parts are named in LoopsLowering.h.
+//
+//===----------------------------------------------------------------------===//
+
+#include "LoopsLowering.h"
+
+#include "mlir/IR/IRMapping.h"
+#include "llvm/ADT/DenseSet.h"
+
+namespace mlir {
+namespace simit {
+#define GEN_PASS_DEF_CONVERTSIMITTOLOOPS
+#include "simit/Dialect/Simit/Transforms/Passes.h.inc"
+} // namespace simit
+} // namespace mlir
+
+using namespace mlir;
+using namespace mlir::simit;
+using namespace mlir::simit::loops;
+
+//===----------------------------------------------------------------------===//
+// Storage
+//===----------------------------------------------------------------------===//
+
+bool Storage::contains(const Storage &o) const {
+  if (*this == o)
+    return true;
+  // An edge pattern over (V, V) holds every diagonal block of V.
+  return kind == Kind::Pattern && o.kind == Kind::Diagonal && rows == cols &&
+         rows == o.rows;
+}
+
+std::string Storage::describe() const {
+  switch (kind) {
+  case Kind::Dense:
+    return "dense";
+  case Kind::Diagonal:
+    return ("diagonal of '" + rows.getValue() + "'").str();
+  case Kind::Pattern:
+    return ("pattern of '" + edges.getValue() + "' over ('" +
+            rows.getValue() + "', '" + cols.getValue() + "')")
+        .str();
+  }
+  llvm_unreachable("storage kind");
+}
+
+int64_t mlir::simit::loops::numComponents(Type type) {
+  if (auto tensor = dyn_cast<RankedTensorType>(type))
+    return tensor.getNumElements();
+  if (auto vector = dyn_cast<VectorType>(type))
+    return vector.getNumElements();
+  if (auto system = dyn_cast<SystemTensorType>(type)) {
+    int64_t n = numComponents(system.getBlockType());
+    for (Attribute dim : system.getDims())
+      n *= cast<IntegerAttr>(dim).getInt();
+    return n;
+  }
+  return 1;
+}
+
+/// The shape of a local tensor's components: the builtin shape, or the
+/// integer dimensions of a `!simit.tensor` followed by its block's.
+static SmallVector<int64_t> localShape(Type type) {
+  if (auto tensor = dyn_cast<RankedTensorType>(type))
+    return SmallVector<int64_t>(tensor.getShape());
+  SmallVector<int64_t> shape;
+  if (auto system = dyn_cast<SystemTensorType>(type)) {
+    for (Attribute dim : system.getDims())
+      shape.push_back(cast<IntegerAttr>(dim).getInt());
+    llvm::append_range(shape, localShape(system.getBlockType()));
+  }
+  return shape;
+}
+
+/// Whether a type is a tensor with a set dimension (a system tensor).
+static bool isSystem(Type type) { return hasSetDimension(type); }
+
+//===----------------------------------------------------------------------===//
+// Types
+//===----------------------------------------------------------------------===//
+
+Type FunctionLowering::convertType(Type type) {
+  if (isa<FloatType, IntegerType, IndexType>(type))
+    return type;
+  if (isa<SetType, ElementType>(type))
+    return IndexType::get(type.getContext());
+  if (auto system = dyn_cast<SystemTensorType>(type)) {
+    Type component = system.getComponentType();
+    if (!system.isSystem())
+      return VectorType::get({numComponents(type)}, component);
+    // Outer dimensions: a set is dynamic; a matrix over two sets stores a
+    // dynamic number of blocks. Then the block shape.
+    SmallVector<int64_t> shape;
+    unsigned sets = 0;
+    for (Attribute dim : system.getDims()) {
+      if (isa<StringAttr>(dim))
+        ++sets;
+      else if (sets == 0 || system.getOrder() > 1)
+        shape.push_back(cast<IntegerAttr>(dim).getInt());
+    }
+    if (sets > 2 || (sets == 2 && system.getOrder() != 2))
+      return nullptr;
+    shape.insert(shape.begin(), ShapedType::kDynamic);
+    if (isa<SystemTensorType>(system.getBlockType()) &&
+        isSystem(system.getBlockType()))
+      return nullptr;
+    llvm::append_range(shape, localShape(system.getBlockType()));
+    return MemRefType::get(shape, component);
+  }
+  if (auto tensor = dyn_cast<RankedTensorType>(type)) {
+    if (tensor.getRank() == 0)
+      return tensor.getElementType();
+    return VectorType::get({tensor.getNumElements()}, tensor.getElementType());
+  }
+  if (auto ref = dyn_cast<RefType>(type)) {
+    Type value = ref.getValueType();
+    if (isSystem(value))
+      return convertType(value);
+    if (isa<FloatType, IntegerType, IndexType>(value))
+      return MemRefType::get({}, value);
+    if (isa<RankedTensorType, SystemTensorType>(value))
+      return MemRefType::get({numComponents(value)},
+                             getComponentType(value));
+    return nullptr;
+  }
+  return nullptr;
+}
+
+Value FunctionLowering::lookup(Value original) {
+  auto it = values.find(original);
+  return it == values.end() ? Value() : it->second;
+}
+
+//===----------------------------------------------------------------------===//
+// Bindings
+//===----------------------------------------------------------------------===//
+
+static StringRef bindingKindName(BindingKind kind) {
+  switch (kind) {
+  case BindingKind::SetSize:
+    return "set_size";
+  case BindingKind::Field:
+    return "field";
+  case BindingKind::Endpoints:
+    return "endpoints";
+  case BindingKind::PatternRowPtr:
+    return "pattern_rowptr";
+  case BindingKind::PatternColIdx:
+    return "pattern_colidx";
+  case BindingKind::PatternLocations:
+    return "pattern_locations";
+  case BindingKind::Extern:
+    return "extern";
+  }
+  llvm_unreachable("binding kind");
+}
+
+Value FunctionLowering::getBinding(BindingKind kind, ArrayRef<StringRef> names,
+                                   Type type) {
+  std::string key = bindingKindName(kind).str();
+  for (StringRef name : names)
+    key += ":" + name.str();
+  auto it = bindings.find(key);
+  if (it != bindings.end())
+    return it->second.second;
+
+  MLIRContext *ctx = b.getContext();
+  SmallVector<NamedAttribute> entries;
+  entries.emplace_back(StringAttr::get(ctx, "kind"),
+                       StringAttr::get(ctx, bindingKindName(kind)));
+  static const char *const setKeys[] = {"set", "rows", "cols"};
+  switch (kind) {
+  case BindingKind::Extern:
+    entries.emplace_back(StringAttr::get(ctx, "name"),
+                         StringAttr::get(ctx, names[0]));
+    break;
+  case BindingKind::Field:
+    entries.emplace_back(StringAttr::get(ctx, "set"),
+                         StringAttr::get(ctx, names[0]));
+    entries.emplace_back(StringAttr::get(ctx, "field"),
+                         StringAttr::get(ctx, names[1]));
+    break;
+  default:
+    for (auto [i, name] : llvm::enumerate(names))
+      entries.emplace_back(StringAttr::get(ctx, setKeys[i]),
+                           StringAttr::get(ctx, name));
+  }
+  Value argument =
+      function.front().addArgument(type, function.getLoc());
+  bindings.insert(
+      {key, {DictionaryAttr::get(ctx, entries), argument}});
+  return argument;
+}
+
+SetType FunctionLowering::getSetType(StringAttr name) {
+  for (auto global : module.getOps<ExternOp>())
+    if (auto set = dyn_cast<SetType>(global.getType()))
+      if (set.getName() == name)
+        return set;
+  return nullptr;
+}
+
+Value FunctionLowering::getSetSize(StringAttr set) {
+  return getBinding(BindingKind::SetSize, {set.getValue()},
+                    b.getIndexType());
+}
+
+Value FunctionLowering::getField(StringAttr set, StringAttr field,
+                                 Type fieldType) {
+  SmallVector<int64_t> shape{ShapedType::kDynamic};
+  llvm::append_range(shape, localShape(fieldType));
+  return getBinding(BindingKind::Field, {set.getValue(), field.getValue()},
+                    MemRefType::get(shape, getComponentType(fieldType)));
+}
+
+Value FunctionLowering::getEndpoints(SetType set) {
+  return getBinding(
+      BindingKind::Endpoints, {set.getName().getValue()},
+      MemRefType::get({ShapedType::kDynamic, set.getCardinality()},
+                      b.getI32Type()));
+}
+
+Value FunctionLowering::getPatternArray(BindingKind kind, StringAttr edges,
+                                        StringAttr rows, StringAttr cols) {
+  Type type = MemRefType::get({ShapedType::kDynamic}, b.getI32Type());
+  if (kind == BindingKind::PatternLocations) {
+    SetType set = getSetType(edges);
+    int64_t c = set ? set.getCardinality() : 0;
+    type = MemRefType::get({ShapedType::kDynamic, c * c}, b.getI32Type());
+  }
+  return getBinding(kind,
+                    {edges.getValue(), rows.getValue(), cols.getValue()},
+                    type);
+}
+
+Value FunctionLowering::getExtern(ExternOp global) {
+  Type type = global.getType();
+  Type memref = isa<FloatType, IntegerType>(type)
+                    ? MemRefType::get({}, type)
+                    : MemRefType::get({numComponents(type)},
+                                      getComponentType(type));
+  return getBinding(BindingKind::Extern, {global.getSymName()}, memref);
+}
+
+//===----------------------------------------------------------------------===//
+// Helpers
+//===----------------------------------------------------------------------===//
+
+Value FunctionLowering::indexConstant(int64_t value) {
+  return arith::ConstantIndexOp::create(b, function.getLoc(), value);
+}
+
+Value FunctionLowering::zeroOf(Type scalarType) {
+  return arith::ConstantOp::create(b, function.getLoc(),
+                                   b.getZeroAttr(scalarType));
+}
+
+Value FunctionLowering::numBlocks(const Storage &storage,
+                                  StringAttr denseSet) {
+  Location loc = function.getLoc();
+  switch (storage.kind) {
+  case Storage::Kind::Dense:
+    return getSetSize(denseSet);
+  case Storage::Kind::Diagonal:
+    return getSetSize(storage.rows);
+  case Storage::Kind::Pattern: {
+    Value rowPtr = getPatternArray(BindingKind::PatternRowPtr, storage.edges,
+                                   storage.rows, storage.cols);
+    Value last = memref::LoadOp::create(b, loc, rowPtr,
+                                        ValueRange{getSetSize(storage.rows)});
+    return arith::IndexCastOp::create(b, loc, b.getIndexType(), last);
+  }
+  }
+  llvm_unreachable("storage kind");
+}
+
+void FunctionLowering::fill(Location loc, Value array, Value scalar) {
+  auto type = cast<MemRefType>(array.getType());
+  SmallVector<Value> lbs, ubs, steps;
+  for (int64_t d = 0; d < type.getRank(); ++d) {
+    lbs.push_back(indexConstant(0));
+    ubs.push_back(type.isDynamicDim(d)
+                      ? memref::DimOp::create(b, loc, array, d).getResult()
+                      : indexConstant(type.getDimSize(d)));
+    steps.push_back(indexConstant(1));
+  }
+  if (type.getRank() == 0) {
+    memref::StoreOp::create(b, loc, scalar, array, ValueRange{});
+    return;
+  }
+  scf::ParallelOp::create(b, loc, lbs, ubs, steps,
+                          [&](OpBuilder &nb, Location l, ValueRange ivs) {
+                            memref::StoreOp::create(nb, l, scalar, array, ivs);
+                          });
+}
+
+Value FunctionLowering::allocSystem(Location loc, Type type,
+                                    const Storage &storage) {
+  auto memref = cast<MemRefType>(convertType(type));
+  auto system = cast<SystemTensorType>(type);
+  StringAttr denseSet;
+  for (Attribute dim : system.getDims())
+    if (auto set = dyn_cast<StringAttr>(dim)) {
+      denseSet = set;
+      break;
+    }
+  Value size = numBlocks(storage, denseSet);
+  Value array = memref::AllocOp::create(b, loc, memref, ValueRange{size});
+  fill(loc, array, zeroOf(memref.getElementType()));
+  return array;
+}
+
+StringAttr FunctionLowering::elementSetOf(Value original) {
+  return elementSets.lookup(original);
+}
+
+bool FunctionLowering::canAlias(Operation *read,
+                                function_ref<bool(Operation *)> writes) {
+  Block *block = read->getBlock();
+  Operation *last = read;
+  for (Operation *user : read->getResult(0).getUsers()) {
+    Operation *ancestor = block->findAncestorOpInBlock(*user);
+    if (!ancestor)
+      return false;
+    if (last->isBeforeInBlock(ancestor))
+      last = ancestor;
+  }
+  for (Operation *op = read->getNextNode(); op && op != last;
+       op = op->getNextNode()) {
+    bool clobbers = false;
+    op->walk([&](Operation *nested) {
+      if (writes(nested)) {
+        clobbers = true;
+        return WalkResult::interrupt();
+      }
+      return WalkResult::advance();
+    });
+    if (clobbers)
+      return false;
+  }
+  // The last user itself may write after reading; only a user that writes
+  // the source while still using the value later would matter, and a
+  // single operation reads its operands before writing.
+  return true;
+}
+
+//===----------------------------------------------------------------------===//
+// Blocks and control flow
+//===----------------------------------------------------------------------===//
+
+LogicalResult FunctionLowering::lowerOps(Block &block) {
+  for (Operation &op : block) {
+    if (isa<scf::YieldOp, scf::ConditionOp>(op))
+      continue;
+    if (failed(lowerOp(&op)))
+      return failure();
+  }
+  return success();
+}
+
+/// The lowered values of the operands that are not result slots.
+static SmallVector<Value> keptOperands(FunctionLowering &lowering,
+                                       ValueRange operands) {
+  SmallVector<Value> kept;
+  for (Value operand : operands)
+    if (!lowering.isSink(operand))
+      kept.push_back(lowering.lookup(operand));
+  return kept;
+}
+
+LogicalResult FunctionLowering::lowerFor(scf::ForOp op) {
+  SmallVector<Value> inits = keptOperands(*this, op.getInitArgs());
+  if (llvm::is_contained(inits, Value()))
+    return op.emitError("cannot lower a loop-carried value");
+  // Storage of loop-carried matrices must not change across iterations.
+  for (auto [init, yielded, result, arg] :
+       llvm::zip(op.getInitArgs(), op.getYieldedValues(), op.getResults(),
+                 op.getRegionIterArgs()))
+    if (storages.count(init)) {
+      storages[arg] = storages[init];
+      storages[result] = storages[init];
+    }
+  bool failedBody = false;
+  auto loop = scf::ForOp::create(
+      b, op.getLoc(), lookup(op.getLowerBound()), lookup(op.getUpperBound()),
+      lookup(op.getStep()), inits,
+      [&](OpBuilder &nb, Location loc, Value iv, ValueRange args) {
+        OpBuilder::InsertionGuard guard(b);
+        b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
+        map(op.getInductionVar(), iv);
+        unsigned next = 0;
+        for (Value arg : op.getRegionIterArgs())
+          if (!isSink(arg))
+            map(arg, args[next++]);
+        if (failed(lowerOps(*op.getBody()))) {
+          failedBody = true;
+          return;
+        }
+        scf::YieldOp::create(b, loc,
+                             keptOperands(*this, op.getYieldedValues()));
+      });
+  if (failedBody)
+    return failure();
+  unsigned next = 0;
+  for (Value result : op.getResults())
+    if (!isSink(result))
+      map(result, loop.getResult(next++));
+  return success();
+}
+
+LogicalResult FunctionLowering::lowerIf(scf::IfOp op) {
+  SmallVector<Type> types;
+  for (Value result : op.getResults())
+    if (!isSink(result)) {
+      Type type = convertType(result.getType());
+      if (!type)
+        return op.emitError("cannot lower a result of type ")
+               << result.getType();
+      types.push_back(type);
+    }
+  auto lowered = scf::IfOp::create(b, op.getLoc(), types,
+                                   lookup(op.getCondition()),
+                                   /*withElseRegion=*/true);
+  for (auto [from, to] : llvm::zip(op->getRegions(), lowered->getRegions())) {
+    Block *dest = &to->front();
+    OpBuilder::InsertionGuard guard(b);
+    b.setInsertionPointToEnd(dest);
+    if (!dest->empty() && dest->back().hasTrait<OpTrait::IsTerminator>())
+      dest->back().erase();
+    if (from->empty()) {
+      scf::YieldOp::create(b, op.getLoc());
+      continue;
+    }
+    if (failed(lowerOps(from->front())))
+      return failure();
+    auto yield = cast<scf::YieldOp>(from->front().getTerminator());
+    scf::YieldOp::create(b, yield.getLoc(),
+                         keptOperands(*this, yield.getOperands()));
+  }
+  unsigned next = 0;
+  for (Value result : op.getResults())
+    if (!isSink(result))
+      map(result, lowered.getResult(next++));
+  return success();
+}
+
+LogicalResult FunctionLowering::lowerWhile(scf::WhileOp op) {
+  for (Value v : llvm::concat<Value>(op.getInits(), op.getResults()))
+    if (isSink(v))
+      return op.emitError("a map result cannot be carried by a while loop");
+  SmallVector<Value> inits = keptOperands(*this, op.getInits());
+  SmallVector<Type> afterTypes;
+  for (Value result : op.getResults())
+    afterTypes.push_back(convertType(result.getType()));
+  if (llvm::is_contained(inits, Value()) ||
+      llvm::is_contained(afterTypes, Type()))
+    return op.emitError("cannot lower a loop-carried value");
+  for (auto [init, arg] : llvm::zip(op.getInits(), op.getBeforeArguments()))
+    if (storages.count(init))
+      storages[arg] = storages[init];
+
+  auto loop = scf::WhileOp::create(b, op.getLoc(), afterTypes, inits);
+  SmallVector<Type> beforeTypes = llvm::to_vector(ValueRange(inits).getTypes());
+  SmallVector<Location> beforeLocs(beforeTypes.size(), op.getLoc());
+  SmallVector<Location> afterLocs(afterTypes.size(), op.getLoc());
+  Block *before = b.createBlock(&loop.getBefore(), {}, beforeTypes, beforeLocs);
+  Block *after = b.createBlock(&loop.getAfter(), {}, afterTypes, afterLocs);
+  OpBuilder::InsertionGuard guard(b);
+
+  for (auto [from, to] :
+       llvm::zip(op.getBeforeArguments(), before->getArguments()))
+    map(from, to);
+  b.setInsertionPointToEnd(before);
+  if (failed(lowerOps(op.getBefore().front())))
+    return failure();
+  scf::ConditionOp condition = op.getConditionOp();
+  for (auto [arg, result] : llvm::zip(condition.getArgs(), op.getResults()))
+    if (storages.count(arg))
+      storages[result] = storages[arg];
+  scf::ConditionOp::create(b, condition.getLoc(),
+                           lookup(condition.getCondition()),
+                           keptOperands(*this, condition.getArgs()));
+
+  for (auto [from, to] :
+       llvm::zip(op.getAfterArguments(), after->getArguments())) {
+    map(from, to);
+    if (storages.count(condition.getArgs()[to.getArgNumber()]))
+      storages[from] = storages[condition.getArgs()[to.getArgNumber()]];
+  }
+  b.setInsertionPointToEnd(after);
+  if (failed(lowerOps(op.getAfter().front())))
+    return failure();
+  scf::YieldOp::create(b, op.getLoc(),
+                       keptOperands(*this, op.getYieldOp().getOperands()));
+  b.setInsertionPointAfter(loop);
+  for (auto [from, to] : llvm::zip(op.getResults(), loop.getResults()))
+    map(from, to);
+  return success();
+}
+
+LogicalResult FunctionLowering::lowerGeneric(Operation *op) {
+  if (op->getNumRegions() != 0)
+    return op->emitError("the loop lowering does not support '")
+           << op->getName() << "' with regions";
+  IRMapping mapping;
+  for (Value operand : op->getOperands()) {
+    Value lowered = lookup(operand);
+    if (!lowered)
+      return op->emitError("operand of type ")
+             << operand.getType() << " has no lowered value";
+    mapping.map(operand, lowered);
+  }
+  // Constants of local tensors become constants of flat vectors.
+  if (auto constant = dyn_cast<arith::ConstantOp>(op)) {
+    if (auto dense = dyn_cast<DenseElementsAttr>(constant.getValue())) {
+      Type type = convertType(constant.getType());
+      Attribute value = isa<VectorType>(type)
+                            ? Attribute(dense.reshape(cast<ShapedType>(type)))
+                            : dense.getSplatValue<Attribute>();
+      map(constant, arith::ConstantOp::create(b, op->getLoc(),
+                                              cast<TypedAttr>(value)));
+      return success();
+    }
+  }
+  Operation *clone = b.clone(*op, mapping);
+  for (auto [from, to] : llvm::zip(op->getResults(), clone->getResults())) {
+    Type type = convertType(from.getType());
+    if (!type)
+      return op->emitError("cannot lower a result of type ") << from.getType();
+    to.setType(type);
+    map(from, to);
+  }
+  return success();
+}
+
+//===----------------------------------------------------------------------===//
+// Host-level operations on system vectors
+//===----------------------------------------------------------------------===//
+
+/// Whether `op` writes field `field` of set `set`: a field write, or a map
+/// whose element function writes a field of that name.
+static bool writesField(Operation *op, StringAttr set, StringAttr field,
+                        ModuleOp module) {
+  if (auto write = dyn_cast<FieldWriteOp>(op))
+    return write.getFieldAttr() == field &&
+           cast<SetType>(write.getSet().getType()).getName() == set;
+  if (isa<MapOp, AssembleOp>(op)) {
+    auto callee = module.lookupSymbol<func::FuncOp>(
+        op->getAttrOfType<FlatSymbolRefAttr>("callee"));
+    if (!callee)
+      return true;
+    bool writes = false;
+    callee.walk([&](ElemWriteOp w) {
+      if (w.getFieldAttr() == field)
+        writes = true;
+    });
+    return writes;
+  }
+  return isa<func::CallOp>(op);
+}
+
+LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
+  handled = true;
+  Location loc = op->getLoc();
+  if (auto read = dyn_cast<FieldReadOp>(op)) {
+    auto set = cast<SetType>(read.getSet().getType());
+    Type fieldType = set.getElement().getFieldType(read.getField());
+    Value array = getField(set.getName(), read.getFieldAttr(), fieldType);
+    storages[read] = Storage::dense();
+    if (canAlias(op, [&](Operation *w) {
+          return writesField(w, set.getName(), read.getFieldAttr(), module);
+        })) {
+      map(read, array);
+      return success();
+    }
+    Value copy = memref::AllocOp::create(
+        b, loc, cast<MemRefType>(array.getType()),
+        ValueRange{getSetSize(set.getName())});
+    memref::CopyOp::create(b, loc, array, copy);
+    map(read, copy);
+    return success();
+  }
+  if (auto write = dyn_cast<FieldWriteOp>(op)) {
+    auto set = cast<SetType>(write.getSet().getType());
+    Type fieldType = set.getElement().getFieldType(write.getField());
+    Value array = getField(set.getName(), write.getFieldAttr(), fieldType);
+    Value value = lookup(write.getValue());
+    if (isSystem(write.getValue().getType()))
+      memref::CopyOp::create(b, loc, value, array);
+    else
+      fill(loc, array, value);
+    return success();
+  }
+
+  // The remaining operations matter here only on system tensors.
+  bool system = llvm::any_of(op->getOperandTypes(), isSystem) ||
+                llvm::any_of(op->getResultTypes(), isSystem);
+  auto refOf = [](Type type) {
+    auto ref = dyn_cast<RefType>(type);
+    return ref && isSystem(ref.getValueType());
+  };
+  bool systemRef = llvm::any_of(op->getOperandTypes(), refOf) ||
+                   llvm::any_of(op->getResultTypes(), refOf);
+  if (!system && !systemRef) {
+    handled = false;
+    return success();
+  }
+
+  if (isa<ZerosOp, BroadcastOp>(op)) {
+    Type type = op->getResult(0).getType();
+    if (cast<SystemTensorType>(type).getOrder() != 1)
+      return op->emitError("a system matrix of unknown sparsity cannot be "
+                           "created here; assemble it with a map");
+    Value array = allocSystem(loc, type, Storage::dense());
+    if (auto broadcast = dyn_cast<BroadcastOp>(op))
+      fill(loc, array, lookup(broadcast.getValue()));
+    storages[op->getResult(0)] = Storage::dense();
+    map(op->getResult(0), array);
+    return success();
+  }
+  if (auto alloc = dyn_cast<AllocOp>(op)) {
+    Type type = cast<RefType>(alloc.getType()).getValueType();
+    if (cast<SystemTensorType>(type).getOrder() != 1)
+      return op->emitError("variables holding system matrices are not "
+                           "supported by the loop lowering");
+    map(alloc, allocSystem(loc, type, Storage::dense()));
+    return success();
+  }
+  if (auto load = dyn_cast<LoadOp>(op)) {
+    Value buffer = lookup(load.getRef());
+    storages[load] = Storage::dense();
+    if (canAlias(op, [&](Operation *w) {
+          auto store = dyn_cast<StoreOp>(w);
+          return (store && store.getRef() == load.getRef()) ||
+                 isa<func::CallOp>(w);
+        })) {
+      map(load, buffer);
+      return success();
+    }
+    auto type = cast<MemRefType>(buffer.getType());
+    Value copy = memref::AllocOp::create(
+        b, loc, type,
+        ValueRange{memref::DimOp::create(b, loc, buffer, 0).getResult()});
+    memref::CopyOp::create(b, loc, buffer, copy);
+    map(load, copy);
+    return success();
+  }
+  if (auto store = dyn_cast<StoreOp>(op)) {
+    memref::CopyOp::create(b, loc, lookup(store.getValue()),
+                           lookup(store.getRef()));
+    return success();
+  }
+  if (auto extract = dyn_cast<ExtractOp>(op)) {
+    auto type = cast<SystemTensorType>(extract.getTensor().getType());
+    if (type.getOrder() != 1)
+      return op->emitError("reading one block of a system matrix is not "
+                           "supported by the loop lowering");
+    Value array = lookup(extract.getTensor());
+    Value position = lookup(extract.getIndices()[0]);
+    int64_t n = numComponents(extract.getType());
+    SmallVector<Value> components;
+    auto memref = cast<MemRefType>(array.getType());
+    for (int64_t c = 0; c < n; ++c) {
+      SmallVector<Value> indices{position};
+      int64_t rest = c;
+      SmallVector<int64_t> blockIdx;
+      for (int64_t d = memref.getRank() - 1; d >= 1; --d) {
+        blockIdx.push_back(rest % memref.getDimSize(d));
+        rest /= memref.getDimSize(d);
+      }
+      for (int64_t i : llvm::reverse(blockIdx))
+        indices.push_back(indexConstant(i));
+      components.push_back(memref::LoadOp::create(b, loc, array, indices));
+    }
+    map(extract, n == 1 && !isa<ShapedType>(extract.getType())
+                     ? components[0]
+                     : fromComponents(convertType(extract.getType()),
+                                      components));
+    return success();
+  }
+  if (auto indexExpr = dyn_cast<IndexExprOp>(op))
+    return lowerIndexExpr(indexExpr);
+  if (isa<AddOp, SubOp, MulOp, DivOp, NegOp, ScaleOp, MatVecOp, MatMulOp,
+          TransposeOp, DotOp, OuterOp, NormOp>(op))
+    return op->emitError("linear algebra on system tensors must be rewritten "
+                         "by simit-linalg-to-index-expr first");
+  return op->emitError("'") << op->getName()
+                            << "' on system tensors is not supported by the "
+                               "loop lowering";
+}
+
+//===----------------------------------------------------------------------===//
+// Operations
+//===----------------------------------------------------------------------===//
+
+LogicalResult FunctionLowering::lowerFunctionReturn(func::ReturnOp op) {
+  SmallVector<Value> results;
+  for (Value operand : op.getOperands()) {
+    if (storages.lookup(operand).isMatrix())
+      return op.emitError("exported functions cannot return system matrices");
+    results.push_back(lookup(operand));
+  }
+  func::ReturnOp::create(b, op.getLoc(), results);
+  return success();
+}
+
+LogicalResult FunctionLowering::lowerOp(Operation *op) {
+  if (auto loop = dyn_cast<scf::ForOp>(op))
+    return lowerFor(loop);
+  if (auto branch = dyn_cast<scf::IfOp>(op))
+    return lowerIf(branch);
+  if (auto loop = dyn_cast<scf::WhileOp>(op))
+    return lowerWhile(loop);
+  if (auto ret = dyn_cast<func::ReturnOp>(op))
+    return element ? success() : lowerFunctionReturn(ret);
+  if (isa<func::CallOp>(op))
+    return op->emitError("calls must be inlined by simit-inline-functions "
+                         "before the loop lowering");
+  if (op->getDialect() != op->getContext()->getLoadedDialect<SimitDialect>()) {
+    bool handled = false;
+    if (failed(lowerLocalOp(op, handled)))
+      return failure();
+    return handled ? success() : lowerGeneric(op);
+  }
+
+  // Result slots of an element function are not materialised.
+  if (isa<ZerosOp, AllocOp, LoadOp>(op) && isSink(op->getResult(0)))
+    return success();
+  if (auto store = dyn_cast<StoreOp>(op); store && isSink(store.getRef()))
+    return success();
+  bool handled = false;
+  if (failed(lowerElementAccess(op, handled)))
+    return failure();
+  if (handled)
+    return success();
+
+  if (isa<GetSetOp>(op))
+    return success();
+  if (auto size = dyn_cast<SetSizeOp>(op)) {
+    map(size, getSetSize(cast<SetType>(size.getSet().getType()).getName()));
+    return success();
+  }
+  if (auto ref = dyn_cast<ExternRefOp>(op)) {
+    auto global = module.lookupSymbol<ExternOp>(ref.getGlobalAttr());
+    if (!global)
+      return op->emitError("no simit.extern named ") << ref.getGlobalAttr();
+    if (isSystem(global.getType()))
+      return op->emitError("extern system tensors are not supported by the "
+                           "loop lowering");
+    map(ref, getExtern(global));
+    return success();
+  }
+  if (auto element = dyn_cast<SetElementOp>(op)) {
+    map(element, lookup(element.getIndex()));
+    elementSets[element] = cast<SetType>(element.getSet().getType()).getName();
+    return success();
+  }
+  if (auto endpoints = dyn_cast<EndpointsOp>(op)) {
+    tuples[endpoints] = {cast<SetType>(endpoints.getSet().getType()),
+                         lookup(endpoints.getElement())};
+    return success();
+  }
+  if (auto get = dyn_cast<TupleGetOp>(op)) {
+    auto it = tuples.find(get.getTuple());
+    if (it == tuples.end())
+      return op->emitError("the loop lowering cannot trace this tuple to its "
+                           "edge");
+    auto [set, edge] = it->second;
+    Value endpoints = getEndpoints(set);
+    Value k = indexConstant(get.getIndex());
+    Location loc = op->getLoc();
+    Value raw = memref::LoadOp::create(b, loc, endpoints, ValueRange{edge, k});
+    map(get, arith::IndexCastOp::create(b, loc, b.getIndexType(), raw));
+    elementSets[get] = set.getEndpoint(get.getIndex());
+    if (this->element && edge == this->element->element)
+      endpointPositions[get] = k;
+    return success();
+  }
+  if (isa<MapOp, AssembleOp>(op))
+    return lowerMapLike(op);
+  if (isa<GridPointOp, GridEdgeOp>(op))
+    return op->emitError("grid stencils are not supported by the loop "
+                         "lowering yet");
+  if (isa<PrintOp, StringConstantOp, StringConcatOp, StringCmpOp>(op))
+    return op->emitError("printing and strings are not supported by the loop "
+                         "lowering yet");
+
+  if (failed(lowerSystemOp(op, handled)))
+    return failure();
+  if (handled)
+    return success();
+  if (failed(lowerLocalOp(op, handled)))
+    return failure();
+  if (!handled)
+    return op->emitError("'") << op->getName()
+                              << "' is not supported by the loop lowering";
+  return success();
+}
+
+//===----------------------------------------------------------------------===//
+// Functions
+//===----------------------------------------------------------------------===//
+
+FunctionLowering::FunctionLowering(ModuleOp module, func::FuncOp function)
+    : module(module), function(function), b(function.getContext()) {}
+
+LogicalResult FunctionLowering::run(func::FuncOp original) {
+  MLIRContext *ctx = original.getContext();
+  Block *entry = function.addEntryBlock();
+  allocaBlock = entry;
+  SmallVector<Attribute> bindingAttrs;
+  for (auto [i, arg] : llvm::enumerate(original.getArguments())) {
+    Type type = convertType(arg.getType());
+    if (!type || isa<SetType, ElementType>(arg.getType()))
+      return original.emitError("exported function parameter ")
+             << i << " of type " << arg.getType()
+             << " cannot be lowered (sets are bound as externs)";
+    if (isSystem(arg.getType()) &&
+        cast<SystemTensorType>(arg.getType()).getOrder() != 1)
+      return original.emitError("exported functions cannot take system "
+                                "matrices");
+    map(arg, entry->addArgument(type, arg.getLoc()));
+    if (isSystem(arg.getType()))
+      storages[arg] = Storage::dense();
+    bindingAttrs.push_back(DictionaryAttr::get(
+        ctx, {NamedAttribute(StringAttr::get(ctx, "kind"),
+                             StringAttr::get(ctx, "param")),
+              NamedAttribute(StringAttr::get(ctx, "index"),
+                             b.getI64IntegerAttr(i))}));
+  }
+  for (Type type : original.getResultTypes()) {
+    Type lowered = convertType(type);
+    if (!lowered)
+      return original.emitError("exported function result of type ")
+             << type << " cannot be lowered";
+    resultTypes.push_back(lowered);
+  }
+  b.setInsertionPointToEnd(entry);
+  if (failed(lowerOps(original.front())))
+    return failure();
+
+  for (auto &entry : bindings)
+    bindingAttrs.push_back(entry.second.first);
+  function.setType(FunctionType::get(
+      ctx, function.front().getArgumentTypes(), resultTypes));
+  function->setAttr("simit.bindings", ArrayAttr::get(ctx, bindingAttrs));
+  function->setAttr("llvm.emit_c_interface", UnitAttr::get(ctx));
+  return success();
+}
+
+namespace {
+struct ConvertSimitToLoops
+    : public simit::impl::ConvertSimitToLoopsBase<ConvertSimitToLoops> {
+  void runOnOperation() override {
+    ModuleOp module = getOperation();
+    // Element functions are those maps apply; they are inlined, not
+    // exported.
+    llvm::DenseSet<StringAttr> elementFunctions;
+    module.walk([&](Operation *op) {
+      if (isa<MapOp, AssembleOp>(op))
+        elementFunctions.insert(
+            op->getAttrOfType<FlatSymbolRefAttr>("callee").getAttr());
+    });
+    SmallVector<func::FuncOp> exported;
+    for (auto function : module.getOps<func::FuncOp>())
+      if (function.isPublic() && !function.isExternal() &&
+          !elementFunctions.contains(function.getSymNameAttr()))
+        exported.push_back(function);
+
+    bool failedAny = false;
+    for (func::FuncOp original : exported) {
+      OpBuilder builder(original);
+      auto lowered = func::FuncOp::create(
+          builder, original.getLoc(),
+          (original.getSymName() + ".lowered").str(),
+          builder.getFunctionType({}, {}));
+      FunctionLowering lowering(module, lowered);
+      if (failed(lowering.run(original))) {
+        lowered.erase();
+        failedAny = true;
+        continue;
+      }
+      std::string name = original.getSymName().str();
+      original.erase();
+      lowered.setSymName(name);
+    }
+    if (failedAny)
+      return signalPassFailure();
+
+    // Element functions now live in the set loops; externs are bindings.
+    SmallVector<Operation *> dead;
+    for (Operation &op : module.getOps()) {
+      auto function = dyn_cast<func::FuncOp>(op);
+      if ((function && !function.isExternal() &&
+           (function.isPrivate() ||
+            elementFunctions.contains(function.getSymNameAttr()))) ||
+          isa<ExternOp>(op))
+        dead.push_back(&op);
+    }
+    for (Operation *op : dead)
+      op->erase();
+  }
+};
+} // namespace

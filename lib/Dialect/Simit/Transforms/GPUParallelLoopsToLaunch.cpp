@@ -1,0 +1,232 @@
+//===- GPUParallelLoopsToLaunch.cpp - Set loops become GPU kernels --------===//
+//
+// A set loop has one iteration per element and millions of elements, so it
+// maps to a one-dimensional grid with one thread per iteration; the block size
+// is fixed (an option) and the grid covers the trip count, with threads past
+// the end doing nothing. Scalar reductions are combined in two levels (a
+// block-wide gpu.all_reduce, then one atomic per block into an accumulator)
+// so that contention on the accumulator stays at one update per block.
+//
+//===----------------------------------------------------------------------===//
+
+#include "simit/Dialect/Simit/Transforms/Passes.h"
+
+#include "mlir/Dialect/GPU/IR/GPUDialect.h"
+
+namespace mlir {
+namespace simit {
+#define GEN_PASS_DEF_SIMITPARALLELLOOPSTOGPU
+#include "simit/Dialect/Simit/Transforms/Passes.h.inc"
+} // namespace simit
+} // namespace mlir
+
+using namespace mlir;
+
+namespace {
+/// How one `scf.reduce` region combines: the atomic that folds a block's
+/// partial into the accumulator and the block-wide reduction.
+struct Combiner {
+  arith::AtomicRMWKind atomicKind;
+  gpu::AllReduceOperation blockReduction;
+};
+
+/// Recognises a reduction region that adds its two arguments.
+FailureOr<Combiner> matchCombiner(Region &reduction) {
+  Block &block = reduction.front();
+  auto yield = dyn_cast<scf::ReduceReturnOp>(block.getTerminator());
+  if (!yield || block.getOperations().size() != 2)
+    return failure();
+  Operation *combine = yield.getResult().getDefiningOp();
+  if (!combine || combine->getBlock() != &block ||
+      !llvm::is_contained(combine->getOperands(), block.getArgument(0)) ||
+      !llvm::is_contained(combine->getOperands(), block.getArgument(1)))
+    return failure();
+  if (isa<arith::AddFOp>(combine))
+    return Combiner{arith::AtomicRMWKind::addf, gpu::AllReduceOperation::ADD};
+  if (isa<arith::AddIOp>(combine))
+    return Combiner{arith::AtomicRMWKind::addi, gpu::AllReduceOperation::ADD};
+  return failure();
+}
+
+/// max(ceil((ub - lb) / step), 0) for one loop dimension.
+Value tripCount(OpBuilder &b, Location loc, Value lb, Value ub, Value step) {
+  Value zero = arith::ConstantIndexOp::create(b, loc, 0);
+  Value extent = arith::SubIOp::create(b, loc, ub, lb);
+  extent = arith::MaxSIOp::create(b, loc, extent, zero);
+  return arith::CeilDivUIOp::create(b, loc, extent, step);
+}
+
+class LoopToLaunch {
+public:
+  LoopToLaunch(scf::ParallelOp loop, int64_t blockSize)
+      : loop(loop), blockSize(blockSize) {}
+
+  LogicalResult run();
+
+private:
+  /// The loop's induction variables for the linear iteration index `linear`
+  /// (the last dimension varies fastest).
+  SmallVector<Value> delinearize(OpBuilder &b, Value linear);
+
+  scf::ParallelOp loop;
+  int64_t blockSize;
+  SmallVector<Value> trips;
+};
+
+LogicalResult LoopToLaunch::run() {
+  auto reduce = cast<scf::ReduceOp>(loop.getBody()->getTerminator());
+  SmallVector<Combiner> combiners;
+  for (Region &reduction : reduce.getReductions()) {
+    FailureOr<Combiner> combiner = matchCombiner(reduction);
+    if (failed(combiner))
+      return loop.emitOpError(
+          "has a reduction that the GPU path cannot combine: only "
+          "arith.addf and arith.addi of the two region arguments are "
+          "supported");
+    combiners.push_back(*combiner);
+  }
+
+  Location loc = loop.getLoc();
+  OpBuilder b(loop);
+  for (auto [lb, ub, step] : llvm::zip(loop.getLowerBound(),
+                                       loop.getUpperBound(), loop.getStep()))
+    trips.push_back(tripCount(b, loc, lb, ub, step));
+  Value total = trips.front();
+  for (Value trip : llvm::drop_begin(trips))
+    total = arith::MulIOp::create(b, loc, total, trip);
+
+  // Scalar accumulators live at the start of the allocation scope, so that
+  // a set loop inside a host loop does not grow the stack per iteration.
+  SmallVector<Value> accumulators;
+  if (!combiners.empty()) {
+    Operation *scope =
+        loop->getParentWithTrait<OpTrait::AutomaticAllocationScope>();
+    OpBuilder entry = OpBuilder::atBlockBegin(&scope->getRegion(0).front());
+    for (Value init : loop.getInitVals()) {
+      accumulators.push_back(memref::AllocaOp::create(
+          entry, loc, MemRefType::get({}, init.getType())));
+      memref::StoreOp::create(b, loc, init, accumulators.back());
+    }
+  }
+
+  Value one = arith::ConstantIndexOp::create(b, loc, 1);
+  Value threads = arith::ConstantIndexOp::create(b, loc, blockSize);
+  // A grid of zero blocks is a launch error; one idle block is not.
+  Value blocks = arith::MaxUIOp::create(
+      b, loc, arith::CeilDivUIOp::create(b, loc, total, threads), one);
+  auto launch =
+      gpu::LaunchOp::create(b, loc, blocks, one, one, threads, one, one);
+
+  OpBuilder body = OpBuilder::atBlockBegin(&launch.getBody().front());
+  Value blockId = launch.getBlockIds().x;
+  Value threadId = launch.getThreadIds().x;
+  Value linear = arith::AddIOp::create(
+      body, loc, arith::MulIOp::create(body, loc, blockId, threads), threadId);
+  Value inRange = arith::CmpIOp::create(body, loc, arith::CmpIPredicate::ult,
+                                        linear, total);
+  // Without reductions the guard is a plain `scf.if` (with its yield); with
+  // them, both branches are filled below.
+  auto guard =
+      combiners.empty()
+          ? scf::IfOp::create(body, loc, inRange, /*withElseRegion=*/false)
+          : scf::IfOp::create(body, loc, loop.getResultTypes(), inRange,
+                              /*addThenBlock=*/true, /*addElseBlock=*/true);
+
+  // The loop body moves into the guarded branch, which yields the values
+  // the loop reduces.
+  Block *thenBlock = guard.thenBlock();
+  OpBuilder thenBuilder = OpBuilder::atBlockBegin(thenBlock);
+  SmallVector<Value> ivs = delinearize(thenBuilder, linear);
+  for (auto [iv, value] : llvm::zip(loop.getInductionVars(), ivs))
+    iv.replaceAllUsesWith(value);
+  Block *loopBody = loop.getBody();
+  SmallVector<Value> partials(reduce.getOperands());
+  if (combiners.empty())
+    thenBlock->getOperations().splice(std::prev(thenBlock->end()),
+                                      loopBody->getOperations(),
+                                      loopBody->begin(), reduce->getIterator());
+  else {
+    thenBlock->getOperations().splice(thenBlock->end(),
+                                      loopBody->getOperations(),
+                                      loopBody->begin(), reduce->getIterator());
+    OpBuilder yieldBuilder = OpBuilder::atBlockEnd(thenBlock);
+    scf::YieldOp::create(yieldBuilder, loc, partials);
+    OpBuilder elseBuilder = OpBuilder::atBlockBegin(guard.elseBlock());
+    SmallVector<Value> identities;
+    for (Value partial : partials)
+      identities.push_back(arith::ConstantOp::create(
+          elseBuilder, loc, elseBuilder.getZeroAttr(partial.getType())));
+    scf::YieldOp::create(elseBuilder, loc, identities);
+  }
+
+  // Every thread of the block takes part in the block reduction; thread 0
+  // then folds the block's sum into the accumulator.
+  SmallVector<Value> blockSums;
+  for (auto [partial, combiner] : llvm::zip(guard.getResults(), combiners))
+    blockSums.push_back(gpu::AllReduceOp::create(
+        body, loc, partial,
+        gpu::AllReduceOperationAttr::get(b.getContext(),
+                                         combiner.blockReduction),
+        /*uniform=*/true));
+  if (!combiners.empty()) {
+    Value zero = arith::ConstantIndexOp::create(body, loc, 0);
+    Value first = arith::CmpIOp::create(body, loc, arith::CmpIPredicate::eq,
+                                        threadId, zero);
+    auto leader = scf::IfOp::create(body, loc, first, /*withElseRegion=*/false);
+    OpBuilder leaderBuilder = leader.getThenBodyBuilder();
+    for (auto [sum, acc, combiner] :
+         llvm::zip(blockSums, accumulators, combiners))
+      memref::AtomicRMWOp::create(leaderBuilder, loc, combiner.atomicKind, sum,
+                                  acc, ValueRange());
+  }
+  gpu::TerminatorOp::create(body, loc);
+
+  b.setInsertionPointAfter(launch);
+  for (auto [result, acc] : llvm::zip(loop.getResults(), accumulators))
+    result.replaceAllUsesWith(memref::LoadOp::create(b, loc, acc));
+  loop.erase();
+  return success();
+}
+
+SmallVector<Value> LoopToLaunch::delinearize(OpBuilder &b, Value linear) {
+  Location loc = loop.getLoc();
+  SmallVector<Value> ivs(trips.size());
+  Value rest = linear;
+  for (int64_t dim = trips.size() - 1; dim >= 0; --dim) {
+    Value index = rest;
+    if (dim > 0) {
+      index = arith::RemUIOp::create(b, loc, rest, trips[dim]);
+      rest = arith::DivUIOp::create(b, loc, rest, trips[dim]);
+    }
+    Value offset =
+        arith::MulIOp::create(b, loc, index, loop.getStep()[dim]);
+    ivs[dim] = arith::AddIOp::create(b, loc, loop.getLowerBound()[dim], offset);
+  }
+  return ivs;
+}
+
+struct ParallelLoopsToGpu
+    : public simit::impl::SimitParallelLoopsToGpuBase<ParallelLoopsToGpu> {
+  using Base::Base;
+
+  void runOnOperation() override {
+    if (blockSize <= 0 || blockSize > 1024) {
+      getOperation().emitError("simit-parallel-loops-to-gpu: block-size must "
+                               "be in [1, 1024], got ")
+          << blockSize;
+      return signalPassFailure();
+    }
+    SmallVector<scf::ParallelOp> loops;
+    getOperation().walk([&](scf::ParallelOp loop) {
+      if (!loop->getParentOfType<scf::ParallelOp>() &&
+          !loop->getParentOfType<gpu::LaunchOp>() &&
+          !loop->getParentOfType<gpu::GPUModuleOp>() &&
+          loop->getParentOfType<func::FuncOp>())
+        loops.push_back(loop);
+    });
+    for (scf::ParallelOp loop : loops)
+      if (failed(LoopToLaunch(loop, blockSize).run()))
+        signalPassFailure();
+  }
+};
+} // namespace

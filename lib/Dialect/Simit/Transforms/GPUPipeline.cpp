@@ -1,0 +1,77 @@
+//===- GPUPipeline.cpp - Loops-level IR to LLVM with PTX kernels ----------===//
+//
+// simit-gpu-pipeline is a pass that runs a nested pipeline, like
+// simit-cpu-pipeline, so registerSimitPasses() registers it with the others
+// and its options (chip, PTX version, format) travel in the pass syntax.
+// After Simit's own GPU passes it reuses MLIR's NVVM pipeline, which lowers
+// the host code, the kernels and the gpu.module serialisation in one go.
+//
+//===----------------------------------------------------------------------===//
+
+#include "simit/Dialect/Simit/Transforms/Passes.h"
+
+#include "mlir/Dialect/GPU/IR/GPUDialect.h"
+#include "mlir/Dialect/GPU/Pipelines/Passes.h"
+#include "mlir/Dialect/GPU/Transforms/Passes.h"
+#include "mlir/InitAllExtensions.h"
+#include "mlir/Pass/PassManager.h"
+#include "mlir/Target/LLVM/NVVM/Target.h"
+#include "mlir/Target/LLVMIR/Dialect/All.h"
+
+namespace mlir {
+namespace simit {
+#define GEN_PASS_DEF_SIMITGPUPIPELINE
+#include "simit/Dialect/Simit/Transforms/Passes.h.inc"
+} // namespace simit
+} // namespace mlir
+
+using namespace mlir;
+
+namespace {
+struct GpuPipeline : public simit::impl::SimitGpuPipelineBase<GpuPipeline> {
+  using Base::Base;
+
+  void buildPipeline(OpPassManager &pm) const {
+    pm.addPass(simit::createSimitGpuScatterAtomics());
+    pm.addPass(simit::createSimitParallelLoopsToGpu({blockSize}));
+    pm.addPass(simit::createSimitGpuDeviceMemory());
+    pm.addPass(createGpuLaunchSinkIndexComputationsPass());
+    pm.addPass(createGpuKernelOutliningPass());
+    // Device allocations and copies lower to runtime calls only in their
+    // async form; the pass also makes the host wait before it touches memory.
+    pm.addNestedPass<func::FuncOp>(createGpuAsyncRegionPass());
+    gpu::GPUToNVVMPipelineOptions nvvm;
+    nvvm.cubinChip = chip;
+    nvvm.cubinFeatures = features;
+    nvvm.cubinFormat = format;
+    nvvm.optLevel = optLevel;
+    gpu::buildLowerToNVVMPassPipeline(pm, nvvm);
+  }
+
+  void getDependentDialects(DialectRegistry &registry) const override {
+    OpPassManager pm(ModuleOp::getOperationName());
+    buildPipeline(pm);
+    pm.getDependentDialects(registry);
+    // The conversions to LLVM find their patterns through dialect
+    // interfaces, and serialising a gpu.module needs the NVVM target and
+    // the LLVM IR translations; simit-opt registers none of these itself.
+    registerAllExtensions(registry);
+    registerAllGPUToLLVMIRTranslations(registry);
+    NVVM::registerNVVMTargetInterfaceExternalModels(registry);
+  }
+
+  void runOnOperation() override {
+    if (format != "isa" && format != "assembly" && format != "bin" &&
+        format != "binary" && format != "fatbin" && format != "fatbinary") {
+      getOperation().emitError("simit-gpu-pipeline: format must be isa, bin "
+                               "or fatbin, got '")
+          << format << "'";
+      return signalPassFailure();
+    }
+    OpPassManager pm(ModuleOp::getOperationName());
+    buildPipeline(pm);
+    if (failed(runPipeline(pm, getOperation())))
+      signalPassFailure();
+  }
+};
+} // namespace

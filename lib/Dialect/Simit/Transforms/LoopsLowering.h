@@ -1,0 +1,199 @@
+//===- LoopsLowering.h - State of the simit-to-loops lowering ---*- C++ -*-===//
+//
+// convert-simit-to-loops rebuilds every exported function op by op: a value
+// map takes each simit value to its lowered form, a storage map records how
+// each system matrix is stored, and bindings become new function arguments
+// as the lowering first needs them. The implementation is split by subject:
+// ConvertSimitToLoops.cpp (driver, bindings, host-level ops and control
+// flow), LowerLocalTensors.cpp (small dense tensors as flat vectors),
+// LowerMaps.cpp (map/assemble as set loops) and LowerIndexExpr.cpp.
+//
+//===----------------------------------------------------------------------===//
+
+#ifndef SIMIT_LIB_DIALECT_SIMIT_TRANSFORMS_LOOPSLOWERING_H
+#define SIMIT_LIB_DIALECT_SIMIT_TRANSFORMS_LOOPSLOWERING_H
+
+#include "simit/Dialect/Simit/Transforms/Passes.h"
+
+#include "mlir/IR/Builders.h"
+#include "llvm/ADT/MapVector.h"
+
+#include <functional>
+
+namespace mlir {
+namespace simit {
+namespace loops {
+
+/// How a system tensor is stored (its sparsity).
+struct Storage {
+  enum class Kind {
+    /// A vector (or tensor with one set dimension): one block per element.
+    Dense,
+    /// A matrix over (set, set) with only diagonal blocks: block r is (r, r).
+    Diagonal,
+    /// A BCSR matrix over (rows, cols) on the pattern of an edge set.
+    Pattern
+  };
+  Kind kind = Kind::Dense;
+  /// Diagonal: rows == cols == the set. Pattern: the edge set and the two
+  /// endpoint sets.
+  StringAttr edges, rows, cols;
+
+  static Storage dense() { return Storage(); }
+  static Storage diagonal(StringAttr set) {
+    return Storage{Kind::Diagonal, nullptr, set, set};
+  }
+  static Storage pattern(StringAttr edges, StringAttr rows, StringAttr cols) {
+    return Storage{Kind::Pattern, edges, rows, cols};
+  }
+  bool isMatrix() const { return kind != Kind::Dense; }
+  bool operator==(const Storage &o) const {
+    return kind == o.kind && edges == o.edges && rows == o.rows &&
+           cols == o.cols;
+  }
+  bool operator!=(const Storage &o) const { return !(*this == o); }
+  /// Whether every block of `o` is a block of this storage (an edge pattern
+  /// over (V, V) holds the whole diagonal of V).
+  bool contains(const Storage &o) const;
+  std::string describe() const;
+};
+
+/// The kinds of function arguments of a lowered exported function.
+enum class BindingKind {
+  SetSize,
+  Field,
+  Endpoints,
+  PatternRowPtr,
+  PatternColIdx,
+  PatternLocations,
+  Extern
+};
+
+/// What is known of the element function being inlined into a set loop.
+struct ElementContext {
+  /// The mapped set and the loop's element index.
+  SetType set;
+  Value element;
+  /// The lowered output arrays of the map's results and their storage.
+  SmallVector<Value> outputs;
+  SmallVector<Storage> outputStorages;
+  SmallVector<Type> outputTypes;
+  /// Whether writes to results combine with the reduction (assemble) or
+  /// store (map).
+  bool accumulate = false;
+  ReductionKind reduction = ReductionKind::Add;
+  /// The element function's values that stand for one of its results
+  /// (the result position): they are not materialised; every insert into
+  /// one scatters into the output.
+  DenseMap<Value, unsigned> sinks;
+};
+
+class FunctionLowering {
+public:
+  FunctionLowering(ModuleOp module, func::FuncOp function);
+
+  /// Lowers the original function into `function`'s new body.
+  LogicalResult run(func::FuncOp original);
+
+  //===--- Values and types ---------------------------------------------===//
+
+  /// The lowered type of a simit value type, or null when unsupported.
+  Type convertType(Type type);
+  Value lookup(Value original);
+  void map(Value original, Value lowered) { values[original] = lowered; }
+  /// Whether `original` is a result slot of the element function being
+  /// inlined (it has no lowered value).
+  bool isSink(Value original) const {
+    return element && element->sinks.count(original);
+  }
+
+  //===--- Blocks and operations ----------------------------------------===//
+
+  /// Lowers the operations of `block` except its terminator at the
+  /// builder's insertion point.
+  LogicalResult lowerOps(Block &block);
+  LogicalResult lowerOp(Operation *op);
+
+  //===--- Bindings (arguments of the lowered function) -----------------===//
+
+  Value getSetSize(StringAttr set);
+  Value getField(StringAttr set, StringAttr field, Type fieldType);
+  Value getEndpoints(SetType set);
+  Value getPatternArray(BindingKind kind, StringAttr edges, StringAttr rows,
+                        StringAttr cols);
+  Value getExtern(ExternOp global);
+  /// The set type declared for `name` by a simit.extern.
+  SetType getSetType(StringAttr name);
+
+  //===--- Helpers shared by the parts ----------------------------------===//
+
+  Value indexConstant(int64_t value);
+  Value zeroOf(Type scalarType);
+  /// A fresh array for a system tensor of `type` stored as `storage`, zero
+  /// filled.
+  Value allocSystem(Location loc, Type type, const Storage &storage);
+  /// The number of blocks of an array stored as `storage`.
+  Value numBlocks(const Storage &storage, StringAttr denseSet);
+  /// Fills an array with a scalar.
+  void fill(Location loc, Value array, Value scalar);
+  /// The set of element value `original`, if known.
+  StringAttr elementSetOf(Value original);
+
+  // Local tensors (LowerLocalTensors.cpp).
+  LogicalResult lowerLocalOp(Operation *op, bool &handled);
+  /// Component `position` (flat, row major) of a lowered local value.
+  Value component(Value lowered, Value position);
+  Value component(Value lowered, int64_t position);
+  /// The lowered local value made of `components`.
+  Value fromComponents(Type loweredType, ArrayRef<Value> components);
+
+  // Maps (LowerMaps.cpp).
+  LogicalResult lowerMapLike(Operation *op);
+  /// elem_read, elem_write and inserts into result slots.
+  LogicalResult lowerElementAccess(Operation *op, bool &handled);
+
+  // Index expressions (LowerIndexExpr.cpp).
+  LogicalResult lowerIndexExpr(IndexExprOp op);
+
+  ModuleOp module;
+  func::FuncOp function;
+  OpBuilder b;
+  DenseMap<Value, Value> values;
+  /// The storage of every lowered system tensor value (original values).
+  DenseMap<Value, Storage> storages;
+  /// For lowered element values: the set they belong to, and for endpoints
+  /// of the mapped edge the endpoint position (an index value).
+  DenseMap<Value, StringAttr> elementSets;
+  DenseMap<Value, Value> endpointPositions;
+  /// Tuples: the edge set and lowered edge index.
+  DenseMap<Value, std::pair<SetType, Value>> tuples;
+  ElementContext *element = nullptr;
+  /// Where memref.alloca of local variables go: the function entry, or the
+  /// alloca scope of the set loop's body (so stack use does not grow with
+  /// the set).
+  Block *allocaBlock = nullptr;
+
+private:
+  Value getBinding(BindingKind kind, ArrayRef<StringRef> names, Type type);
+  LogicalResult lowerFunctionReturn(func::ReturnOp op);
+  LogicalResult lowerFor(scf::ForOp op);
+  LogicalResult lowerIf(scf::IfOp op);
+  LogicalResult lowerWhile(scf::WhileOp op);
+  LogicalResult lowerGeneric(Operation *op);
+  LogicalResult lowerSystemOp(Operation *op, bool &handled);
+  /// Whether the value read by `read` may alias its source until its last
+  /// use: no operation in between can write to the source.
+  bool canAlias(Operation *read, function_ref<bool(Operation *)> writes);
+
+  llvm::MapVector<std::string, std::pair<DictionaryAttr, Value>> bindings;
+  SmallVector<Type> resultTypes;
+};
+
+/// Flat component count of a builtin tensor type (1 for a scalar).
+int64_t numComponents(Type type);
+
+} // namespace loops
+} // namespace simit
+} // namespace mlir
+
+#endif // SIMIT_LIB_DIALECT_SIMIT_TRANSFORMS_LOOPSLOWERING_H

@@ -1,0 +1,458 @@
+//===- LowerLocalTensors.cpp - Small dense tensors as flat vectors --------===//
+//
+// A local tensor (a builtin ranked tensor, or a `!simit.tensor` of integer
+// dimensions) becomes a 1-D vector of its components in row-major order
+// (blocks contiguous), so it stays an SSA value: loop-carried values, branches
+// and value semantics need no buffers. Linear algebra on such tensors is
+// unrolled over their (small, static) shapes; variables holding them are
+// memref.alloca'd arrays of components.
+//
+//===----------------------------------------------------------------------===//
+
+#include "LoopsLowering.h"
+
+using namespace mlir;
+using namespace mlir::simit;
+using namespace mlir::simit::loops;
+
+Value FunctionLowering::component(Value lowered, Value position) {
+  if (!isa<VectorType>(lowered.getType()))
+    return lowered;
+  return vector::ExtractOp::create(b, lowered.getLoc(), lowered,
+                                   OpFoldResult(position));
+}
+
+Value FunctionLowering::component(Value lowered, int64_t position) {
+  if (!isa<VectorType>(lowered.getType()))
+    return lowered;
+  return vector::ExtractOp::create(b, lowered.getLoc(), lowered,
+                                   ArrayRef<int64_t>{position});
+}
+
+Value FunctionLowering::fromComponents(Type loweredType,
+                                       ArrayRef<Value> components) {
+  if (!isa<VectorType>(loweredType))
+    return components.front();
+  return vector::FromElementsOp::create(b, function.getLoc(),
+                                        cast<VectorType>(loweredType),
+                                        components);
+}
+
+namespace {
+/// Scalar arithmetic on floats or integers (complex is not lowered).
+struct Arith {
+  OpBuilder &b;
+  Location loc;
+
+  Value add(Value x, Value y) {
+    if (isa<FloatType>(getElementTypeOrSelf(x)))
+      return arith::AddFOp::create(b, loc, x, y);
+    return arith::AddIOp::create(b, loc, x, y);
+  }
+  Value sub(Value x, Value y) {
+    if (isa<FloatType>(getElementTypeOrSelf(x)))
+      return arith::SubFOp::create(b, loc, x, y);
+    return arith::SubIOp::create(b, loc, x, y);
+  }
+  Value mul(Value x, Value y) {
+    if (isa<FloatType>(getElementTypeOrSelf(x)))
+      return arith::MulFOp::create(b, loc, x, y);
+    return arith::MulIOp::create(b, loc, x, y);
+  }
+  Value div(Value x, Value y) {
+    if (isa<FloatType>(getElementTypeOrSelf(x)))
+      return arith::DivFOp::create(b, loc, x, y);
+    return arith::DivSIOp::create(b, loc, x, y);
+  }
+  Value neg(Value x) {
+    if (isa<FloatType>(getElementTypeOrSelf(x)))
+      return arith::NegFOp::create(b, loc, x);
+    Value zero = arith::ConstantOp::create(b, loc, b.getZeroAttr(x.getType()));
+    return arith::SubIOp::create(b, loc, zero, x);
+  }
+};
+} // namespace
+
+/// The components of a lowered local value.
+static SmallVector<Value> allComponents(FunctionLowering &l, Value lowered) {
+  SmallVector<Value> components;
+  int64_t n = numComponents(lowered.getType());
+  for (int64_t i = 0; i < n; ++i)
+    components.push_back(l.component(lowered, i));
+  return components;
+}
+
+/// The determinant of the n x n matrix of components `m` (row major), by
+/// cofactor expansion along the first row (n <= 4).
+static Value determinant(Arith &a, ArrayRef<Value> m, int64_t n) {
+  if (n == 1)
+    return m[0];
+  if (n == 2)
+    return a.sub(a.mul(m[0], m[3]), a.mul(m[1], m[2]));
+  Value det;
+  for (int64_t col = 0; col < n; ++col) {
+    SmallVector<Value> minor;
+    for (int64_t r = 1; r < n; ++r)
+      for (int64_t c = 0; c < n; ++c)
+        if (c != col)
+          minor.push_back(m[r * n + c]);
+    Value term = a.mul(m[col], determinant(a, minor, n - 1));
+    det = !det ? term : (col % 2 ? a.sub(det, term) : a.add(det, term));
+  }
+  return det;
+}
+
+/// The inverse of the n x n matrix `m`: the adjugate over the determinant.
+static SmallVector<Value> inverse(Arith &a, ArrayRef<Value> m, int64_t n) {
+  Value inverseDet = a.div(
+      arith::ConstantOp::create(a.b, a.loc,
+                                a.b.getFloatAttr(m[0].getType(), 1.0)),
+      determinant(a, m, n));
+  SmallVector<Value> result(n * n);
+  for (int64_t r = 0; r < n; ++r)
+    for (int64_t c = 0; c < n; ++c) {
+      // inv(c, r) = (-1)^(r+c) det(minor without row r, column c) / det.
+      SmallVector<Value> minor;
+      for (int64_t i = 0; i < n; ++i)
+        for (int64_t j = 0; j < n; ++j)
+          if (i != r && j != c)
+            minor.push_back(m[i * n + j]);
+      Value cofactor = n == 1 ? a.b.create<arith::ConstantOp>(
+                                    a.loc, a.b.getFloatAttr(m[0].getType(), 1))
+                                    .getResult()
+                              : determinant(a, minor, n - 1);
+      if ((r + c) % 2)
+        cofactor = a.neg(cofactor);
+      result[c * n + r] = a.mul(cofactor, inverseDet);
+    }
+  return result;
+}
+
+/// The flat offset of the block at `indices` (one per outer dimension) of a
+/// local tensor, in components.
+static Value blockOffset(FunctionLowering &l, Location loc, Type type,
+                         ValueRange indices) {
+  SmallVector<int64_t> outer;
+  if (auto tensor = dyn_cast<RankedTensorType>(type))
+    outer.assign(tensor.getShape().begin(), tensor.getShape().end());
+  else
+    for (Attribute dim : cast<SystemTensorType>(type).getDims())
+      outer.push_back(cast<IntegerAttr>(dim).getInt());
+  int64_t blockSize = numComponents(getBlockType(type));
+  Value offset = l.indexConstant(0);
+  for (auto [d, index] : llvm::enumerate(indices)) {
+    int64_t stride = blockSize;
+    for (int64_t e = d + 1; e < static_cast<int64_t>(outer.size()); ++e)
+      stride *= outer[e];
+    Value scaled = arith::MulIOp::create(l.b, loc, index,
+                                         l.indexConstant(stride));
+    offset = arith::AddIOp::create(l.b, loc, offset, scaled);
+  }
+  return offset;
+}
+
+LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
+  handled = true;
+  Location loc = op->getLoc();
+  Arith a{b, loc};
+  auto resultType = [&]() { return convertType(op->getResult(0).getType()); };
+  auto operand = [&](unsigned i) { return lookup(op->getOperand(i)); };
+
+  // The tensor dialect's element access, on flat vectors.
+  if (auto from = dyn_cast<tensor::FromElementsOp>(op)) {
+    SmallVector<Value> components;
+    for (Value element : from.getElements())
+      components.push_back(lookup(element));
+    map(from, fromComponents(resultType(), components));
+    return success();
+  }
+  if (auto extract = dyn_cast<tensor::ExtractOp>(op)) {
+    Value offset = blockOffset(*this, loc, extract.getTensor().getType(),
+                               llvm::to_vector(llvm::map_range(
+                                   extract.getIndices(),
+                                   [&](Value v) { return lookup(v); })));
+    map(extract, component(lookup(extract.getTensor()), offset));
+    return success();
+  }
+  if (auto insert = dyn_cast<tensor::InsertOp>(op)) {
+    Value offset = blockOffset(*this, loc, insert.getDest().getType(),
+                               llvm::to_vector(llvm::map_range(
+                                   insert.getIndices(),
+                                   [&](Value v) { return lookup(v); })));
+    map(insert, vector::InsertOp::create(b, loc, lookup(insert.getScalar()),
+                                         lookup(insert.getDest()),
+                                         OpFoldResult(offset)));
+    return success();
+  }
+  if (auto splat = dyn_cast<tensor::SplatOp>(op)) {
+    map(splat, vector::BroadcastOp::create(b, loc, resultType(),
+                                           lookup(splat.getInput())));
+    return success();
+  }
+  if (op->getDialect() == op->getContext()->getLoadedDialect("tensor"))
+    return op->emitError("'") << op->getName()
+                              << "' is not supported by the loop lowering";
+  if (op->getDialect() != op->getContext()->getLoadedDialect<SimitDialect>()) {
+    handled = false;
+    return success();
+  }
+
+  // Variables.
+  if (auto alloc = dyn_cast<AllocOp>(op)) {
+    auto type = cast<MemRefType>(convertType(alloc.getType()));
+    Value slot;
+    {
+      OpBuilder::InsertionGuard guard(b);
+      b.setInsertionPointToStart(allocaBlock);
+      slot = memref::AllocaOp::create(b, loc, type);
+    }
+    // Every execution of the declaration starts from zero.
+    fill(loc, slot, zeroOf(type.getElementType()));
+    map(alloc, slot);
+    return success();
+  }
+  if (auto load = dyn_cast<LoadOp>(op)) {
+    Value slot = lookup(load.getRef());
+    auto type = cast<MemRefType>(slot.getType());
+    if (type.getRank() == 0)
+      map(load, memref::LoadOp::create(b, loc, slot, ValueRange{}));
+    else
+      map(load, vector::LoadOp::create(b, loc, cast<VectorType>(resultType()),
+                                       slot, ValueRange{indexConstant(0)}));
+    return success();
+  }
+  if (auto store = dyn_cast<StoreOp>(op)) {
+    Value slot = lookup(store.getRef());
+    Value value = lookup(store.getValue());
+    if (cast<MemRefType>(slot.getType()).getRank() == 0)
+      memref::StoreOp::create(b, loc, value, slot, ValueRange{});
+    else
+      vector::StoreOp::create(b, loc, value, slot,
+                              ValueRange{indexConstant(0)});
+    return success();
+  }
+
+  // Construction and access.
+  if (isa<ZerosOp>(op)) {
+    Type type = resultType();
+    map(op->getResult(0),
+        arith::ConstantOp::create(b, loc, b.getZeroAttr(type)));
+    return success();
+  }
+  if (auto broadcast = dyn_cast<BroadcastOp>(op)) {
+    map(broadcast, vector::BroadcastOp::create(b, loc, resultType(),
+                                               operand(0)));
+    return success();
+  }
+  if (auto extract = dyn_cast<ExtractOp>(op)) {
+    SmallVector<Value> indices;
+    for (Value index : extract.getIndices())
+      indices.push_back(lookup(index));
+    Value offset =
+        blockOffset(*this, loc, extract.getTensor().getType(), indices);
+    Value tensor = lookup(extract.getTensor());
+    int64_t n = numComponents(extract.getType());
+    SmallVector<Value> components;
+    for (int64_t c = 0; c < n; ++c)
+      components.push_back(component(
+          tensor, arith::AddIOp::create(b, loc, offset, indexConstant(c))));
+    map(extract, fromComponents(resultType(), components));
+    return success();
+  }
+  if (auto insert = dyn_cast<InsertOp>(op)) {
+    SmallVector<Value> indices;
+    for (Value index : insert.getIndices())
+      indices.push_back(lookup(index));
+    Value offset =
+        blockOffset(*this, loc, insert.getTensor().getType(), indices);
+    Value tensor = lookup(insert.getTensor());
+    Value value = lookup(insert.getValue());
+    int64_t n = numComponents(insert.getValue().getType());
+    for (int64_t c = 0; c < n; ++c) {
+      Value position = arith::AddIOp::create(b, loc, offset, indexConstant(c));
+      tensor = vector::InsertOp::create(b, loc, component(value, c), tensor,
+                                        OpFoldResult(position));
+    }
+    map(insert, tensor);
+    return success();
+  }
+  if (auto slice = dyn_cast<SliceOp>(op)) {
+    auto type = dyn_cast<RankedTensorType>(slice.getTensor().getType());
+    if (!type)
+      return op->emitError("slices of blocked tensors are not supported");
+    ArrayRef<bool> kept = slice.getKept();
+    Value tensor = lookup(slice.getTensor());
+    // Walk the kept dimensions row-major; fixed ones take their index.
+    SmallVector<int64_t> keptShape;
+    for (auto [d, keep] : llvm::enumerate(kept))
+      if (keep)
+        keptShape.push_back(type.getDimSize(d));
+    int64_t n = 1;
+    for (int64_t s : keptShape)
+      n *= s;
+    SmallVector<Value> components;
+    for (int64_t flat = 0; flat < n; ++flat) {
+      SmallVector<int64_t> keptIndex(keptShape.size());
+      int64_t rest = flat;
+      for (int64_t k = keptShape.size() - 1; k >= 0; --k) {
+        keptIndex[k] = rest % keptShape[k];
+        rest /= keptShape[k];
+      }
+      SmallVector<Value> indices;
+      unsigned nextKept = 0, nextFixed = 0;
+      for (bool keep : kept)
+        indices.push_back(keep ? indexConstant(keptIndex[nextKept++])
+                               : lookup(slice.getIndices()[nextFixed++]));
+      components.push_back(
+          component(tensor, blockOffset(*this, loc, type, indices)));
+    }
+    map(slice, fromComponents(resultType(), components));
+    return success();
+  }
+
+  // Arithmetic.
+  if (getComponentType(op->getResult(0).getType()) &&
+      isa<ComplexType>(getComponentType(op->getResult(0).getType())))
+    return op->emitError("complex tensors are not supported by the loop "
+                         "lowering");
+  if (isa<AddOp, SubOp, MulOp, DivOp>(op)) {
+    Value x = operand(0), y = operand(1);
+    Value r = isa<AddOp>(op)   ? a.add(x, y)
+              : isa<SubOp>(op) ? a.sub(x, y)
+              : isa<MulOp>(op) ? a.mul(x, y)
+                               : a.div(x, y);
+    map(op->getResult(0), r);
+    return success();
+  }
+  if (isa<NegOp>(op)) {
+    map(op->getResult(0), a.neg(operand(0)));
+    return success();
+  }
+  if (auto scale = dyn_cast<ScaleOp>(op)) {
+    Value tensor = lookup(scale.getTensor());
+    Value scalar = lookup(scale.getScalar());
+    if (isa<VectorType>(tensor.getType()))
+      scalar = vector::BroadcastOp::create(b, loc, tensor.getType(), scalar);
+    map(scale, a.mul(scalar, tensor));
+    return success();
+  }
+
+  // Linear algebra, unrolled over the static shapes.
+  auto shapeOf = [](Value v) -> SmallVector<int64_t> {
+    if (auto t = dyn_cast<RankedTensorType>(v.getType()))
+      return SmallVector<int64_t>(t.getShape());
+    return {};
+  };
+  auto needsBuiltin = [&]() -> LogicalResult {
+    for (Value v : op->getOperands())
+      if (!isa<RankedTensorType, FloatType, IntegerType>(v.getType()))
+        return op->emitError("'")
+               << op->getName()
+               << "' on blocked local tensors is not supported";
+    return success();
+  };
+  if (isa<MatVecOp, MatMulOp, TransposeOp, DotOp, OuterOp, NormOp, DetOp,
+          InvOp, CrossOp, SolveOp>(op) &&
+      failed(needsBuiltin()))
+    return failure();
+
+  if (isa<MatVecOp, MatMulOp>(op)) {
+    SmallVector<int64_t> ls = shapeOf(op->getOperand(0)),
+                         rs = shapeOf(op->getOperand(1));
+    SmallVector<Value> x = allComponents(*this, operand(0)),
+                       y = allComponents(*this, operand(1));
+    int64_t m = ls[0], k = ls[1], n = rs.size() == 2 ? rs[1] : 1;
+    SmallVector<Value> r;
+    for (int64_t i = 0; i < m; ++i)
+      for (int64_t j = 0; j < n; ++j) {
+        Value sum;
+        for (int64_t p = 0; p < k; ++p) {
+          Value t = a.mul(x[i * k + p], y[p * n + j]);
+          sum = sum ? a.add(sum, t) : t;
+        }
+        r.push_back(sum);
+      }
+    map(op->getResult(0), fromComponents(resultType(), r));
+    return success();
+  }
+  if (isa<TransposeOp>(op)) {
+    SmallVector<int64_t> s = shapeOf(op->getOperand(0));
+    if (s.size() < 2) {
+      map(op->getResult(0), operand(0));
+      return success();
+    }
+    SmallVector<Value> x = allComponents(*this, operand(0)), r;
+    for (int64_t j = 0; j < s[1]; ++j)
+      for (int64_t i = 0; i < s[0]; ++i)
+        r.push_back(x[i * s[1] + j]);
+    map(op->getResult(0), fromComponents(resultType(), r));
+    return success();
+  }
+  if (isa<DotOp, NormOp>(op)) {
+    SmallVector<Value> x = allComponents(*this, operand(0));
+    SmallVector<Value> y =
+        isa<DotOp>(op) ? allComponents(*this, operand(1)) : x;
+    Value sum;
+    for (auto [xi, yi] : llvm::zip(x, y)) {
+      Value t = a.mul(xi, yi);
+      sum = sum ? a.add(sum, t) : t;
+    }
+    if (isa<NormOp>(op))
+      sum = math::SqrtOp::create(b, loc, sum);
+    map(op->getResult(0), sum);
+    return success();
+  }
+  if (isa<OuterOp>(op)) {
+    SmallVector<Value> x = allComponents(*this, operand(0)),
+                       y = allComponents(*this, operand(1)), r;
+    for (Value xi : x)
+      for (Value yj : y)
+        r.push_back(a.mul(xi, yj));
+    map(op->getResult(0), fromComponents(resultType(), r));
+    return success();
+  }
+  if (isa<DetOp, InvOp>(op)) {
+    int64_t n = shapeOf(op->getOperand(0))[0];
+    SmallVector<Value> m = allComponents(*this, operand(0));
+    if (isa<DetOp>(op))
+      map(op->getResult(0), determinant(a, m, n));
+    else
+      map(op->getResult(0), fromComponents(resultType(), inverse(a, m, n)));
+    return success();
+  }
+  if (isa<CrossOp>(op)) {
+    SmallVector<Value> x = allComponents(*this, operand(0)),
+                       y = allComponents(*this, operand(1));
+    SmallVector<Value> r = {
+        a.sub(a.mul(x[1], y[2]), a.mul(x[2], y[1])),
+        a.sub(a.mul(x[2], y[0]), a.mul(x[0], y[2])),
+        a.sub(a.mul(x[0], y[1]), a.mul(x[1], y[0]))};
+    map(op->getResult(0), fromComponents(resultType(), r));
+    return success();
+  }
+  if (isa<SolveOp>(op)) {
+    // Small dense systems: x = inv(A) b (A is at most 4 x 4).
+    SmallVector<int64_t> s = shapeOf(op->getOperand(0));
+    if (s.size() != 2 || s[0] != s[1] || s[0] > 4)
+      return op->emitError("local solves are supported for square matrices "
+                           "of at most 4 x 4");
+    int64_t n = s[0];
+    SmallVector<Value> inv =
+        inverse(a, allComponents(*this, operand(0)), n);
+    SmallVector<Value> rhs = allComponents(*this, operand(1)), r;
+    for (int64_t i = 0; i < n; ++i) {
+      Value sum;
+      for (int64_t j = 0; j < n; ++j) {
+        Value t = a.mul(inv[i * n + j], rhs[j]);
+        sum = sum ? a.add(sum, t) : t;
+      }
+      r.push_back(sum);
+    }
+    map(op->getResult(0), fromComponents(resultType(), r));
+    return success();
+  }
+  if (auto indexExpr = dyn_cast<IndexExprOp>(op))
+    return lowerIndexExpr(indexExpr);
+  handled = false;
+  return success();
+}

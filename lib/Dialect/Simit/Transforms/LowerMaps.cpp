@@ -1,0 +1,347 @@
+//===- LowerMaps.cpp - map and assemble as loops over sets ----------------===//
+//
+// A map becomes an scf.parallel loop over the set's elements whose body is
+// the element function, lowered in place: the element is the loop index, an
+// endpoint is read from the edge set's endpoint array, fields are loads and
+// stores of field arrays. The element function's results are never built:
+// every simit.insert into a value that flows to result r scatters into the
+// output array of r, at the location the sparsity gives (the element itself,
+// a diagonal block, or the block an edge's location table names).
+//
+//===----------------------------------------------------------------------===//
+
+#include "LoopsLowering.h"
+
+using namespace mlir;
+using namespace mlir::simit;
+using namespace mlir::simit::loops;
+
+/// Finds the values of `callee` that stand for its results: everything a
+/// returned value is built from by inserts, loop-carried values, branches
+/// and variables.
+static LogicalResult collectSinks(func::FuncOp callee,
+                                  DenseMap<Value, unsigned> &sinks) {
+  auto ret = cast<func::ReturnOp>(callee.front().getTerminator());
+  SmallVector<std::pair<Value, unsigned>> work;
+  for (auto [i, v] : llvm::enumerate(ret.getOperands()))
+    work.push_back({v, i});
+  while (!work.empty()) {
+    auto [v, r] = work.pop_back_val();
+    auto [it, inserted] = sinks.try_emplace(v, r);
+    if (!inserted) {
+      if (it->second != r)
+        return callee.emitError("one value flows into results ")
+               << it->second << " and " << r << " of an element function";
+      continue;
+    }
+    if (auto arg = dyn_cast<BlockArgument>(v)) {
+      auto loop = dyn_cast<scf::ForOp>(arg.getOwner()->getParentOp());
+      if (!loop || arg == loop.getInductionVar())
+        return callee.emitError("a result of element function '")
+               << callee.getSymName()
+               << "' comes from a parameter or an unsupported loop";
+      unsigned i = arg.getArgNumber() - 1;
+      work.push_back({loop.getInitArgs()[i], r});
+      work.push_back({loop.getYieldedValues()[i], r});
+      work.push_back({loop.getResult(i), r});
+      continue;
+    }
+    Operation *def = v.getDefiningOp();
+    if (auto insert = dyn_cast<InsertOp>(def)) {
+      work.push_back({insert.getTensor(), r});
+    } else if (isa<ZerosOp>(def)) {
+    } else if (auto load = dyn_cast<LoadOp>(def)) {
+      work.push_back({load.getRef(), r});
+    } else if (isa<AllocOp>(def)) {
+      for (Operation *user : v.getUsers()) {
+        if (auto store = dyn_cast<StoreOp>(user))
+          work.push_back({store.getValue(), r});
+        else if (auto load = dyn_cast<LoadOp>(user))
+          work.push_back({load.getResult(), r});
+      }
+    } else if (auto loop = dyn_cast<scf::ForOp>(def)) {
+      unsigned i = cast<OpResult>(v).getResultNumber();
+      work.push_back({loop.getInitArgs()[i], r});
+      work.push_back({loop.getYieldedValues()[i], r});
+      work.push_back({loop.getRegionIterArgs()[i], r});
+    } else if (auto branch = dyn_cast<scf::IfOp>(def)) {
+      unsigned i = cast<OpResult>(v).getResultNumber();
+      work.push_back({branch.thenYield().getOperand(i), r});
+      if (!branch.getElseRegion().empty())
+        work.push_back({branch.elseYield().getOperand(i), r});
+    } else {
+      return def->emitError("the loop lowering cannot trace this value to "
+                            "the writes of a map result");
+    }
+  }
+  return success();
+}
+
+/// Combines an old and a new component with the reduction.
+static Value combine(OpBuilder &b, Location loc, ReductionKind kind, Value old,
+                     Value value) {
+  bool isFloat = isa<FloatType>(value.getType());
+  switch (kind) {
+  case ReductionKind::Add:
+    return isFloat ? arith::AddFOp::create(b, loc, old, value).getResult()
+                   : arith::AddIOp::create(b, loc, old, value).getResult();
+  case ReductionKind::Mul:
+    return isFloat ? arith::MulFOp::create(b, loc, old, value).getResult()
+                   : arith::MulIOp::create(b, loc, old, value).getResult();
+  case ReductionKind::Min:
+    return isFloat ? arith::MinimumFOp::create(b, loc, old, value).getResult()
+                   : arith::MinSIOp::create(b, loc, old, value).getResult();
+  case ReductionKind::Max:
+    return isFloat ? arith::MaximumFOp::create(b, loc, old, value).getResult()
+                   : arith::MaxSIOp::create(b, loc, old, value).getResult();
+  }
+  llvm_unreachable("reduction kind");
+}
+
+/// The memref indices of component `c` of a block, after `prefix`.
+static SmallVector<Value> componentIndices(FunctionLowering &l,
+                                           MemRefType type,
+                                           ArrayRef<Value> prefix, int64_t c) {
+  SmallVector<Value> indices(prefix);
+  SmallVector<int64_t> inner;
+  for (int64_t d = type.getRank() - 1; d >= static_cast<int64_t>(prefix.size());
+       --d) {
+    inner.push_back(c % type.getDimSize(d));
+    c /= type.getDimSize(d);
+  }
+  for (int64_t i : llvm::reverse(inner))
+    indices.push_back(l.indexConstant(i));
+  return indices;
+}
+
+/// Lowers an insert into result slot `r` of the element function: the
+/// block is combined into (or stored to) its place in the output.
+static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
+                             unsigned r, bool &scatters) {
+  ElementContext &ctx = *l.element;
+  OpBuilder &b = l.b;
+  Location loc = insert.getLoc();
+  const Storage &storage = ctx.outputStorages[r];
+  Value output = ctx.outputs[r];
+  SmallVector<Value> prefix;
+  switch (storage.kind) {
+  case Storage::Kind::Dense:
+    for (Value index : insert.getIndices())
+      prefix.push_back(l.lookup(index));
+    if (prefix.front() != ctx.element)
+      scatters = true;
+    break;
+  case Storage::Kind::Diagonal: {
+    Value row = l.lookup(insert.getIndices()[0]);
+    if (row != l.lookup(insert.getIndices()[1]))
+      return insert.emitError("a map over a vertex set can only write the "
+                              "diagonal block of its element");
+    prefix.push_back(row);
+    break;
+  }
+  case Storage::Kind::Pattern: {
+    Value i = l.endpointPositions.lookup(insert.getIndices()[0]);
+    Value j = l.endpointPositions.lookup(insert.getIndices()[1]);
+    if (!i || !j)
+      return insert.emitError("a matrix assembled from an edge set can only "
+                              "be written at pairs of the edge's endpoints");
+    int64_t c = ctx.set.getCardinality();
+    Value locations =
+        l.getPatternArray(BindingKind::PatternLocations, storage.edges,
+                          storage.rows, storage.cols);
+    Value flat = arith::AddIOp::create(
+        b, loc, arith::MulIOp::create(b, loc, i, l.indexConstant(c)), j);
+    Value block =
+        memref::LoadOp::create(b, loc, locations, ValueRange{ctx.element, flat});
+    prefix.push_back(
+        arith::IndexCastOp::create(b, loc, b.getIndexType(), block));
+    scatters = true;
+    break;
+  }
+  }
+  Value value = l.lookup(insert.getValue());
+  auto type = cast<MemRefType>(output.getType());
+  int64_t n = numComponents(insert.getValue().getType());
+  for (int64_t c = 0; c < n; ++c) {
+    SmallVector<Value> indices = componentIndices(l, type, prefix, c);
+    Value component = l.component(value, c);
+    if (ctx.accumulate) {
+      Value old = memref::LoadOp::create(b, loc, output, indices);
+      component = combine(b, loc, ctx.reduction, old, component);
+    }
+    memref::StoreOp::create(b, loc, component, output, indices);
+  }
+  return success();
+}
+
+LogicalResult FunctionLowering::lowerElementAccess(Operation *op,
+                                                   bool &handled) {
+  handled = true;
+  Location loc = op->getLoc();
+  if (auto insert = dyn_cast<InsertOp>(op); insert && isSink(insert)) {
+    bool scatters = false;
+    if (failed(scatter(*this, insert, element->sinks.lookup(insert),
+                       scatters)))
+      return failure();
+    if (scatters)
+      op->getParentOfType<scf::ParallelOp>();
+    if (scatters)
+      element->scatters = true;
+    return success();
+  }
+  if (element && !isa<StoreOp, scf::YieldOp, func::ReturnOp>(op))
+    for (Value operand : op->getOperands())
+      if (isSink(operand))
+        return op->emitError("an element function cannot read its own "
+                             "results");
+
+  auto access = [&](Value elementValue, StringAttr field,
+                    Type &fieldType) -> std::pair<Value, Value> {
+    StringAttr set = elementSetOf(elementValue);
+    fieldType =
+        cast<ElementType>(elementValue.getType()).getFieldType(field);
+    if (!set) {
+      op->emitError("the loop lowering cannot tell which set this element "
+                    "belongs to");
+      return {};
+    }
+    return {getField(set, field, fieldType), lookup(elementValue)};
+  };
+  if (auto read = dyn_cast<ElemReadOp>(op)) {
+    Type fieldType;
+    auto [array, index] = access(read.getElement(), read.getFieldAttr(),
+                                 fieldType);
+    if (!array)
+      return failure();
+    auto type = cast<MemRefType>(array.getType());
+    SmallVector<Value> components;
+    for (int64_t c = 0, n = numComponents(fieldType); c < n; ++c)
+      components.push_back(memref::LoadOp::create(
+          b, loc, array, componentIndices(*this, type, {index}, c)));
+    map(read, fromComponents(convertType(read.getType()), components));
+    return success();
+  }
+  if (auto write = dyn_cast<ElemWriteOp>(op)) {
+    Type fieldType;
+    auto [array, index] = access(write.getElement(), write.getFieldAttr(),
+                                 fieldType);
+    if (!array)
+      return failure();
+    auto type = cast<MemRefType>(array.getType());
+    Value value = lookup(write.getValue());
+    for (int64_t c = 0, n = numComponents(fieldType); c < n; ++c)
+      memref::StoreOp::create(b, loc, component(value, c), array,
+                              componentIndices(*this, type, {index}, c));
+    return success();
+  }
+  handled = false;
+  return success();
+}
+
+LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
+  Location loc = op->getLoc();
+  auto callee = module.lookupSymbol<func::FuncOp>(
+      op->getAttrOfType<FlatSymbolRefAttr>("callee"));
+  if (!callee || callee.isExternal())
+    return op->emitError("the mapped function has no body");
+  auto mapOp = dyn_cast<MapOp>(op);
+  auto assembleOp = dyn_cast<AssembleOp>(op);
+  Value setValue = mapOp ? mapOp.getSet() : assembleOp.getSet();
+  ValueRange extras = mapOp ? mapOp.getExtras() : assembleOp.getExtras();
+  bool hasGrid = mapOp ? bool(mapOp.getGrid()) : bool(assembleOp.getGrid());
+  auto set = cast<SetType>(setValue.getType());
+  if (hasGrid || set.isGrid())
+    return op->emitError("grid stencils are not supported by the loop "
+                         "lowering yet");
+  if (element)
+    return op->emitError("maps inside element functions are not supported");
+
+  ElementContext ctx;
+  ctx.set = set;
+  ctx.accumulate = bool(assembleOp);
+  if (assembleOp)
+    ctx.reduction = assembleOp.getReduction();
+
+  // Outputs, zero-filled, stored as the sparsity analysis says.
+  for (Value result : op->getResults()) {
+    auto type = dyn_cast<SystemTensorType>(result.getType());
+    if (!type || !type.isSystem())
+      return op->emitError("map results that are not system tensors are not "
+                           "supported by the loop lowering");
+    Storage storage;
+    if (type.getOrder() == 2 && isa<StringAttr>(type.getDims()[0]) &&
+        isa<StringAttr>(type.getDims()[1])) {
+      auto rows = cast<StringAttr>(type.getDims()[0]);
+      auto cols = cast<StringAttr>(type.getDims()[1]);
+      if (set.getCardinality() == 0) {
+        if (rows != set.getName() || cols != set.getName())
+          return op->emitError("a matrix assembled from vertex set '")
+                 << set.getName().getValue()
+                 << "' must be over that set (its diagonal)";
+        storage = Storage::diagonal(rows);
+      } else {
+        if (!llvm::is_contained(set.getEndpoints(), rows) ||
+            !llvm::is_contained(set.getEndpoints(), cols))
+          return op->emitError("a matrix assembled from edge set '")
+                 << set.getName().getValue()
+                 << "' must be over its endpoint sets";
+        storage = Storage::pattern(set.getName(), rows, cols);
+      }
+    } else if (type.getOrder() != 1 || !isa<StringAttr>(type.getDims()[0])) {
+      return op->emitError("map result ")
+             << type << " is not supported by the loop lowering";
+    }
+    Value output = allocSystem(loc, type, storage);
+    ctx.outputs.push_back(output);
+    ctx.outputStorages.push_back(storage);
+    storages[result] = storage;
+    map(result, output);
+  }
+  if (failed(collectSinks(callee, ctx.sinks)))
+    return failure();
+
+  // The loop over the set, the element function inlined in it.
+  Value size = getSetSize(set.getName());
+  auto loop = scf::ParallelOp::create(
+      b, loc, ValueRange{indexConstant(0)}, ValueRange{size},
+      ValueRange{indexConstant(1)},
+      [](OpBuilder &, Location, ValueRange) {});
+  OpBuilder::InsertionGuard guard(b);
+  b.setInsertionPoint(loop.getBody()->getTerminator());
+  auto scope = memref::AllocaScopeOp::create(b, loc, TypeRange{});
+  Block *body = new Block();
+  scope.getBodyRegion().push_back(body);
+  b.setInsertionPointToStart(body);
+  memref::AllocaScopeReturnOp::create(b, loc, ValueRange{});
+  b.setInsertionPointToStart(body);
+  b.setInsertionPoint(body->getTerminator());
+
+  ctx.element = loop.getInductionVars()[0];
+  Block &entry = callee.front();
+  if (entry.getNumArguments() < extras.size() + 1)
+    return op->emitError("the mapped function takes too few parameters");
+  for (auto [arg, extra] : llvm::zip(entry.getArguments(), extras)) {
+    map(arg, lookup(extra));
+    if (storages.count(extra))
+      storages[arg] = storages[extra];
+  }
+  Value elementArg = entry.getArgument(extras.size());
+  map(elementArg, ctx.element);
+  elementSets[elementArg] = set.getName();
+  if (entry.getNumArguments() > extras.size() + 1)
+    tuples[entry.getArgument(extras.size() + 1)] = {set, ctx.element};
+
+  Block *savedAllocaBlock = allocaBlock;
+  element = &ctx;
+  allocaBlock = body;
+  LogicalResult lowered = lowerOps(entry);
+  element = nullptr;
+  allocaBlock = savedAllocaBlock;
+  if (failed(lowered))
+    return failure();
+  // Iterations write shared locations (endpoints, matrix blocks): a
+  // parallel backend must make these updates atomic or colour the set.
+  if (ctx.scatters)
+    loop->setAttr("simit.scatter", b.getUnitAttr());
+  return success();
+}

@@ -1,0 +1,42 @@
+//===--- CompiledModule.h - JIT-compiled code shared by Functions ---------===//
+//
+// The machine code of one lowered module and the host ABI of each of its
+// exported functions. Every Function compiled from a Program holds it, so
+// the code lives as long as the last Function does.
+//
+//===----------------------------------------------------------------------===//
+
+#ifndef SIMIT_LIB_ENGINE_COMPILEDMODULE_H
+#define SIMIT_LIB_ENGINE_COMPILEDMODULE_H
+
+#include "simit/Engine/HostABI.h"
+
+#include "mlir/ExecutionEngine/ExecutionEngine.h"
+
+#include "llvm/ADT/StringMap.h"
+
+#include <memory>
+
+namespace simit {
+
+/// How the lowered function receives a memref argument: as its exploded
+/// descriptor (allocated and aligned pointers, offset, sizes, strides; the
+/// default of MLIR's func-to-llvm) or as a bare pointer to the data.
+enum class MemRefConvention { Descriptor, BarePointer };
+
+struct CompiledFunction {
+  HostSignature signature;
+  MemRefConvention convention = MemRefConvention::Descriptor;
+  /// The packed entry point `_mlir_<name>(void **args)` of the JIT.
+  void (*entry)(void **) = nullptr;
+};
+
+class CompiledModule {
+public:
+  std::unique_ptr<mlir::ExecutionEngine> engine;
+  llvm::StringMap<CompiledFunction> functions;
+};
+
+} // namespace simit
+
+#endif // SIMIT_LIB_ENGINE_COMPILEDMODULE_H

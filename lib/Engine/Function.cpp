@@ -1,0 +1,499 @@
+//===--- Function.cpp - Binding host data and calling compiled code -------===//
+//
+// init() turns every argument of the host ABI into the values the lowered
+// function takes: a memref becomes its descriptor (allocated and aligned
+// pointers, offset, sizes, strides) pointing straight at the Set's field
+// array, endpoint array or sparsity pattern; a scalar becomes a pointer to
+// its value. The packed entry point receives pointers to all of them, so
+// run() only checks set versions and calls.
+//
+//===----------------------------------------------------------------------===//
+
+#include "simit/Engine/Function.h"
+
+#include "CompiledModule.h"
+
+#include "simit/Runtime/SparsityPattern.h"
+
+#include "llvm/ADT/STLExtras.h"
+#include "llvm/ADT/StringMap.h"
+#include "llvm/Support/FormatVariadic.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace simit;
+
+double HostValue::component(size_t i) const {
+  const uint8_t *p = bytes.data() + i * scalarSize(scalar);
+  switch (scalar) {
+  case ScalarKind::Float64: {
+    double v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+  }
+  case ScalarKind::Float32: {
+    float v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+  }
+  case ScalarKind::Int32: {
+    int32_t v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+  }
+  case ScalarKind::Int64:
+  case ScalarKind::Index: {
+    int64_t v;
+    std::memcpy(&v, p, sizeof v);
+    return static_cast<double>(v);
+  }
+  case ScalarKind::Bool:
+    return *p ? 1.0 : 0.0;
+  }
+  llvm_unreachable("unknown scalar kind");
+}
+
+namespace {
+struct HostBuffer {
+  void *data = nullptr;
+  ComponentType type = ComponentType::Float64;
+  std::vector<int> shape;
+};
+
+std::string shapeString(llvm::ArrayRef<int64_t> shape) {
+  std::string text = "[";
+  for (size_t i = 0; i < shape.size(); ++i)
+    text += (i ? ", " : "") + (shape[i] == ValueType::kDynamic
+                                   ? std::string("?")
+                                   : std::to_string(shape[i]));
+  return text + "]";
+}
+
+std::string shapeString(llvm::ArrayRef<int> shape) {
+  return shapeString(llvm::to_vector(llvm::map_range(
+      shape, [](int d) { return static_cast<int64_t>(d); })));
+}
+
+/// Byte size and alignment of a value in the struct of results.
+size_t valueSize(const ValueType &type) {
+  return type.isMemRef ? 8 * (3 + 2 * type.rank()) : scalarSize(type.scalar);
+}
+size_t valueAlignment(const ValueType &type) {
+  return type.isMemRef ? 8 : scalarSize(type.scalar);
+}
+} // namespace
+
+struct Function::Impl {
+  std::shared_ptr<CompiledModule> module;
+  const CompiledFunction *compiled = nullptr;
+
+  llvm::StringMap<Set *> sets;
+  llvm::StringMap<HostBuffer> buffers;
+
+  // Prepared by init().
+  bool initialized = false;
+  std::vector<std::pair<const Set *, uint64_t>> setVersions;
+  std::vector<std::shared_ptr<const SparsityPattern>> patterns;
+  /// Descriptors and scalar slots; args points into it, so it is sized once
+  /// per init() and never reallocated afterwards.
+  std::vector<int64_t> words;
+  std::vector<void *> args;
+  std::vector<size_t> resultOffsets;
+  std::vector<uint64_t> resultStorage;
+  std::vector<HostValue> results;
+
+  const HostSignature &signature() const { return compiled->signature; }
+  std::string prefix() const {
+    return "function '" + signature().function + "': ";
+  }
+  llvm::Error error(const llvm::Twine &what) const {
+    return llvm::createStringError(prefix() + what);
+  }
+
+  llvm::Expected<Set *> boundSet(llvm::StringRef name) const {
+    auto it = sets.find(name);
+    if (it == sets.end())
+      return error("extern set '" + name + "' is not bound");
+    return it->second;
+  }
+
+  llvm::Error init();
+  llvm::Error prepareArgument(const ArgumentBinding &arg, size_t &word);
+  void pushMemRef(size_t &word, const void *data,
+                  llvm::ArrayRef<int64_t> sizes);
+  void decodeResults();
+};
+
+/// Room the arguments need in `words`.
+static size_t wordsNeeded(const CompiledFunction &function) {
+  size_t count = 0;
+  for (const ArgumentBinding &arg : function.signature.arguments) {
+    if (arg.type.isMemRef)
+      count += function.convention == MemRefConvention::Descriptor
+                   ? 3 + 2 * arg.type.rank()
+                   : 2;
+    else if (arg.kind == ArgumentBinding::Kind::SetSize)
+      count += 1;
+  }
+  return count;
+}
+
+void Function::Impl::pushMemRef(size_t &word, const void *data,
+                                llvm::ArrayRef<int64_t> sizes) {
+  size_t base = word;
+  size_t rank = sizes.size();
+  int64_t pointer = static_cast<int64_t>(reinterpret_cast<intptr_t>(data));
+  words[base] = pointer;     // allocated
+  words[base + 1] = pointer; // aligned
+  if (compiled->convention == MemRefConvention::BarePointer) {
+    args.push_back(&words[base + 1]);
+    word += 2;
+    return;
+  }
+  words[base + 2] = 0; // offset
+  int64_t stride = 1;
+  for (size_t d = rank; d-- > 0;) {
+    words[base + 3 + d] = sizes[d];
+    words[base + 3 + rank + d] = stride;
+    stride *= sizes[d];
+  }
+  for (size_t i = 0; i < 3 + 2 * rank; ++i)
+    args.push_back(&words[base + i]);
+  word += 3 + 2 * rank;
+}
+
+llvm::Error Function::Impl::prepareArgument(const ArgumentBinding &arg,
+                                            size_t &word) {
+  using Kind = ArgumentBinding::Kind;
+  const ValueType &type = arg.type;
+  switch (arg.kind) {
+  case Kind::SetSize: {
+    llvm::Expected<Set *> set = boundSet(arg.set);
+    if (!set)
+      return set.takeError();
+    int64_t size = (*set)->size();
+    if (type.scalar == ScalarKind::Int32) {
+      int32_t narrow = static_cast<int32_t>(size);
+      std::memcpy(&words[word], &narrow, sizeof narrow);
+    } else {
+      words[word] = size;
+    }
+    args.push_back(&words[word++]);
+    return llvm::Error::success();
+  }
+  case Kind::Field: {
+    llvm::Expected<Set *> set = boundSet(arg.set);
+    if (!set)
+      return set.takeError();
+    ComponentType expected;
+    componentTypeFor(type.scalar, expected);
+    std::vector<int64_t> blockShape(type.shape.begin() + 1, type.shape.end());
+    const FieldDescriptor *field = (*set)->fieldDescriptor(arg.field);
+    auto expectation = [&] {
+      return "the program expects " + componentTypeName(expected).str() +
+             " components of shape " + shapeString(blockShape);
+    };
+    if (!field)
+      return error("set '" + arg.set + "' has no field '" + arg.field +
+                   "'; " + expectation());
+    bool shapeMatches = field->shape.size() == blockShape.size();
+    for (size_t d = 0; shapeMatches && d < blockShape.size(); ++d)
+      shapeMatches = blockShape[d] == ValueType::kDynamic ||
+                     blockShape[d] == field->shape[d];
+    if (field->type != expected || !shapeMatches)
+      return error(arg.describe() + " holds " +
+                   componentTypeName(field->type).str() +
+                   " components of shape " + shapeString(field->shape) +
+                   ", but " + expectation());
+    std::vector<int64_t> sizes{(*set)->size()};
+    for (int d : field->shape)
+      sizes.push_back(d);
+    pushMemRef(word, (*set)->fieldData(arg.field), sizes);
+    return llvm::Error::success();
+  }
+  case Kind::Endpoints: {
+    llvm::Expected<Set *> set = boundSet(arg.set);
+    if (!set)
+      return set.takeError();
+    int cardinality = (*set)->cardinality();
+    if (cardinality == 0 ||
+        (type.shape[1] != ValueType::kDynamic && type.shape[1] != cardinality))
+      return error("set '" + arg.set + "' has " + llvm::Twine(cardinality) +
+                   " endpoints per element, but the program expects " +
+                   llvm::Twine(type.shape[1]));
+    pushMemRef(word, (*set)->endpointData(), {(*set)->size(), cardinality});
+    return llvm::Error::success();
+  }
+  case Kind::PatternRowPtr:
+  case Kind::PatternColIdx:
+  case Kind::PatternLocations: {
+    llvm::Expected<Set *> edges = boundSet(arg.set);
+    if (!edges)
+      return edges.takeError();
+    llvm::Expected<Set *> rows = boundSet(arg.rows);
+    if (!rows)
+      return rows.takeError();
+    llvm::Expected<Set *> cols = boundSet(arg.cols);
+    if (!cols)
+      return cols.takeError();
+    auto pattern = SparsityPattern::get(**edges, **rows, **cols);
+    if (!pattern)
+      return error(arg.describe() + ": " +
+                   llvm::toString(pattern.takeError()));
+    const SparsityPattern &p = **pattern;
+    patterns.push_back(*pattern);
+    if (arg.kind == Kind::PatternRowPtr) {
+      pushMemRef(word, p.rowPointers().data(), {p.numRows() + 1});
+    } else if (arg.kind == Kind::PatternColIdx) {
+      pushMemRef(word, p.columnIndices().data(), {p.numBlocks()});
+    } else {
+      int64_t c = p.locationCardinality();
+      if (type.shape[1] != ValueType::kDynamic && type.shape[1] != c * c)
+        return error(arg.describe() + " has " + llvm::Twine(c * c) +
+                     " locations per element, but the program expects " +
+                     llvm::Twine(type.shape[1]));
+      pushMemRef(word, p.locations().data(), {(*edges)->size(), c * c});
+    }
+    return llvm::Error::success();
+  }
+  case Kind::Extern:
+  case Kind::Parameter: {
+    auto it = buffers.find(arg.name);
+    if (it == buffers.end())
+      return error((arg.kind == Kind::Extern ? "extern '" : "parameter '") +
+                   arg.name + "' is not bound");
+    const HostBuffer &buffer = it->second;
+    ComponentType expected;
+    if (!componentTypeFor(type.scalar, expected))
+      return error(arg.describe() + " has host type " + type.str() +
+                   ", which no host buffer provides");
+    std::vector<int64_t> bufferShape(buffer.shape.begin(), buffer.shape.end());
+    if (buffer.type != expected || bufferShape != type.shape)
+      return error(arg.describe() + " is bound to " +
+                   componentTypeName(buffer.type).str() + " of shape " +
+                   shapeString(buffer.shape) + ", but the program expects " +
+                   componentTypeName(expected).str() + " of shape " +
+                   shapeString(type.shape));
+    if (type.isMemRef)
+      pushMemRef(word, buffer.data, type.shape);
+    else
+      args.push_back(buffer.data);
+    return llvm::Error::success();
+  }
+  }
+  llvm_unreachable("unknown binding kind");
+}
+
+llvm::Error Function::Impl::init() {
+  initialized = false;
+  setVersions.clear();
+  patterns.clear();
+  args.clear();
+  words.assign(wordsNeeded(*compiled), 0);
+  size_t word = 0;
+  for (const ArgumentBinding &arg : signature().arguments)
+    if (llvm::Error err = prepareArgument(arg, word))
+      return err;
+
+  if (compiled->convention == MemRefConvention::BarePointer &&
+      llvm::any_of(signature().results,
+                   [](const ValueType &t) { return t.isMemRef; }))
+    return error("memref results need the descriptor calling convention");
+  size_t offset = 0, alignment = 8;
+  resultOffsets.clear();
+  for (const ValueType &result : signature().results) {
+    size_t align = valueAlignment(result);
+    offset = (offset + align - 1) / align * align;
+    resultOffsets.push_back(offset);
+    offset += valueSize(result);
+    alignment = std::max(alignment, align);
+  }
+  resultStorage.assign((offset + 7) / 8, 0);
+  if (!signature().results.empty())
+    args.push_back(resultStorage.data());
+
+  for (const auto &entry : sets)
+    setVersions.emplace_back(entry.second, entry.second->version());
+  initialized = true;
+  return llvm::Error::success();
+}
+
+void Function::Impl::decodeResults() {
+  results.clear();
+  const uint8_t *base = reinterpret_cast<const uint8_t *>(resultStorage.data());
+  for (auto [type, offset] :
+       llvm::zip_equal(signature().results, resultOffsets)) {
+    HostValue value;
+    value.scalar = type.scalar;
+    size_t elementSize = scalarSize(type.scalar);
+    if (!type.isMemRef) {
+      value.bytes.assign(base + offset, base + offset + elementSize);
+      results.push_back(std::move(value));
+      continue;
+    }
+    // A returned memref is copied out, walking its strides. Its storage is
+    // not freed: it may be a global or alias a bound buffer.
+    const int64_t *desc = reinterpret_cast<const int64_t *>(base + offset);
+    size_t rank = type.shape.size();
+    const uint8_t *data = reinterpret_cast<const uint8_t *>(
+        static_cast<intptr_t>(desc[1]));
+    int64_t start = desc[2];
+    value.shape.assign(desc + 3, desc + 3 + rank);
+    int64_t count = 1;
+    for (int64_t size : value.shape)
+      count *= size;
+    value.bytes.resize(count * elementSize);
+    for (int64_t linear = 0; linear < count; ++linear) {
+      int64_t rest = linear, element = start;
+      for (size_t d = rank; d-- > 0;) {
+        element += (rest % value.shape[d]) * desc[3 + rank + d];
+        rest /= value.shape[d];
+      }
+      std::memcpy(value.bytes.data() + linear * elementSize,
+                  data + element * elementSize, elementSize);
+    }
+    results.push_back(std::move(value));
+  }
+}
+
+//===--- Function ---------------------------------------------------------===//
+
+Function::Function() = default;
+Function::Function(Function &&) = default;
+Function &Function::operator=(Function &&) = default;
+Function::~Function() = default;
+
+Function::Function(std::shared_ptr<CompiledModule> module,
+                   const HostSignature &signature)
+    : impl(std::make_unique<Impl>()) {
+  impl->compiled = &module->functions.find(signature.function)->second;
+  impl->module = std::move(module);
+}
+
+llvm::StringRef Function::name() const {
+  return impl->signature().function;
+}
+
+const HostSignature &Function::signature() const { return impl->signature(); }
+
+std::vector<std::string> Function::requiredSets() const {
+  std::vector<std::string> names;
+  auto add = [&](const std::string &name) {
+    if (!name.empty() && !llvm::is_contained(names, name))
+      names.push_back(name);
+  };
+  for (const ArgumentBinding &arg : signature().arguments) {
+    add(arg.set);
+    add(arg.rows);
+    add(arg.cols);
+  }
+  return names;
+}
+
+std::vector<std::string> Function::requiredTensors() const {
+  std::vector<std::string> names;
+  for (const ArgumentBinding &arg : signature().arguments)
+    if ((arg.kind == ArgumentBinding::Kind::Extern ||
+         arg.kind == ArgumentBinding::Kind::Parameter) &&
+        !llvm::is_contained(names, arg.name))
+      names.push_back(arg.name);
+  return names;
+}
+
+llvm::Error Function::bind(llvm::StringRef name, Set &set) {
+  if (!llvm::is_contained(requiredSets(), name.str()))
+    return impl->error("uses no set named '" + name + "'");
+  impl->sets[name] = &set;
+  impl->initialized = false;
+  return llvm::Error::success();
+}
+
+llvm::Error Function::bind(llvm::StringRef name, void *data, ComponentType type,
+                           llvm::ArrayRef<int> shape) {
+  if (!llvm::is_contained(requiredTensors(), name.str()))
+    return impl->error("has no extern tensor or parameter named '" + name +
+                       "'");
+  impl->buffers[name] = HostBuffer{data, type, shape.vec()};
+  impl->initialized = false;
+  return llvm::Error::success();
+}
+
+llvm::Error Function::init() { return impl->init(); }
+
+llvm::Error Function::run() {
+  bool current = impl->initialized;
+  for (auto [set, version] : impl->setVersions)
+    current = current && set->version() == version;
+  if (!current)
+    if (llvm::Error err = impl->init())
+      return err;
+  std::fill(impl->resultStorage.begin(), impl->resultStorage.end(), 0);
+  impl->compiled->entry(impl->args.data());
+  impl->decodeResults();
+  return llvm::Error::success();
+}
+
+llvm::ArrayRef<HostValue> Function::results() const { return impl->results; }
+
+/// The first non-finite component of `count` values at `data`, or -1.
+static int64_t firstNonFinite(const void *data, ScalarKind kind,
+                              int64_t count) {
+  for (int64_t i = 0; i < count; ++i) {
+    double v = kind == ScalarKind::Float64
+                   ? static_cast<const double *>(data)[i]
+                   : static_cast<const float *>(data)[i];
+    if (!std::isfinite(v))
+      return i;
+  }
+  return -1;
+}
+
+std::string Function::findNonFinite() const {
+  for (const ArgumentBinding &arg : signature().arguments) {
+    ScalarKind kind = arg.type.scalar;
+    if (kind != ScalarKind::Float64 && kind != ScalarKind::Float32)
+      continue;
+    if (arg.kind == ArgumentBinding::Kind::Field) {
+      auto it = impl->sets.find(arg.set);
+      if (it == impl->sets.end() || !it->second->hasField(arg.field))
+        continue;
+      Set &set = *it->second;
+      size_t block = set.fieldDescriptor(arg.field)->blockSize();
+      int64_t at = firstNonFinite(set.fieldData(arg.field), kind,
+                                  set.size() * static_cast<int64_t>(block));
+      if (at < 0)
+        continue;
+      double v = kind == ScalarKind::Float64
+                     ? static_cast<const double *>(set.fieldData(arg.field))[at]
+                     : static_cast<const float *>(set.fieldData(arg.field))[at];
+      return llvm::formatv("{0} of element {1}, component {2}, is {3}",
+                           arg.describe(), at / block, at % block,
+                           std::isnan(v) ? "nan" : "inf")
+          .str();
+    }
+    if (arg.kind == ArgumentBinding::Kind::Extern ||
+        arg.kind == ArgumentBinding::Kind::Parameter) {
+      auto it = impl->buffers.find(arg.name);
+      if (it == impl->buffers.end())
+        continue;
+      int64_t count = 1;
+      for (int d : it->second.shape)
+        count *= d;
+      int64_t at = firstNonFinite(it->second.data, kind, count);
+      if (at >= 0)
+        return llvm::formatv("{0}, component {1}, is not finite",
+                             arg.describe(), at)
+            .str();
+    }
+  }
+  for (const HostValue &result : impl->results) {
+    if (result.scalar != ScalarKind::Float64 &&
+        result.scalar != ScalarKind::Float32)
+      continue;
+    for (size_t i = 0; i < result.numComponents(); ++i)
+      if (!std::isfinite(result.component(i)))
+        return llvm::formatv("result component {0} is not finite", i).str();
+  }
+  return "";
+}

@@ -1,0 +1,295 @@
+//===--- HostABI.cpp - Reading simit.bindings back from the IR ------------===//
+
+#include "simit/Engine/HostABI.h"
+
+#include "mlir/Dialect/Func/IR/FuncOps.h"
+#include "mlir/IR/BuiltinAttributes.h"
+#include "mlir/IR/BuiltinTypes.h"
+
+#include "llvm/ADT/StringSwitch.h"
+#include "llvm/Support/raw_ostream.h"
+
+using namespace simit;
+
+size_t simit::scalarSize(ScalarKind kind) {
+  switch (kind) {
+  case ScalarKind::Float64:
+  case ScalarKind::Int64:
+  case ScalarKind::Index:
+    return 8;
+  case ScalarKind::Float32:
+  case ScalarKind::Int32:
+    return 4;
+  case ScalarKind::Bool:
+    return 1;
+  }
+  llvm_unreachable("unknown scalar kind");
+}
+
+llvm::StringRef simit::scalarKindName(ScalarKind kind) {
+  switch (kind) {
+  case ScalarKind::Float64:
+    return "f64";
+  case ScalarKind::Float32:
+    return "f32";
+  case ScalarKind::Int32:
+    return "i32";
+  case ScalarKind::Int64:
+    return "i64";
+  case ScalarKind::Index:
+    return "index";
+  case ScalarKind::Bool:
+    return "i1";
+  }
+  llvm_unreachable("unknown scalar kind");
+}
+
+bool simit::componentTypeFor(ScalarKind kind, ComponentType &type) {
+  switch (kind) {
+  case ScalarKind::Float64:
+    type = ComponentType::Float64;
+    return true;
+  case ScalarKind::Float32:
+    type = ComponentType::Float32;
+    return true;
+  case ScalarKind::Int32:
+    type = ComponentType::Int32;
+    return true;
+  case ScalarKind::Bool:
+    type = ComponentType::Bool;
+    return true;
+  case ScalarKind::Int64:
+  case ScalarKind::Index:
+    return false;
+  }
+  llvm_unreachable("unknown scalar kind");
+}
+
+std::string ValueType::str() const {
+  if (!isMemRef)
+    return scalarKindName(scalar).str();
+  std::string text = "memref<";
+  for (int64_t dim : shape)
+    text += (dim == kDynamic ? std::string("?") : std::to_string(dim)) + "x";
+  return text + scalarKindName(scalar).str() + ">";
+}
+
+static llvm::Error typeError(mlir::Type type, llvm::StringRef why) {
+  std::string text;
+  llvm::raw_string_ostream os(text);
+  os << "unsupported host type " << type << ": " << why;
+  return llvm::createStringError(text);
+}
+
+static bool toScalarKind(mlir::Type type, ScalarKind &kind) {
+  if (type.isIndex())
+    kind = ScalarKind::Index;
+  else if (type.isF64())
+    kind = ScalarKind::Float64;
+  else if (type.isF32())
+    kind = ScalarKind::Float32;
+  else if (type.isInteger(64))
+    kind = ScalarKind::Int64;
+  else if (type.isInteger(32))
+    kind = ScalarKind::Int32;
+  else if (type.isInteger(1))
+    kind = ScalarKind::Bool;
+  else
+    return false;
+  return true;
+}
+
+llvm::Expected<ValueType> simit::toValueType(mlir::Type type) {
+  ValueType result;
+  if (auto memref = llvm::dyn_cast<mlir::MemRefType>(type)) {
+    if (!memref.getLayout().isIdentity())
+      return typeError(type, "only the identity layout crosses the host boundary");
+    if (!toScalarKind(memref.getElementType(), result.scalar))
+      return typeError(type, "unsupported element type");
+    result.isMemRef = true;
+    for (int64_t dim : memref.getShape())
+      result.shape.push_back(mlir::ShapedType::isDynamic(dim)
+                                 ? ValueType::kDynamic
+                                 : dim);
+    return result;
+  }
+  if (!toScalarKind(type, result.scalar))
+    return typeError(type, "expected an index, i1, i32, i64, f32, f64 or memref");
+  return result;
+}
+
+std::string ArgumentBinding::describe() const {
+  switch (kind) {
+  case Kind::SetSize:
+    return "size of set '" + set + "'";
+  case Kind::Field:
+    return "field '" + set + "." + field + "'";
+  case Kind::Endpoints:
+    return "endpoints of set '" + set + "'";
+  case Kind::PatternRowPtr:
+  case Kind::PatternColIdx:
+  case Kind::PatternLocations:
+    return "sparsity pattern of set '" + set + "' over ('" + rows + "', '" +
+           cols + "')";
+  case Kind::Extern:
+    return "extern '" + name + "'";
+  case Kind::Parameter:
+    return "parameter '" + name + "'";
+  }
+  llvm_unreachable("unknown binding kind");
+}
+
+namespace {
+/// Reads one DictionaryAttr of `simit.bindings`.
+class BindingReader {
+public:
+  BindingReader(llvm::StringRef function, unsigned index,
+                mlir::DictionaryAttr dict)
+      : function(function), index(index), dict(dict) {}
+
+  llvm::Error error(const llvm::Twine &what) const {
+    return llvm::createStringError("function '" + function +
+                                   "': simit.bindings entry " +
+                                   llvm::Twine(index) + ": " + what);
+  }
+
+  llvm::Error get(llvm::StringRef key, std::string &value) const {
+    auto attr = dict.getAs<mlir::StringAttr>(key);
+    if (!attr)
+      return error("expected a string '" + key + "'");
+    value = attr.getValue().str();
+    return llvm::Error::success();
+  }
+
+  llvm::Error read(ArgumentBinding &binding) const {
+    std::string kind;
+    if (llvm::Error err = get("kind", kind))
+      return err;
+    using Kind = ArgumentBinding::Kind;
+    auto parsed = llvm::StringSwitch<std::optional<Kind>>(kind)
+                      .Case("set_size", Kind::SetSize)
+                      .Case("field", Kind::Field)
+                      .Case("endpoints", Kind::Endpoints)
+                      .Case("pattern_rowptr", Kind::PatternRowPtr)
+                      .Case("pattern_colidx", Kind::PatternColIdx)
+                      .Case("pattern_locations", Kind::PatternLocations)
+                      .Case("extern", Kind::Extern)
+                      .Case("param", Kind::Parameter)
+                      .Default(std::nullopt);
+    if (!parsed)
+      return error("unknown kind '" + kind + "'");
+    binding.kind = *parsed;
+    switch (binding.kind) {
+    case Kind::SetSize:
+    case Kind::Endpoints:
+      return get("set", binding.set);
+    case Kind::Field:
+      if (llvm::Error err = get("set", binding.set))
+        return err;
+      return get("field", binding.field);
+    case Kind::PatternRowPtr:
+    case Kind::PatternColIdx:
+    case Kind::PatternLocations:
+      if (llvm::Error err = get("set", binding.set))
+        return err;
+      if (llvm::Error err = get("rows", binding.rows))
+        return err;
+      return get("cols", binding.cols);
+    case Kind::Extern:
+    case Kind::Parameter:
+      return get("name", binding.name);
+    }
+    llvm_unreachable("unknown binding kind");
+  }
+
+private:
+  llvm::StringRef function;
+  unsigned index;
+  mlir::DictionaryAttr dict;
+};
+} // namespace
+
+/// Checks that the argument's machine type fits its kind, so that a lowering
+/// that changed the ABI is reported here rather than misread at run time.
+static llvm::Error checkKindType(const HostSignature &signature,
+                                 const ArgumentBinding &binding) {
+  using Kind = ArgumentBinding::Kind;
+  const ValueType &type = binding.type;
+  auto fail = [&](llvm::StringRef expected) {
+    return llvm::createStringError("function '" + signature.function + "': " +
+                                   binding.describe() + " has type " +
+                                   type.str() + ", expected " + expected);
+  };
+  switch (binding.kind) {
+  case Kind::SetSize:
+    if (type.isMemRef ||
+        (type.scalar != ScalarKind::Index && type.scalar != ScalarKind::Int64 &&
+         type.scalar != ScalarKind::Int32))
+      return fail("an integer or index");
+    return llvm::Error::success();
+  case Kind::Field:
+    if (!type.isMemRef || type.rank() < 1)
+      return fail("a memref with one dimension per element");
+    return llvm::Error::success();
+  case Kind::Endpoints:
+  case Kind::PatternLocations:
+    if (!type.isMemRef || type.rank() != 2 || type.scalar != ScalarKind::Int32)
+      return fail("memref<?xNxi32>");
+    return llvm::Error::success();
+  case Kind::PatternRowPtr:
+  case Kind::PatternColIdx:
+    if (!type.isMemRef || type.rank() != 1 || type.scalar != ScalarKind::Int32)
+      return fail("memref<?xi32>");
+    return llvm::Error::success();
+  case Kind::Extern:
+  case Kind::Parameter:
+    for (int64_t dim : type.shape)
+      if (dim == ValueType::kDynamic)
+        return fail("a statically shaped memref or a scalar");
+    return llvm::Error::success();
+  }
+  llvm_unreachable("unknown binding kind");
+}
+
+llvm::Expected<HostSignature> simit::readHostSignature(mlir::func::FuncOp func) {
+  HostSignature signature;
+  signature.function = func.getSymName().str();
+  mlir::FunctionType type = func.getFunctionType();
+  auto bindings = func->getAttrOfType<mlir::ArrayAttr>("simit.bindings");
+  if (!bindings)
+    return llvm::createStringError("function '" + signature.function +
+                                   "' has no simit.bindings attribute");
+  if (bindings.size() != type.getNumInputs())
+    return llvm::createStringError(
+        "function '" + signature.function + "': simit.bindings has " +
+        llvm::Twine(bindings.size()) + " entries for " +
+        llvm::Twine(type.getNumInputs()) + " arguments");
+
+  for (unsigned i = 0, e = type.getNumInputs(); i < e; ++i) {
+    ArgumentBinding binding;
+    auto dict = llvm::dyn_cast<mlir::DictionaryAttr>(bindings[i]);
+    BindingReader reader(signature.function, i, dict);
+    if (!dict)
+      return reader.error("expected a dictionary");
+    if (llvm::Error err = reader.read(binding))
+      return err;
+    llvm::Expected<ValueType> valueType = toValueType(type.getInput(i));
+    if (!valueType)
+      return llvm::createStringError("function '" + signature.function +
+                                     "': " + binding.describe() + ": " +
+                                     llvm::toString(valueType.takeError()));
+    binding.type = std::move(*valueType);
+    if (llvm::Error err = checkKindType(signature, binding))
+      return err;
+    signature.arguments.push_back(std::move(binding));
+  }
+  for (mlir::Type result : type.getResults()) {
+    llvm::Expected<ValueType> valueType = toValueType(result);
+    if (!valueType)
+      return llvm::createStringError("function '" + signature.function +
+                                     "': result: " +
+                                     llvm::toString(valueType.takeError()));
+    signature.results.push_back(std::move(*valueType));
+  }
+  return signature;
+}

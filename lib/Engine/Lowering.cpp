@@ -1,0 +1,242 @@
+//===--- Lowering.cpp - From the simit dialect to JIT-compiled code -------===//
+
+#include "Lowering.h"
+
+#include "RuntimeSymbols.h"
+
+#include "simit/Dialect/Simit/IR/Simit.h"
+
+#include "mlir/Conversion/Passes.h"
+#include "mlir/Dialect/Affine/IR/AffineOps.h"
+#include "mlir/Dialect/Arith/IR/Arith.h"
+#include "mlir/Dialect/Complex/IR/Complex.h"
+#include "mlir/Dialect/ControlFlow/IR/ControlFlow.h"
+#include "mlir/Dialect/Func/IR/FuncOps.h"
+#include "mlir/Dialect/Index/IR/IndexDialect.h"
+#include "mlir/Dialect/LLVMIR/LLVMDialect.h"
+#include "mlir/Dialect/Math/IR/Math.h"
+#include "mlir/Dialect/MemRef/IR/MemRef.h"
+#include "mlir/Dialect/MemRef/Transforms/Passes.h"
+#include "mlir/Dialect/SCF/IR/SCF.h"
+#include "mlir/Dialect/Tensor/IR/Tensor.h"
+#include "mlir/Dialect/Vector/IR/VectorOps.h"
+#include "mlir/ExecutionEngine/OptUtils.h"
+#include "mlir/IR/Diagnostics.h"
+#include "mlir/Pass/PassInstrumentation.h"
+#include "mlir/Pass/PassManager.h"
+#include "mlir/Target/LLVMIR/Dialect/Builtin/BuiltinToLLVMIRTranslation.h"
+#include "mlir/Target/LLVMIR/Dialect/LLVMIR/LLVMToLLVMIRTranslation.h"
+
+#include "llvm/ExecutionEngine/Orc/JITTargetMachineBuilder.h"
+#include "llvm/Support/TargetSelect.h"
+#include "llvm/Support/raw_ostream.h"
+
+#include <mutex>
+
+using namespace simit;
+
+/// The pass pipeline of docs/lowering.md that takes simit IR to the LLVM
+/// dialect.
+static constexpr llvm::StringLiteral kSimitPipeline = "simit-cpu-pipeline";
+/// The pass whose output is the "loops" stage of --emit.
+static constexpr llvm::StringLiteral kLoopsPass = "convert-simit-to-loops";
+
+void simit::registerEngineDialects(mlir::DialectRegistry &registry) {
+  registry.insert<mlir::simit::SimitDialect, mlir::func::FuncDialect,
+                  mlir::arith::ArithDialect, mlir::math::MathDialect,
+                  mlir::scf::SCFDialect, mlir::tensor::TensorDialect,
+                  mlir::memref::MemRefDialect, mlir::complex::ComplexDialect,
+                  mlir::affine::AffineDialect, mlir::cf::ControlFlowDialect,
+                  mlir::index::IndexDialect, mlir::LLVM::LLVMDialect,
+                  mlir::vector::VectorDialect>();
+  mlir::registerBuiltinDialectTranslation(registry);
+  mlir::registerLLVMDialectTranslation(registry);
+}
+
+namespace {
+/// Records the host ABI of each function with `simit.bindings` at every pass
+/// boundary, so the last record is the signature the function had before it
+/// became an llvm.func; and keeps the IR after convert-simit-to-loops.
+class SignatureRecorder : public mlir::PassInstrumentation {
+public:
+  explicit SignatureRecorder(LoweringResult &result) : result(result) {}
+
+  void runBeforePass(mlir::Pass *, mlir::Operation *op) override {
+    record(op);
+  }
+  void runAfterPass(mlir::Pass *pass, mlir::Operation *op) override {
+    record(op);
+    if (pass->getArgument() == kLoopsPass) {
+      llvm::raw_string_ostream os(result.loopsText);
+      op->print(os);
+    }
+  }
+  /// The error of a malformed signature, if any was seen.
+  llvm::Error takeError() { return std::move(error); }
+
+private:
+  void record(mlir::Operation *op) {
+    op->walk<mlir::WalkOrder::PreOrder>([&](mlir::Operation *nested) {
+      auto func = llvm::dyn_cast<mlir::func::FuncOp>(nested);
+      if (!func)
+        return nested == op ? mlir::WalkResult::advance()
+                            : mlir::WalkResult::skip();
+      if (func->hasAttr("simit.bindings")) {
+        llvm::Expected<HostSignature> signature = readHostSignature(func);
+        if (signature)
+          result.signatures[signature->function] = std::move(*signature);
+        else if (!error)
+          error = signature.takeError();
+        else
+          llvm::consumeError(signature.takeError());
+      }
+      return mlir::WalkResult::skip();
+    });
+  }
+
+  LoweringResult &result;
+  llvm::Error error = llvm::Error::success();
+};
+} // namespace
+
+/// MLIR's standard conversions of func/scf/arith/math/memref/cf to the LLVM
+/// dialect, for input that is already loops (no simit ops).
+static void addLoopsToLLVMPasses(mlir::PassManager &pm) {
+  pm.addPass(mlir::createLowerAffinePass());
+  pm.addPass(mlir::createSCFToControlFlowPass());
+  pm.addPass(mlir::memref::createExpandStridedMetadataPass());
+  pm.addPass(mlir::createConvertMathToLLVMPass());
+  pm.addPass(mlir::createConvertMathToLibmPass());
+  pm.addPass(mlir::createArithToLLVMConversionPass());
+  pm.addPass(mlir::createConvertIndexToLLVMPass());
+  pm.addPass(mlir::createFinalizeMemRefToLLVMConversionPass());
+  pm.addPass(mlir::createConvertControlFlowToLLVMPass());
+  pm.addPass(mlir::createConvertFuncToLLVMPass());
+  pm.addPass(mlir::createReconcileUnrealizedCastsPass());
+}
+
+static bool containsSimitOps(mlir::ModuleOp module) {
+  mlir::Dialect *simit =
+      module.getContext()->getLoadedDialect<mlir::simit::SimitDialect>();
+  if (!simit)
+    return false;
+  bool found = false;
+  module.walk([&](mlir::Operation *op) {
+    if (op->getDialect() == simit) {
+      found = true;
+      return mlir::WalkResult::interrupt();
+    }
+    return mlir::WalkResult::advance();
+  });
+  return found;
+}
+
+llvm::Error simit::lowerToLLVM(mlir::ModuleOp module, LoweringResult &result) {
+  mlir::MLIRContext *context = module.getContext();
+  std::string diagnostics;
+  mlir::ScopedDiagnosticHandler handler(context, [&](mlir::Diagnostic &diag) {
+    llvm::raw_string_ostream os(diagnostics);
+    os << diag.getLocation() << ": "
+       << (diag.getSeverity() == mlir::DiagnosticSeverity::Error ? "error: "
+                                                                  : "note: ")
+       << diag << "\n";
+    for (mlir::Diagnostic &note : diag.getNotes())
+      os << note.getLocation() << ": note: " << note << "\n";
+    return mlir::success();
+  });
+
+  mlir::PassManager pm(context);
+  auto recorder = std::make_unique<SignatureRecorder>(result);
+  SignatureRecorder *recorderPtr = recorder.get();
+  pm.addInstrumentation(std::move(recorder));
+
+  if (containsSimitOps(module))
+    return llvm::createStringError(
+        "this build has no '" + kSimitPipeline +
+        "' pass pipeline yet, so simit IR cannot be lowered");
+  addLoopsToLLVMPasses(pm);
+
+  mlir::LogicalResult status = pm.run(module);
+  if (llvm::Error err = recorderPtr->takeError())
+    return err;
+  if (mlir::failed(status))
+    return llvm::createStringError(
+        "lowering failed\n" +
+        (diagnostics.empty() ? std::string("(no diagnostic)\n") : diagnostics));
+  return llvm::Error::success();
+}
+
+/// Counts the LLVM arguments `signature` lowers to under `convention`.
+static size_t loweredArgumentCount(const HostSignature &signature,
+                                   MemRefConvention convention) {
+  size_t count = 0;
+  for (const ArgumentBinding &arg : signature.arguments)
+    count += arg.type.isMemRef && convention == MemRefConvention::Descriptor
+                 ? 3 + 2 * arg.type.rank()
+                 : 1;
+  return count;
+}
+
+llvm::Expected<std::shared_ptr<CompiledModule>>
+simit::compileModule(mlir::ModuleOp llvmModule,
+                     const llvm::StringMap<HostSignature> &signatures) {
+  static std::once_flag initialized;
+  std::call_once(initialized, [] {
+    llvm::InitializeNativeTarget();
+    llvm::InitializeNativeTargetAsmPrinter();
+  });
+
+  auto compiled = std::make_shared<CompiledModule>();
+  for (const auto &entry : signatures) {
+    auto func = llvmModule.lookupSymbol<mlir::LLVM::LLVMFuncOp>(entry.getKey());
+    if (!func)
+      return llvm::createStringError("function '" + entry.getKey() +
+                                     "' did not reach the LLVM dialect");
+    size_t numArgs = func.getNumArguments();
+    CompiledFunction function;
+    function.signature = entry.getValue();
+    if (numArgs == loweredArgumentCount(function.signature,
+                                        MemRefConvention::Descriptor))
+      function.convention = MemRefConvention::Descriptor;
+    else if (numArgs == loweredArgumentCount(function.signature,
+                                             MemRefConvention::BarePointer))
+      function.convention = MemRefConvention::BarePointer;
+    else
+      return llvm::createStringError(
+          "function '" + entry.getKey() + "' has " + llvm::Twine(numArgs) +
+          " LLVM arguments, which matches neither memref convention of its " +
+          llvm::Twine(function.signature.arguments.size()) + " arguments");
+    compiled->functions[entry.getKey()] = std::move(function);
+  }
+
+  auto targetBuilder = llvm::orc::JITTargetMachineBuilder::detectHost();
+  if (!targetBuilder)
+    return targetBuilder.takeError();
+  targetBuilder->setCodeGenOptLevel(llvm::CodeGenOptLevel::Aggressive);
+  auto targetMachine = targetBuilder->createTargetMachine();
+  if (!targetMachine)
+    return targetMachine.takeError();
+
+  auto transformer = mlir::makeOptimizingTransformer(
+      /*optLevel=*/3, /*sizeLevel=*/0, targetMachine->get());
+  mlir::ExecutionEngineOptions options;
+  options.transformer = transformer;
+  options.jitCodeGenOptLevel = llvm::CodeGenOptLevel::Aggressive;
+  options.enableGDBNotificationListener = false;
+  options.enablePerfNotificationListener = false;
+  auto engine = mlir::ExecutionEngine::create(llvmModule, options,
+                                              std::move(*targetMachine));
+  if (!engine)
+    return engine.takeError();
+  compiled->engine = std::move(*engine);
+  compiled->engine->registerSymbols(runtimeSymbolMap);
+  compiled->engine->initialize();
+
+  for (auto &entry : compiled->functions) {
+    auto packed = compiled->engine->lookupPacked(entry.getKey());
+    if (!packed)
+      return packed.takeError();
+    entry.getValue().entry = *packed;
+  }
+  return compiled;
+}

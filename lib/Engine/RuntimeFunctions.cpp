@@ -1,0 +1,105 @@
+//===--- RuntimeFunctions.cpp - Host functions of lowered Simit code ------===//
+
+#include "simit/Engine/RuntimeFunctions.h"
+
+#include "RuntimeSymbols.h"
+
+#include "llvm/Support/ErrorHandling.h"
+
+#include <vector>
+
+namespace {
+/// Whether a memref's strides are the row-major strides of its sizes, so
+/// its data can be walked as one flat array.
+template <typename T, int N>
+bool isContiguous(const StridedMemRefType<T, N> &m) {
+  int64_t expected = 1;
+  for (int d = N - 1; d >= 0; --d) {
+    if (m.sizes[d] != 1 && m.strides[d] != expected)
+      return false;
+    expected *= m.sizes[d];
+  }
+  return true;
+}
+
+/// y = A p over the BCSR arrays, blocks of b x b.
+void multiply(int64_t rows, int64_t b, const int32_t *rowptr,
+              const int32_t *colidx, const double *values, const double *p,
+              double *y) {
+  for (int64_t r = 0; r < rows; ++r) {
+    double *yr = y + r * b;
+    for (int64_t i = 0; i < b; ++i)
+      yr[i] = 0;
+    for (int32_t k = rowptr[r]; k < rowptr[r + 1]; ++k) {
+      const double *block = values + static_cast<int64_t>(k) * b * b;
+      const double *pc = p + static_cast<int64_t>(colidx[k]) * b;
+      for (int64_t i = 0; i < b; ++i)
+        for (int64_t j = 0; j < b; ++j)
+          yr[i] += block[i * b + j] * pc[j];
+    }
+  }
+}
+
+double dot(const std::vector<double> &u, const std::vector<double> &v) {
+  double sum = 0;
+  for (size_t i = 0; i < u.size(); ++i)
+    sum += u[i] * v[i];
+  return sum;
+}
+} // namespace
+
+extern "C" int32_t _mlir_ciface_simit_rt_cg_solve_bcsr(
+    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
+    StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *b,
+    StridedMemRefType<double, 2> *x, double tolerance, int32_t maxIterations) {
+  if (!isContiguous(*rowptr) || !isContiguous(*colidx) ||
+      !isContiguous(*values) || !isContiguous(*b) || !isContiguous(*x))
+    llvm::report_fatal_error("simit_rt_cg_solve_bcsr: operands must be "
+                             "contiguous row-major memrefs");
+  int64_t rows = rowptr->sizes[0] - 1;
+  int64_t block = values->sizes[1];
+  if (values->sizes[2] != block || b->sizes[1] != block ||
+      x->sizes[1] != block || b->sizes[0] != rows || x->sizes[0] != rows)
+    llvm::report_fatal_error("simit_rt_cg_solve_bcsr: operand shapes do not "
+                             "match the matrix");
+  const int32_t *rp = rowptr->data + rowptr->offset;
+  const int32_t *ci = colidx->data + colidx->offset;
+  const double *vals = values->data + values->offset;
+  const double *rhs = b->data + b->offset;
+  double *sol = x->data + x->offset;
+
+  size_t n = static_cast<size_t>(rows * block);
+  std::vector<double> r(n), p(n), ap(n);
+  multiply(rows, block, rp, ci, vals, sol, ap.data());
+  for (size_t i = 0; i < n; ++i)
+    r[i] = rhs[i] - ap[i];
+  p = r;
+  double rr = dot(r, r);
+  int32_t iteration = 0;
+  while (rr > tolerance && iteration < maxIterations) {
+    multiply(rows, block, rp, ci, vals, p.data(), ap.data());
+    double alpha = rr / dot(p, ap);
+    for (size_t i = 0; i < n; ++i) {
+      sol[i] += alpha * p[i];
+      r[i] -= alpha * ap[i];
+    }
+    double rrNew = dot(r, r);
+    for (size_t i = 0; i < n; ++i)
+      p[i] = r[i] + (rrNew / rr) * p[i];
+    rr = rrNew;
+    ++iteration;
+  }
+  return iteration;
+}
+
+llvm::orc::SymbolMap
+simit::runtimeSymbolMap(llvm::orc::MangleAndInterner interner) {
+  llvm::orc::SymbolMap symbols;
+  auto add = [&](llvm::StringRef name, void *address) {
+    symbols[interner(name)] = {llvm::orc::ExecutorAddr::fromPtr(address),
+                               llvm::JITSymbolFlags::Exported};
+  };
+  add("_mlir_ciface_simit_rt_cg_solve_bcsr",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_cg_solve_bcsr));
+  return symbols;
+}

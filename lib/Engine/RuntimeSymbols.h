@@ -1,0 +1,17 @@
+//===--- RuntimeSymbols.h - Host functions JIT-compiled code calls --------===//
+
+#ifndef SIMIT_LIB_ENGINE_RUNTIMESYMBOLS_H
+#define SIMIT_LIB_ENGINE_RUNTIMESYMBOLS_H
+
+#include "llvm/ExecutionEngine/Orc/Core.h"
+#include "llvm/ExecutionEngine/Orc/Mangling.h"
+
+namespace simit {
+
+/// The runtime functions of include/simit/Engine/RuntimeFunctions.h under
+/// the names lowered code calls them by.
+llvm::orc::SymbolMap runtimeSymbolMap(llvm::orc::MangleAndInterner interner);
+
+} // namespace simit
+
+#endif // SIMIT_LIB_ENGINE_RUNTIMESYMBOLS_H

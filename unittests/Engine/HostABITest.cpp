@@ -1,0 +1,135 @@
+//===--- HostABITest.cpp - Reading simit.bindings back from the IR --------===//
+
+#include "simit/Engine/HostABI.h"
+
+#include "mlir/Dialect/Func/IR/FuncOps.h"
+#include "mlir/Dialect/MemRef/IR/MemRef.h"
+#include "mlir/IR/BuiltinOps.h"
+#include "mlir/IR/MLIRContext.h"
+#include "mlir/Parser/Parser.h"
+
+#include "gtest/gtest.h"
+
+using namespace simit;
+
+namespace {
+class HostABITest : public ::testing::Test {
+protected:
+  HostABITest() {
+    context.loadDialect<mlir::func::FuncDialect, mlir::memref::MemRefDialect>();
+  }
+
+  /// The signature of the only function of `text`.
+  llvm::Expected<HostSignature> read(llvm::StringRef text) {
+    module = mlir::parseSourceString<mlir::ModuleOp>(text, &context);
+    if (!module)
+      return llvm::createStringError("parse error");
+    auto funcs = module->getOps<mlir::func::FuncOp>();
+    return readHostSignature(*funcs.begin());
+  }
+
+  std::string readError(llvm::StringRef text) {
+    auto signature = read(text);
+    if (signature)
+      return "no error";
+    return llvm::toString(signature.takeError());
+  }
+
+  mlir::MLIRContext context;
+  mlir::OwningOpRef<mlir::ModuleOp> module;
+};
+} // namespace
+
+TEST_F(HostABITest, ReadsEveryKind) {
+  auto signature = read(R"mlir(
+    func.func private @step(index, memref<?x3xf64>, memref<?x2xi32>,
+        memref<?xi32>, memref<?xi32>, memref<?x4xi32>, memref<f64>,
+        memref<3xf32>, i32) -> f64
+      attributes {simit.bindings = [
+        {kind = "set_size", set = "points"},
+        {kind = "field", set = "points", field = "x"},
+        {kind = "endpoints", set = "springs"},
+        {kind = "pattern_rowptr", set = "springs", rows = "points", cols = "points"},
+        {kind = "pattern_colidx", set = "springs", rows = "points", cols = "points"},
+        {kind = "pattern_locations", set = "springs", rows = "points", cols = "points"},
+        {kind = "extern", name = "h"},
+        {kind = "extern", name = "g"},
+        {kind = "param", name = "n"}]}
+  )mlir");
+  ASSERT_TRUE(!!signature) << llvm::toString(signature.takeError());
+  EXPECT_EQ(signature->function, "step");
+  ASSERT_EQ(signature->arguments.size(), 9u);
+  using Kind = ArgumentBinding::Kind;
+  const auto &args = signature->arguments;
+  EXPECT_EQ(args[0].kind, Kind::SetSize);
+  EXPECT_EQ(args[0].set, "points");
+  EXPECT_EQ(args[0].type.scalar, ScalarKind::Index);
+  EXPECT_EQ(args[1].kind, Kind::Field);
+  EXPECT_EQ(args[1].field, "x");
+  EXPECT_EQ(args[1].type.str(), "memref<?x3xf64>");
+  EXPECT_EQ(args[2].kind, Kind::Endpoints);
+  EXPECT_EQ(args[3].kind, Kind::PatternRowPtr);
+  EXPECT_EQ(args[3].rows, "points");
+  EXPECT_EQ(args[4].kind, Kind::PatternColIdx);
+  EXPECT_EQ(args[5].kind, Kind::PatternLocations);
+  EXPECT_EQ(args[5].cols, "points");
+  EXPECT_EQ(args[6].kind, Kind::Extern);
+  EXPECT_EQ(args[6].type.str(), "memref<f64>");
+  EXPECT_EQ(args[7].type.str(), "memref<3xf32>");
+  EXPECT_EQ(args[8].kind, Kind::Parameter);
+  EXPECT_EQ(args[8].name, "n");
+  EXPECT_FALSE(args[8].type.isMemRef);
+  ASSERT_EQ(signature->results.size(), 1u);
+  EXPECT_EQ(signature->results[0].str(), "f64");
+}
+
+TEST_F(HostABITest, RequiresTheBindingsAttribute) {
+  EXPECT_EQ(readError("func.func private @f(f64) -> i32"),
+            "function 'f' has no simit.bindings attribute");
+}
+
+TEST_F(HostABITest, RejectsAnUnknownKind) {
+  EXPECT_EQ(readError(R"mlir(func.func private @f(index)
+      attributes {simit.bindings = [{kind = "sizes", set = "p"}]})mlir"),
+            "function 'f': simit.bindings entry 0: unknown kind 'sizes'");
+}
+
+TEST_F(HostABITest, RejectsAMissingKey) {
+  EXPECT_EQ(readError(R"mlir(func.func private @f(memref<?xf64>)
+      attributes {simit.bindings = [{kind = "field", set = "p"}]})mlir"),
+            "function 'f': simit.bindings entry 0: expected a string 'field'");
+}
+
+TEST_F(HostABITest, RejectsACountMismatch) {
+  EXPECT_EQ(readError(R"mlir(func.func private @f(index, index)
+      attributes {simit.bindings = [{kind = "set_size", set = "p"}]})mlir"),
+            "function 'f': simit.bindings has 1 entries for 2 arguments");
+}
+
+TEST_F(HostABITest, RejectsATypeThatDoesNotFitTheKind) {
+  EXPECT_EQ(readError(R"mlir(func.func private @f(memref<?xf64>)
+      attributes {simit.bindings = [{kind = "endpoints", set = "s"}]})mlir"),
+            "function 'f': endpoints of set 's' has type memref<?xf64>, "
+            "expected memref<?xNxi32>");
+  EXPECT_EQ(readError(R"mlir(func.func private @f(memref<?xf64>)
+      attributes {simit.bindings = [{kind = "extern", name = "g"}]})mlir"),
+            "function 'f': extern 'g' has type memref<?xf64>, expected a "
+            "statically shaped memref or a scalar");
+}
+
+TEST_F(HostABITest, RejectsUnsupportedHostTypes) {
+  std::string error = readError(R"mlir(func.func private @f(i16)
+      attributes {simit.bindings = [{kind = "param", name = "a"}]})mlir");
+  EXPECT_NE(error.find("parameter 'a': unsupported host type i16"), std::string::npos)
+      << error;
+}
+
+TEST(ValueTypeTest, PrintsLikeMLIR) {
+  ValueType type;
+  type.isMemRef = true;
+  type.scalar = ScalarKind::Int32;
+  type.shape = {ValueType::kDynamic, 4};
+  EXPECT_EQ(type.str(), "memref<?x4xi32>");
+  EXPECT_EQ(scalarSize(ScalarKind::Bool), 1u);
+  EXPECT_EQ(scalarSize(ScalarKind::Index), 8u);
+}

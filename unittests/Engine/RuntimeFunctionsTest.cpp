@@ -1,0 +1,92 @@
+//===--- RuntimeFunctionsTest.cpp - Host functions of lowered code --------===//
+
+#include "simit/Engine/RuntimeFunctions.h"
+
+#include <Eigen/Dense>
+
+#include "gtest/gtest.h"
+
+#include <random>
+#include <vector>
+
+namespace {
+template <typename T, int N>
+StridedMemRefType<T, N> describe(T *data, std::array<int64_t, N> sizes) {
+  StridedMemRefType<T, N> m;
+  m.basePtr = m.data = data;
+  m.offset = 0;
+  int64_t stride = 1;
+  for (int d = N - 1; d >= 0; --d) {
+    m.sizes[d] = sizes[d];
+    m.strides[d] = stride;
+    stride *= sizes[d];
+  }
+  return m;
+}
+} // namespace
+
+// A random SPD matrix of 4 x 4 blocks of 3 x 3, stored densely in BCSR
+// (every block present), solved to convergence and compared with Eigen.
+TEST(RuntimeFunctionsTest, CGSolveMatchesADenseSolve) {
+  const int rows = 4, b = 3, n = rows * b;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> dist(-1.0, 1.0);
+  Eigen::MatrixXd m(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      m(i, j) = dist(rng);
+  Eigen::MatrixXd a = m * m.transpose() + n * Eigen::MatrixXd::Identity(n, n);
+  Eigen::VectorXd rhs(n);
+  for (int i = 0; i < n; ++i)
+    rhs(i) = dist(rng);
+
+  std::vector<int32_t> rowptr, colidx;
+  std::vector<double> values;
+  for (int r = 0; r < rows; ++r) {
+    rowptr.push_back(static_cast<int32_t>(colidx.size()));
+    for (int c = 0; c < rows; ++c) {
+      colidx.push_back(c);
+      for (int i = 0; i < b; ++i)
+        for (int j = 0; j < b; ++j)
+          values.push_back(a(r * b + i, c * b + j));
+    }
+  }
+  rowptr.push_back(static_cast<int32_t>(colidx.size()));
+  std::vector<double> bv(rhs.data(), rhs.data() + n), x(n, 0.0);
+
+  auto rp = describe<int32_t, 1>(rowptr.data(), {rows + 1});
+  auto ci = describe<int32_t, 1>(colidx.data(), {int64_t(colidx.size())});
+  auto vals = describe<double, 3>(values.data(), {int64_t(colidx.size()), b, b});
+  auto bm = describe<double, 2>(bv.data(), {rows, b});
+  auto xm = describe<double, 2>(x.data(), {rows, b});
+  int32_t iterations = _mlir_ciface_simit_rt_cg_solve_bcsr(
+      &rp, &ci, &vals, &bm, &xm, 1e-24, 100);
+  EXPECT_GT(iterations, 0);
+  EXPECT_LE(iterations, 100);
+
+  Eigen::VectorXd exact = a.ldlt().solve(rhs);
+  for (int i = 0; i < n; ++i)
+    EXPECT_NEAR(x[i], exact(i), 1e-9) << "component " << i;
+}
+
+TEST(RuntimeFunctionsTest, CGStopsAtTheIterationCap) {
+  // diag(1, 2): from x = 0, one CG step cannot reach the solution.
+  std::vector<int32_t> rowptr{0, 1, 2}, colidx{0, 1};
+  std::vector<double> values{1.0, 2.0}, bv{1.0, 1.0}, x{0.0, 0.0};
+  auto rp = describe<int32_t, 1>(rowptr.data(), {3});
+  auto ci = describe<int32_t, 1>(colidx.data(), {2});
+  auto vals = describe<double, 3>(values.data(), {2, 1, 1});
+  auto bm = describe<double, 2>(bv.data(), {2, 1});
+  auto xm = describe<double, 2>(x.data(), {2, 1});
+  EXPECT_EQ(_mlir_ciface_simit_rt_cg_solve_bcsr(&rp, &ci, &vals, &bm, &xm,
+                                                1e-30, 1),
+            1);
+  // The first step is x = alpha r with r = b, alpha = (r.r) / (r.Ar) = 2/3.
+  EXPECT_NEAR(x[0], 2.0 / 3.0, 1e-15);
+  EXPECT_NEAR(x[1], 2.0 / 3.0, 1e-15);
+  EXPECT_EQ(_mlir_ciface_simit_rt_cg_solve_bcsr(&rp, &ci, &vals, &bm, &xm,
+                                                1e-30, 5),
+            1);
+  EXPECT_NEAR(x[0], 1.0, 1e-12);
+  EXPECT_NEAR(x[1], 0.5, 1e-12);
+}

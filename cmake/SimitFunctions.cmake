@@ -14,6 +14,9 @@ function(simit_add_library name)
     $<BUILD_INTERFACE:${SIMIT_SOURCE_DIR}/include>
     $<BUILD_INTERFACE:${SIMIT_BINARY_DIR}/include>
     $<INSTALL_INTERFACE:include>)
+  # Users of an installed library need MLIR's and LLVM's headers too.
+  target_include_directories(${name} SYSTEM PUBLIC
+    ${LLVM_INCLUDE_DIRS} ${MLIR_INCLUDE_DIRS})
   set_target_properties(${name} PROPERTIES
     EXPORT_NAME ${name}
     BUILD_RPATH "${CMAKE_BINARY_DIR}/lib"

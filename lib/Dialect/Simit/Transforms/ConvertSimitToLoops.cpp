@@ -357,7 +357,7 @@ bool FunctionLowering::canAlias(Operation *read,
 
 LogicalResult FunctionLowering::lowerOps(Block &block) {
   for (Operation &op : block) {
-    if (isa<scf::YieldOp, scf::ConditionOp>(op))
+    if (isa<scf::YieldOp, scf::ConditionOp, YieldOp>(op))
       continue;
     if (failed(lowerOp(&op)))
       return failure();

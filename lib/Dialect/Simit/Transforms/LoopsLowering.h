@@ -86,6 +86,8 @@ struct ElementContext {
   /// (the result position): they are not materialised; every insert into
   /// one scatters into the output.
   DenseMap<Value, unsigned> sinks;
+  /// Whether some write goes to a location shared with other elements.
+  bool scatters = false;
 };
 
 class FunctionLowering {

@@ -184,8 +184,6 @@ LogicalResult FunctionLowering::lowerElementAccess(Operation *op,
                        scatters)))
       return failure();
     if (scatters)
-      op->getParentOfType<scf::ParallelOp>();
-    if (scatters)
       element->scatters = true;
     return success();
   }

@@ -818,4 +818,6 @@ def Simit_StringCmpOp : Simit_Op<"string_cmp", [Pure]> {
   let assemblyFormat = "$predicate $lhs `,` $rhs attr-dict";
 }
 
+include "simit/Dialect/Simit/IR/SimitFusionOps.td"
+
 #endif // SIMIT_DIALECT_SIMIT_IR_SIMITOPS_TD

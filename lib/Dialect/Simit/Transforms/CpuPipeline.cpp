@@ -1,0 +1,65 @@
+//===- CpuPipeline.cpp - simit IR down to the LLVM dialect ----------------===//
+//
+// The pipeline is a pass (registered with the others by
+// registerSimitPasses()) that runs buildSimitCpuPipeline() as a dynamic
+// pipeline, so simit-opt and the JIT run the same passes.
+//
+//===----------------------------------------------------------------------===//
+
+#include "simit/Dialect/Simit/Transforms/Passes.h"
+
+#include "mlir/Conversion/Passes.h"
+#include "mlir/Dialect/Bufferization/Pipelines/Passes.h"
+#include "mlir/Dialect/MemRef/Transforms/Passes.h"
+#include "mlir/Pass/PassManager.h"
+#include "mlir/Transforms/Passes.h"
+
+namespace mlir {
+namespace simit {
+#define GEN_PASS_DEF_SIMITCPUPIPELINE
+#include "simit/Dialect/Simit/Transforms/Passes.h.inc"
+} // namespace simit
+} // namespace mlir
+
+using namespace mlir;
+using namespace mlir::simit;
+
+void mlir::simit::buildSimitCpuPipeline(OpPassManager &pm) {
+  pm.addPass(createSimitInlineFunctions());
+  pm.addPass(createSimitLinalgToIndexExpr());
+  pm.addPass(createSimitFuseIndexExpr());
+  pm.addPass(createConvertSimitToLoops());
+  pm.addPass(createCanonicalizerPass());
+  pm.addPass(createCSEPass());
+  // Temporaries of system tensors are freed once no value needs them.
+  bufferization::buildBufferDeallocationPipeline(pm);
+  pm.addPass(createSCFToControlFlowPass());
+  pm.addPass(memref::createExpandStridedMetadataPass());
+  pm.addPass(createLowerAffinePass());
+  pm.addPass(createConvertVectorToLLVMPass());
+  pm.addPass(createConvertMathToLLVMPass());
+  pm.addPass(createArithToLLVMConversionPass());
+  pm.addPass(createConvertIndexToLLVMPass());
+  pm.addPass(createFinalizeMemRefToLLVMConversionPass());
+  pm.addPass(createConvertFuncToLLVMPass());
+  pm.addPass(createConvertControlFlowToLLVMPass());
+  pm.addPass(createReconcileUnrealizedCastsPass());
+  pm.addPass(createCanonicalizerPass());
+}
+
+namespace {
+struct CpuPipeline : public simit::impl::SimitCpuPipelineBase<CpuPipeline> {
+  void getDependentDialects(DialectRegistry &registry) const override {
+    OpPassManager pm(ModuleOp::getOperationName());
+    buildSimitCpuPipeline(pm);
+    pm.getDependentDialects(registry);
+  }
+
+  void runOnOperation() override {
+    OpPassManager pm(ModuleOp::getOperationName());
+    buildSimitCpuPipeline(pm);
+    if (failed(runPipeline(pm, getOperation())))
+      signalPassFailure();
+  }
+};
+} // namespace

@@ -1,0 +1,570 @@
+//===- LowerIndexExpr.cpp - Index expressions as loop nests ---------------===//
+//
+// Every index variable ranges over a hierarchy of levels (a set, then block
+// ranges). The loop nest binds one level at a time:
+//  - result variables first: the outermost level is an scf.parallel loop,
+//  - then summed variables, accumulated in loop-carried scalars; a scalar
+//    result sums its outermost level with scf.parallel + scf.reduce,
+//  - the set level of a variable v that a matrix input A(u, v) pairs with a
+//    bound variable u follows A's sparsity: the blocks of row u of the BCSR
+//    pattern (rowptr/colidx), or v = u for a diagonal matrix,
+//  - other levels are dense loops over the set or range.
+// `simit.index_sum` inside the body sums its variables at that point of the
+// body (the fused form). Index expressions without sets are unrolled over
+// their static ranges.
+//
+//===----------------------------------------------------------------------===//
+
+#include "LoopsLowering.h"
+
+using namespace mlir;
+using namespace mlir::simit;
+using namespace mlir::simit::loops;
+
+namespace {
+class IndexExprLowering {
+public:
+  IndexExprLowering(FunctionLowering &l, IndexExprOp op)
+      : l(l), b(l.b), op(op), loc(op.getLoc()),
+        scalarType(getComponentType(op.getType())) {}
+
+  LogicalResult lower();
+
+private:
+  unsigned numLevels(unsigned v) { return op.getDomain(v).size(); }
+  Attribute level(unsigned v, unsigned i) { return op.getDomain(v)[i]; }
+  bool isBound(unsigned v) {
+    auto it = bound.find(v);
+    return it != bound.end() && llvm::all_of(it->second, [](Value x) {
+             return bool(x);
+           });
+  }
+  bool isSetBound(unsigned v) {
+    auto it = bound.find(v);
+    return it != bound.end() && it->second[0];
+  }
+  /// The storage of input `i` (or of the result for i == number of inputs).
+  Storage storageOf(unsigned i) {
+    if (i == op.getInputs().size())
+      return resultStorage;
+    return l.storages.lookup(op.getInputs()[i]);
+  }
+  ArrayRef<int64_t> indexList(unsigned i) {
+    if (i == op.getInputs().size())
+      return op.getResultIndices();
+    return op.getInputIndexList(i);
+  }
+  unsigned numMatrixOperands() { return op.getInputs().size() + 1; }
+
+  /// The level indices of a tensor's components in level-major order (all
+  /// dimensions' outer levels, then their first block levels, ...).
+  SmallVector<Value> levelMajor(Type type, ArrayRef<int64_t> vars);
+  Value extent(unsigned v, unsigned i);
+  /// Reads the component of input `i` at the bound variables.
+  FailureOr<Value> access(unsigned i);
+  /// Picks how to bind the next level of one of `vars`: returns the variable
+  /// and whether a matrix couples it (then the loop runs over its pattern).
+  struct Choice {
+    unsigned var;
+    unsigned levelIndex;
+    int coupledBy = -1; // operand whose sparsity the loop follows
+    unsigned partner = 0;
+  };
+  std::optional<Choice> choose(ArrayRef<unsigned> vars);
+  /// Emits the loop for `choice`, calls `inner` inside it with the builder
+  /// in the body; returns the loop's results.
+  SmallVector<Value>
+  emitLoop(const Choice &choice, ValueRange inits, bool parallel,
+           function_ref<SmallVector<Value>(ValueRange)> inner);
+  void unbind(const Choice &choice);
+  /// The sum over `vars` of `body` (nested loops, loop-carried scalar).
+  FailureOr<Value> sum(SmallVector<unsigned> vars,
+                       function_ref<FailureOr<Value>()> body,
+                       bool parallelTop);
+  /// Evaluates the body with the bound variables: the scalar it yields.
+  FailureOr<Value> evaluate(Block &block);
+  LogicalResult lowerLocal();
+
+  FunctionLowering &l;
+  OpBuilder &b;
+  IndexExprOp op;
+  Location loc;
+  Type scalarType;
+  Storage resultStorage;
+  DenseMap<unsigned, SmallVector<Value>> bound;
+  /// Block positions of matrix operands bound by a pattern loop.
+  DenseMap<unsigned, Value> positions;
+  /// Variables summed by a simit.index_sum in the body.
+  llvm::SmallDenseSet<unsigned> nestedVars;
+  bool failedInside = false;
+};
+} // namespace
+
+Value IndexExprLowering::extent(unsigned v, unsigned i) {
+  Attribute lvl = level(v, i);
+  if (auto set = dyn_cast<StringAttr>(lvl))
+    return l.getSetSize(set);
+  return l.indexConstant(cast<IntegerAttr>(lvl).getInt());
+}
+
+SmallVector<Value> IndexExprLowering::levelMajor(Type type,
+                                                 ArrayRef<int64_t> vars) {
+  SmallVector<Value> indices;
+  unsigned maxLevels = 0;
+  for (int64_t v : vars)
+    maxLevels = std::max(maxLevels, numLevels(v));
+  for (unsigned lvl = 0; lvl < maxLevels; ++lvl)
+    for (int64_t v : vars)
+      if (lvl < numLevels(v))
+        indices.push_back(bound[v][lvl]);
+  return indices;
+}
+
+FailureOr<Value> IndexExprLowering::access(unsigned i) {
+  Value input = op.getInputs()[i];
+  Value lowered = l.lookup(input);
+  Type type = input.getType();
+  ArrayRef<int64_t> vars = op.getInputIndexList(i);
+  if (vars.empty())
+    return lowered;
+  SmallVector<Value> indices = levelMajor(type, vars);
+  if (!hasSetDimension(type)) {
+    // A flat vector: row-major over the level-major extents.
+    SmallVector<int64_t> extents;
+    unsigned maxLevels = 0;
+    for (int64_t v : vars)
+      maxLevels = std::max(maxLevels, numLevels(v));
+    for (unsigned lvl = 0; lvl < maxLevels; ++lvl)
+      for (int64_t v : vars)
+        if (lvl < numLevels(v))
+          extents.push_back(cast<IntegerAttr>(level(v, lvl)).getInt());
+    Value flat = l.indexConstant(0);
+    for (auto [index, size] : llvm::zip(indices, extents)) {
+      flat = arith::MulIOp::create(b, loc, flat, l.indexConstant(size));
+      flat = arith::AddIOp::create(b, loc, flat, index);
+    }
+    return l.component(lowered, flat);
+  }
+  Storage storage = storageOf(i);
+  if (!storage.isMatrix())
+    return memref::LoadOp::create(b, loc, lowered, indices).getResult();
+  // Matrices: the outer pair of indices becomes a block position.
+  Value row = indices[0], col = indices[1];
+  SmallVector<Value> inner(indices.begin() + 2, indices.end());
+  if (Value position = positions.lookup(i)) {
+    inner.insert(inner.begin(), position);
+    return memref::LoadOp::create(b, loc, lowered, inner).getResult();
+  }
+  if (storage.kind == Storage::Kind::Diagonal) {
+    // Off the diagonal the block is zero; rows are in range either way.
+    inner.insert(inner.begin(), row);
+    Value value = memref::LoadOp::create(b, loc, lowered, inner);
+    Value onDiagonal = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq,
+                                             row, col);
+    return arith::SelectOp::create(b, loc, onDiagonal, value,
+                                   l.zeroOf(scalarType))
+        .getResult();
+  }
+  return op.emitError("input #")
+         << i << " (" << storage.describe()
+         << ") is read at blocks the loop nest does not enumerate; the loop "
+            "lowering needs every pattern matrix read along its own rows";
+}
+
+std::optional<IndexExprLowering::Choice>
+IndexExprLowering::choose(ArrayRef<unsigned> vars) {
+  // A set level that a bound variable's matrix row gives comes first; among
+  // the matrices pairing the same variables, the largest sparsity leads
+  // (an edge pattern holds a diagonal).
+  for (unsigned v : vars) {
+    if (isSetBound(v) || !isa<StringAttr>(level(v, 0)))
+      continue;
+    int best = -1;
+    for (unsigned o = 0; o < numMatrixOperands(); ++o) {
+      Storage storage = storageOf(o);
+      ArrayRef<int64_t> list = indexList(o);
+      if (!storage.isMatrix() || list.size() != 2 || list[1] != v ||
+          list[0] == v || !isSetBound(list[0]))
+        continue;
+      if (best < 0 || (storage != storageOf(best) &&
+                       storage.contains(storageOf(best))))
+        best = o;
+    }
+    if (best >= 0)
+      return Choice{v, 0, best, static_cast<unsigned>(indexList(best)[0])};
+  }
+  for (unsigned v : vars)
+    if (!isSetBound(v) && isa<StringAttr>(level(v, 0)))
+      return Choice{v, 0};
+  for (unsigned v : vars)
+    for (unsigned i = 0; i < numLevels(v); ++i)
+      if (!bound.count(v) || !bound[v][i])
+        return Choice{v, i};
+  return std::nullopt;
+}
+
+void IndexExprLowering::unbind(const Choice &choice) {
+  bound[choice.var][choice.levelIndex] = Value();
+  if (choice.coupledBy >= 0)
+    for (unsigned o = 0; o < numMatrixOperands(); ++o)
+      if (indexList(o).size() == 2 && indexList(o)[1] == choice.var)
+        positions.erase(o);
+}
+
+SmallVector<Value>
+IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
+                            bool parallel,
+                            function_ref<SmallVector<Value>(ValueRange)> inner) {
+  unsigned v = choice.var;
+  if (!bound.count(v))
+    bound[v].assign(numLevels(v), Value());
+  Value lb = l.indexConstant(0), ub = extent(v, choice.levelIndex);
+  Value rowPtr, colIdx;
+  if (choice.coupledBy >= 0) {
+    Storage storage = storageOf(choice.coupledBy);
+    Value row = bound[choice.partner][0];
+    if (storage.kind == Storage::Kind::Diagonal) {
+      // v = u: no loop, the diagonal block is the row's.
+      bound[v][0] = row;
+      for (unsigned o = 0; o < numMatrixOperands(); ++o)
+        if (indexList(o).size() == 2 && indexList(o)[1] == v &&
+            storageOf(o) == storage)
+          positions[o] = row;
+      // Without a loop the results are the inner values themselves.
+      SmallVector<Value> results = inner(inits);
+      unbind(choice);
+      return results;
+    }
+    rowPtr = l.getPatternArray(BindingKind::PatternRowPtr, storage.edges,
+                               storage.rows, storage.cols);
+    colIdx = l.getPatternArray(BindingKind::PatternColIdx, storage.edges,
+                               storage.rows, storage.cols);
+    Value next = arith::AddIOp::create(b, loc, row, l.indexConstant(1));
+    lb = arith::IndexCastOp::create(
+        b, loc, b.getIndexType(),
+        memref::LoadOp::create(b, loc, rowPtr, ValueRange{row}));
+    ub = arith::IndexCastOp::create(
+        b, loc, b.getIndexType(),
+        memref::LoadOp::create(b, loc, rowPtr, ValueRange{next}));
+  }
+  auto bindAt = [&](OpBuilder &nb, Value iv) {
+    OpBuilder::InsertionGuard guard(b);
+    if (choice.coupledBy < 0) {
+      bound[v][choice.levelIndex] = iv;
+      return;
+    }
+    b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
+    Storage storage = storageOf(choice.coupledBy);
+    bound[v][0] = arith::IndexCastOp::create(
+        b, loc, b.getIndexType(),
+        memref::LoadOp::create(b, loc, colIdx, ValueRange{iv}));
+    nb.setInsertionPoint(b.getInsertionBlock(), b.getInsertionPoint());
+    for (unsigned o = 0; o < numMatrixOperands(); ++o)
+      if (indexList(o).size() == 2 && indexList(o)[1] == v &&
+          storageOf(o) == storage)
+        positions[o] = iv;
+  };
+  Value step = l.indexConstant(1);
+  if (parallel) {
+    auto loop = scf::ParallelOp::create(
+        b, loc, ValueRange{lb}, ValueRange{ub}, ValueRange{step}, inits,
+        [&](OpBuilder &nb, Location, ValueRange ivs, ValueRange) {
+          bindAt(nb, ivs[0]);
+          OpBuilder::InsertionGuard guard(b);
+          b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
+          SmallVector<Value> results = inner({});
+          if (inits.empty()) {
+            scf::ReduceOp::create(b, loc);
+            return;
+          }
+          auto reduce = scf::ReduceOp::create(b, loc, results);
+          for (Region &region : reduce.getReductions()) {
+            Block &block = region.front();
+            OpBuilder rb = OpBuilder::atBlockEnd(&block);
+            Value s = arith::AddFOp::create(rb, loc, block.getArgument(0),
+                                            block.getArgument(1));
+            scf::ReduceReturnOp::create(rb, loc, s);
+          }
+        });
+    unbind(choice);
+    return llvm::to_vector(loop.getResults());
+  }
+  auto loop = scf::ForOp::create(
+      b, loc, lb, ub, step, inits,
+      [&](OpBuilder &nb, Location, Value iv, ValueRange args) {
+        bindAt(nb, iv);
+        OpBuilder::InsertionGuard guard(b);
+        b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
+        SmallVector<Value> results = inner(args);
+        scf::YieldOp::create(b, loc, results);
+      });
+  unbind(choice);
+  return llvm::to_vector(loop.getResults());
+}
+
+FailureOr<Value>
+IndexExprLowering::sum(SmallVector<unsigned> vars,
+                       function_ref<FailureOr<Value>()> body,
+                       bool parallelTop) {
+  std::optional<Choice> choice = choose(vars);
+  if (!choice)
+    return body();
+  Value zero = l.zeroOf(scalarType);
+  bool failedBody = false;
+  auto accumulate = [&](Value acc, Value term) -> Value {
+    if (isa<FloatType>(scalarType))
+      return arith::AddFOp::create(b, loc, acc, term);
+    return arith::AddIOp::create(b, loc, acc, term);
+  };
+  if (parallelTop && choice->coupledBy < 0 && isa<FloatType>(scalarType)) {
+    SmallVector<Value> results = emitLoop(*choice, {zero}, true, [&](ValueRange) {
+      FailureOr<Value> term = sum(vars, body, false);
+      if (failed(term)) {
+        failedBody = true;
+        return SmallVector<Value>{zero};
+      }
+      return SmallVector<Value>{*term};
+    });
+    if (failedBody)
+      return failure();
+    return results[0];
+  }
+  SmallVector<Value> results = emitLoop(*choice, {zero}, false, [&](ValueRange args) {
+    FailureOr<Value> term = sum(vars, body, false);
+    if (failed(term)) {
+      failedBody = true;
+      return SmallVector<Value>{args[0]};
+    }
+    return SmallVector<Value>{accumulate(args[0], *term)};
+  });
+  if (failedBody)
+    return failure();
+  return results[0];
+}
+
+FailureOr<Value> IndexExprLowering::evaluate(Block &block) {
+  for (Operation &inner : block) {
+    // Inputs are read where they are used, with the variables bound there.
+    for (Value operand : inner.getOperands()) {
+      auto arg = dyn_cast<BlockArgument>(operand);
+      if (!arg || arg.getOwner() != &op.getBody().front())
+        continue;
+      FailureOr<Value> value = access(arg.getArgNumber());
+      if (failed(value))
+        return failure();
+      l.map(arg, *value);
+    }
+    if (auto yield = dyn_cast<YieldOp>(inner))
+      return l.lookup(yield.getValue());
+    if (auto nested = dyn_cast<IndexSumOp>(inner)) {
+      SmallVector<unsigned> vars(nested.getVars().begin(),
+                                 nested.getVars().end());
+      FailureOr<Value> value =
+          sum(vars, [&]() { return evaluate(nested.getBody().front()); },
+              false);
+      if (failed(value))
+        return failure();
+      l.map(nested.getResult(), *value);
+      continue;
+    }
+    if (auto yield = dyn_cast<IndexSumYieldOp>(inner))
+      return l.lookup(yield.getValue());
+    if (failed(l.lowerOp(&inner)))
+      return failure();
+  }
+  return op.emitError("index expression body without a terminator");
+}
+
+LogicalResult IndexExprLowering::lowerLocal() {
+  // Everything is static: unroll every variable's range.
+  unsigned numVars = op.getIndexVars().size();
+  SmallVector<int64_t> extents(numVars, 1);
+  for (unsigned v = 0; v < numVars; ++v)
+    for (Attribute lvl : op.getDomain(v))
+      extents[v] *= cast<IntegerAttr>(lvl).getInt();
+  ArrayRef<int64_t> resultVars = op.getResultIndices();
+  SmallVector<unsigned> summed;
+  for (unsigned v = 0; v < numVars; ++v)
+    if (!llvm::is_contained(resultVars, v) && !nestedVars.contains(v))
+      summed.push_back(v);
+  auto bindValue = [&](unsigned v, int64_t value) {
+    SmallVector<Value> levels(numLevels(v));
+    for (int64_t i = numLevels(v) - 1; i >= 0; --i) {
+      int64_t size = cast<IntegerAttr>(level(v, i)).getInt();
+      levels[i] = l.indexConstant(value % size);
+      value /= size;
+    }
+    bound[v] = levels;
+  };
+  auto forEach = [&](ArrayRef<unsigned> vars,
+                     function_ref<LogicalResult()> f) -> LogicalResult {
+    int64_t total = 1;
+    for (unsigned v : vars)
+      total *= extents[v];
+    for (int64_t flat = 0; flat < total; ++flat) {
+      int64_t rest = flat;
+      for (unsigned v : llvm::reverse(vars)) {
+        bindValue(v, rest % extents[v]);
+        rest /= extents[v];
+      }
+      if (failed(f()))
+        return failure();
+    }
+    return success();
+  };
+  SmallVector<unsigned> free(resultVars.begin(), resultVars.end());
+  // Components in level-major order of the result are produced by
+  // enumerating the result's level-major indices.
+  int64_t n = numComponents(op.getType());
+  SmallVector<Value> components(n);
+  auto resultPosition = [&]() {
+    SmallVector<int64_t> extentsLM;
+    SmallVector<Value> indices = levelMajor(op.getType(), resultVars);
+    unsigned maxLevels = 0;
+    for (int64_t v : resultVars)
+      maxLevels = std::max(maxLevels, numLevels(v));
+    for (unsigned lvl = 0; lvl < maxLevels; ++lvl)
+      for (int64_t v : resultVars)
+        if (lvl < numLevels(v))
+          extentsLM.push_back(cast<IntegerAttr>(level(v, lvl)).getInt());
+    int64_t flat = 0;
+    for (auto [index, size] : llvm::zip(indices, extentsLM))
+      flat = flat * size +
+             cast<arith::ConstantIndexOp>(index.getDefiningOp()).value();
+    return flat;
+  };
+  LogicalResult result = forEach(free, [&]() -> LogicalResult {
+    Value total;
+    LogicalResult inner = forEach(summed, [&]() -> LogicalResult {
+      FailureOr<Value> term = evaluate(op.getBody().front());
+      if (failed(term))
+        return failure();
+      total = !total ? *term
+              : isa<FloatType>(scalarType)
+                  ? arith::AddFOp::create(b, loc, total, *term).getResult()
+                  : arith::AddIOp::create(b, loc, total, *term).getResult();
+      return success();
+    });
+    if (failed(inner))
+      return failure();
+    components[free.empty() ? 0 : resultPosition()] = total;
+    return success();
+  });
+  if (failed(result))
+    return failure();
+  l.map(op, l.fromComponents(l.convertType(op.getType()), components));
+  return success();
+}
+
+LogicalResult IndexExprLowering::lower() {
+  op.walk([&](IndexSumOp nested) {
+    for (int64_t v : nested.getVars())
+      nestedVars.insert(v);
+  });
+  bool system = hasSetDimension(op.getType()) ||
+                llvm::any_of(op.getInputs().getTypes(), hasSetDimension);
+  if (!system)
+    return lowerLocal();
+
+  unsigned numVars = op.getIndexVars().size();
+  for (unsigned v = 0; v < numVars; ++v)
+    for (unsigned i = 1; i < numLevels(v); ++i)
+      if (!isa<IntegerAttr>(level(v, i)))
+        return op.emitError("index variables whose inner levels are sets are "
+                            "not supported by the loop lowering");
+  for (auto [i, input] : llvm::enumerate(op.getInputs())) {
+    auto type = dyn_cast<SystemTensorType>(input.getType());
+    if (type && type.isSystem() && type.getOrder() == 2 &&
+        isa<StringAttr>(type.getDims()[0]) &&
+        isa<StringAttr>(type.getDims()[1]) &&
+        !l.storages.lookup(input).isMatrix())
+      return op.emitError("input #")
+             << i << " is a system matrix of unknown sparsity";
+  }
+
+  ArrayRef<int64_t> resultVars = op.getResultIndices();
+  SmallVector<unsigned> summed;
+  for (unsigned v = 0; v < numVars; ++v)
+    if (!llvm::is_contained(resultVars, v) && !nestedVars.contains(v))
+      summed.push_back(v);
+  auto body = [&]() { return evaluate(op.getBody().front()); };
+
+  // A scalar: one sum.
+  if (resultVars.empty()) {
+    FailureOr<Value> total = sum(summed, body, /*parallelTop=*/true);
+    if (failed(total))
+      return failure();
+    l.map(op, *total);
+    return success();
+  }
+
+  auto type = dyn_cast<SystemTensorType>(op.getType());
+  if (!type || !type.isSystem())
+    return op.emitError("an index expression over sets must produce a "
+                        "system tensor or a scalar");
+  // A matrix result takes the union of its inputs' sparsity; a vector
+  // result is dense.
+  if (type.getOrder() == 2 && isa<StringAttr>(type.getDims()[0]) &&
+      isa<StringAttr>(type.getDims()[1])) {
+    if (!summed.empty())
+      return op.emitError("products of system matrices are not supported by "
+                          "the loop lowering");
+    std::optional<Storage> storage;
+    for (auto [i, input] : llvm::enumerate(op.getInputs())) {
+      Storage s = l.storages.lookup(input);
+      if (!s.isMatrix())
+        continue;
+      if (op.getInputIndexList(i) != resultVars)
+        return op.emitError("input #")
+               << i << " is read transposed; the loop lowering needs "
+                       "matrices read in the result's orientation";
+      if (!storage || s.contains(*storage))
+        storage = s;
+      else if (!storage->contains(s))
+        return op.emitError("cannot combine matrices stored as ")
+               << storage->describe() << " and " << s.describe()
+               << "; neither sparsity contains the other";
+    }
+    if (!storage)
+      return op.emitError("a system matrix result needs a sparse input");
+    resultStorage = *storage;
+  }
+  Value output = l.allocSystem(loc, type, resultStorage);
+  l.storages[op] = resultStorage;
+
+  // Loops over the result's levels, then the sum, then the store.
+  SmallVector<unsigned> free(resultVars.begin(), resultVars.end());
+  unsigned resultOperand = op.getInputs().size();
+  std::function<LogicalResult(bool)> loopFree =
+      [&](bool outermost) -> LogicalResult {
+    std::optional<Choice> choice = choose(free);
+    if (!choice) {
+      FailureOr<Value> value = sum(summed, body, false);
+      if (failed(value))
+        return failure();
+      SmallVector<Value> indices = levelMajor(type, resultVars);
+      if (resultStorage.isMatrix()) {
+        indices.erase(indices.begin(), indices.begin() + 2);
+        indices.insert(indices.begin(), positions.lookup(resultOperand));
+      }
+      memref::StoreOp::create(b, loc, *value, output, indices);
+      return success();
+    }
+    LogicalResult inner = success();
+    emitLoop(*choice, {}, outermost && choice->coupledBy < 0,
+             [&](ValueRange) {
+               if (failed(loopFree(false)))
+                 inner = failure();
+               return SmallVector<Value>{};
+             });
+    return inner;
+  };
+  if (failed(loopFree(true)))
+    return failure();
+  l.map(op, output);
+  return success();
+}
+
+LogicalResult FunctionLowering::lowerIndexExpr(IndexExprOp op) {
+  return IndexExprLowering(*this, op).lower();
+}

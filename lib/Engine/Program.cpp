@@ -95,8 +95,7 @@ llvm::Error Program::loadFile(llvm::StringRef path) {
 
 llvm::Error Program::loadString(llvm::StringRef source,
                                 llvm::StringRef bufferName) {
-  auto module = importSimit(source, bufferName, impl->context,
-                            impl->options.precision);
+  auto module = importSimit(source, bufferName, impl->context, impl->options);
   if (!module)
     return module.takeError();
   impl->reset(std::move(*module));

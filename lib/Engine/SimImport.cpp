@@ -4,6 +4,7 @@
 
 #include "simit/Frontend/Frontend.h"
 
+#include "llvm/ADT/STLExtras.h"
 #include "llvm/Support/MemoryBuffer.h"
 #include "llvm/Support/SourceMgr.h"
 
@@ -11,7 +12,7 @@ using namespace simit;
 
 llvm::Expected<mlir::OwningOpRef<mlir::ModuleOp>>
 simit::importSimit(llvm::StringRef source, llvm::StringRef bufferName,
-                   mlir::MLIRContext &context, FloatPrecision precision) {
+                   mlir::MLIRContext &context, const ProgramOptions &options) {
   llvm::SourceMgr sourceMgr;
   unsigned buffer = sourceMgr.AddNewSourceBuffer(
       llvm::MemoryBuffer::getMemBufferCopy(source, bufferName), llvm::SMLoc());
@@ -26,8 +27,10 @@ simit::importSimit(llvm::StringRef source, llvm::StringRef bufferName,
     diags.print(os);
     return llvm::createStringError(text);
   }
+  for (std::unique_ptr<frontend::FuncDecl> &func : program->funcs)
+    if (llvm::is_contained(options.hostFunctions, func->name))
+      func->isExport = true;
   (void)context;
-  (void)precision;
   return llvm::createStringError(
       bufferName + ": the program is legal, but this build's frontend has no "
                    "IR generator yet, so it cannot be compiled");

@@ -13,11 +13,12 @@
 namespace simit {
 
 /// Parses, checks and translates one Simit program (one `%%%` section at
-/// most) into the simit dialect. Errors carry the frontend's diagnostics
-/// (`file:line:col: error: ...` with the source line and a caret).
+/// most) into the simit dialect, exporting options.hostFunctions as well.
+/// Errors carry the frontend's diagnostics (`file:line:col: error: ...`
+/// with the source line and a caret).
 llvm::Expected<mlir::OwningOpRef<mlir::ModuleOp>>
 importSimit(llvm::StringRef source, llvm::StringRef bufferName,
-            mlir::MLIRContext &context, FloatPrecision precision);
+            mlir::MLIRContext &context, const ProgramOptions &options);
 
 } // namespace simit
 

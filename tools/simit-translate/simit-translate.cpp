@@ -1,13 +1,17 @@
 //===- simit-translate.cpp - .sim to MLIR ---------------------------------===//
 //
 // --import-sim parses and checks a .sim file (each enabled `%%%` section as
-// its own program) and prints the module; --dump-ast prints the checked AST.
+// its own program) and prints the generated (and verified) simit-dialect
+// module; --dump-ast prints the checked AST.
 // Diagnostics go to stderr; the exit status is 1 when any program fails.
 //
 //===----------------------------------------------------------------------===//
 
 #include "simit/Frontend/ASTPrinter.h"
 #include "simit/Frontend/Frontend.h"
+#include "simit/Frontend/IRGen.h"
+
+#include "mlir/IR/MLIRContext.h"
 
 #include "llvm/Support/CommandLine.h"
 #include "llvm/Support/InitLLVM.h"
@@ -35,6 +39,16 @@ static llvm::cl::opt<int>
                                 "0-based index"),
                  llvm::cl::init(-1));
 
+static llvm::cl::opt<bool>
+    singlePrecision("single-precision",
+                    llvm::cl::desc("Compile `float` as f32 instead of f64"),
+                    llvm::cl::init(false));
+
+static llvm::cl::opt<bool> printDebugLocations(
+    "print-locations",
+    llvm::cl::desc("Print the source locations of the generated operations"),
+    llvm::cl::init(false));
+
 /// Compiles one program; prints its output or its diagnostics.
 static bool processProgram(llvm::StringRef text, llvm::StringRef bufferName) {
   llvm::SourceMgr sourceMgr;
@@ -43,14 +57,27 @@ static bool processProgram(llvm::StringRef text, llvm::StringRef bufferName) {
   DiagnosticEngine diags(sourceMgr);
   std::unique_ptr<Program> program = parseProgram(sourceMgr, id, diags);
   bool ok = !diags.hasErrors() && checkProgram(*program, diags);
+  mlir::MLIRContext context;
+  mlir::OwningOpRef<mlir::ModuleOp> module;
+  if (ok && action == Action::ImportSim) {
+    IRGenOptions options;
+    options.singlePrecision = singlePrecision;
+    module = generateIR(*program, diags, context, options);
+    ok = module != nullptr;
+  }
   llvm::outs().flush();
   diags.print(llvm::errs());
   if (!ok)
     return false;
-  if (action == Action::DumpAST)
+  if (action == Action::DumpAST) {
     printProgram(*program, llvm::outs());
-  else
-    llvm::outs() << "module {\n}\n";
+    return true;
+  }
+  mlir::OpPrintingFlags flags;
+  if (printDebugLocations)
+    flags.enableDebugInfo(/*enable=*/true, /*prettyForm=*/false);
+  module->print(llvm::outs(), flags);
+  llvm::outs() << "\n";
   return true;
 }
 

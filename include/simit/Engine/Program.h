@@ -34,6 +34,9 @@ enum class FloatPrecision { Double, Single };
 
 struct ProgramOptions {
   FloatPrecision precision = FloatPrecision::Double;
+  /// Functions of a .sim program to compile with a host ABI although they
+  /// are not `export`ed: the functions `%!` assertions and --eval call.
+  std::vector<std::string> hostFunctions;
 };
 
 /// Where --emit stops: the simit dialect as imported, the loops over sets

@@ -167,9 +167,9 @@ Value FunctionLowering::getBinding(BindingKind kind, ArrayRef<StringRef> names,
   std::string key = bindingKindName(kind).str();
   for (StringRef name : names)
     key += ":" + name.str();
-  auto it = bindings.find(key);
-  if (it != bindings.end())
-    return it->second.second;
+  auto it = bindingPositions.find(key);
+  if (it != bindingPositions.end())
+    return bindings[it->second].second;
 
   MLIRContext *ctx = b.getContext();
   SmallVector<NamedAttribute> entries;
@@ -194,8 +194,8 @@ Value FunctionLowering::getBinding(BindingKind kind, ArrayRef<StringRef> names,
   }
   Value argument =
       function.front().addArgument(type, function.getLoc());
-  bindings.insert(
-      {key, {DictionaryAttr::get(ctx, entries), argument}});
+  bindingPositions[key] = bindings.size();
+  bindings.push_back({DictionaryAttr::get(ctx, entries), argument});
   return argument;
 }
 
@@ -429,18 +429,18 @@ LogicalResult FunctionLowering::lowerIf(scf::IfOp op) {
                                    lookup(op.getCondition()),
                                    /*withElseRegion=*/true);
   for (auto [from, to] : llvm::zip(op->getRegions(), lowered->getRegions())) {
-    Block *dest = &to->front();
+    Block *dest = &to.front();
     OpBuilder::InsertionGuard guard(b);
     b.setInsertionPointToEnd(dest);
     if (!dest->empty() && dest->back().hasTrait<OpTrait::IsTerminator>())
       dest->back().erase();
-    if (from->empty()) {
+    if (from.empty()) {
       scf::YieldOp::create(b, op.getLoc());
       continue;
     }
-    if (failed(lowerOps(from->front())))
+    if (failed(lowerOps(from.front())))
       return failure();
-    auto yield = cast<scf::YieldOp>(from->front().getTerminator());
+    auto yield = cast<scf::YieldOp>(from.front().getTerminator());
     scf::YieldOp::create(b, yield.getLoc(),
                          keptOperands(*this, yield.getOperands()));
   }
@@ -846,8 +846,8 @@ LogicalResult FunctionLowering::run(func::FuncOp original) {
   if (failed(lowerOps(original.front())))
     return failure();
 
-  for (auto &entry : bindings)
-    bindingAttrs.push_back(entry.second.first);
+  for (auto &binding : bindings)
+    bindingAttrs.push_back(binding.first);
   function.setType(FunctionType::get(
       ctx, function.front().getArgumentTypes(), resultTypes));
   function->setAttr("simit.bindings", ArrayAttr::get(ctx, bindingAttrs));

@@ -80,7 +80,7 @@ void makeAtomic(memref::StoreOp store, const Accumulation &acc) {
   if (acc.combine->use_empty())
     acc.combine->erase();
   if (acc.load->use_empty())
-    acc.load.erase();
+    acc.load->erase();
 }
 
 struct GpuScatterAtomics

@@ -16,7 +16,7 @@
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
 #include "mlir/IR/Builders.h"
-#include "llvm/ADT/MapVector.h"
+#include "llvm/ADT/StringMap.h"
 
 #include <functional>
 
@@ -187,7 +187,9 @@ private:
   /// use: no operation in between can write to the source.
   bool canAlias(Operation *read, function_ref<bool(Operation *)> writes);
 
-  llvm::MapVector<std::string, std::pair<DictionaryAttr, Value>> bindings;
+  /// The bindings in argument order, and their positions by key.
+  SmallVector<std::pair<DictionaryAttr, Value>> bindings;
+  llvm::StringMap<unsigned> bindingPositions;
   SmallVector<Type> resultTypes;
 };
 

@@ -287,7 +287,7 @@ IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
           }
         });
     unbind(choice);
-    return llvm::to_vector(loop.getResults());
+    return SmallVector<Value>(loop.getResults());
   }
   auto loop = scf::ForOp::create(
       b, loc, lb, ub, step, inits,
@@ -299,7 +299,7 @@ IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
         scf::YieldOp::create(b, loc, results);
       });
   unbind(choice);
-  return llvm::to_vector(loop.getResults());
+  return SmallVector<Value>(loop.getResults());
 }
 
 FailureOr<Value>

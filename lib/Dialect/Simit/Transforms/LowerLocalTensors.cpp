@@ -11,6 +11,8 @@
 
 #include "LoopsLowering.h"
 
+#include "mlir/Dialect/Tensor/IR/Tensor.h"
+
 using namespace mlir;
 using namespace mlir::simit;
 using namespace mlir::simit::loops;

@@ -1,0 +1,188 @@
+//===- IRGen.cpp - Checked Simit AST to the simit dialect -----------------===//
+//
+// The module: externs become `simit.extern`, functions `func.func` (exported
+// ones carry `simit.export`; generic functions are emitted once per instance
+// under sema's instance name), and everything the runtime implements is a
+// call to a private declaration:
+//
+//   lu chol lusolve lltsolve lumatsolve lltmatsolve lufree cholfree
+//   triangularSolve clock storeTime  ->  @simit_rt_<name>
+//   extern func f                    ->  @f (implemented by the host)
+//
+// A runtime function used with two signatures (e.g. `lu` of two matrix
+// types) gets one declaration per signature, `@simit_rt_lu`, then
+// `@simit_rt_lu_1`, ...; every declaration carries `simit.runtime_function`
+// naming the intrinsic (or `simit.extern_function` for host functions).
+//
+//===----------------------------------------------------------------------===//
+
+#include "IRGenImpl.h"
+
+#include "mlir/Dialect/Arith/IR/Arith.h"
+#include "mlir/Dialect/Complex/IR/Complex.h"
+#include "mlir/Dialect/Math/IR/Math.h"
+#include "mlir/Dialect/SCF/IR/SCF.h"
+#include "mlir/Dialect/Tensor/IR/Tensor.h"
+#include "mlir/Dialect/UB/IR/UBOps.h"
+#include "mlir/IR/Diagnostics.h"
+#include "mlir/IR/Verifier.h"
+
+using namespace simit::frontend;
+using namespace mlir;
+namespace dialect = mlir::simit;
+namespace frontend = ::simit::frontend;
+
+void frontend::loadIRGenDialects(MLIRContext &context) {
+  context.loadDialect<dialect::SimitDialect, func::FuncDialect, scf::SCFDialect,
+                      arith::ArithDialect, math::MathDialect,
+                      complex::ComplexDialect, tensor::TensorDialect,
+                      ub::UBDialect>();
+}
+
+OwningOpRef<ModuleOp>
+frontend::generateIR(const Program &program, frontend::DiagnosticEngine &diags,
+                            MLIRContext &context, const IRGenOptions &options) {
+  loadIRGenDialects(context);
+  return IRGenerator(program, diags, context, options).generate();
+}
+
+IRGenerator::IRGenerator(const Program &program, frontend::DiagnosticEngine &diags,
+                         MLIRContext &context, const IRGenOptions &options)
+    : program(program), diags(diags), context(context), options(options),
+      builder(&context) {
+  llvm::SourceMgr &sourceMgr = diags.getSourceMgr();
+  llvm::StringRef name =
+      sourceMgr.getNumBuffers() == 0
+          ? "<unknown>"
+          : sourceMgr.getMemoryBuffer(sourceMgr.getMainFileID())
+                ->getBufferIdentifier();
+  fileName = StringAttr::get(&context, name);
+}
+
+OwningOpRef<ModuleOp> IRGenerator::generate() {
+  OwningOpRef<ModuleOp> owned =
+      ModuleOp::create(FileLineColLoc::get(fileName, 1, 1));
+  module = *owned;
+  builder.setInsertionPointToEnd(module.getBody());
+  for (const Decl *decl : program.order) {
+    if (auto *var = dyn_cast<VarDecl>(decl)) {
+      if (var->role == VarDecl::Role::Extern)
+        genExtern(*var);
+      continue;
+    }
+    auto *func = dyn_cast<FuncDecl>(decl);
+    if (!func || func->isIntrinsic || func->isExtern)
+      continue; // extern functions are declared where they are called
+    if (func->isGeneric()) {
+      for (const auto &instance : func->instances)
+        genFunction(*instance);
+      continue;
+    }
+    genFunction(*func);
+  }
+  if (failed || !verifyModule())
+    return nullptr;
+  return owned;
+}
+
+void IRGenerator::genExtern(const VarDecl &global) {
+  mlir::Type type = global.type->isSet() ? setType(&global)
+                                   : convertType(global.type, global.loc);
+  dialect::ExternOp::create(builder, loc(global.loc), global.name, type);
+}
+
+std::string IRGenerator::symbolOf(const FuncDecl &func) const {
+  return func.isInstance() ? func.mangledName : func.name;
+}
+
+FunctionType IRGenerator::functionType(const FuncDecl &func) {
+  SmallVector<mlir::Type> inputs, results;
+  for (const auto &param : func.params)
+    inputs.push_back(paramType(*param));
+  for (const auto &result : func.results)
+    results.push_back(convertType(result->type, result->loc));
+  return builder.getFunctionType(inputs, results);
+}
+
+void IRGenerator::genFunction(const FuncDecl &func) {
+  currentFunc = &func;
+  bindings.clear();
+  auto function = func::FuncOp::create(builder, loc(func.loc), symbolOf(func),
+                                       functionType(func));
+  if (func.isExport)
+    function->setAttr("simit.export", builder.getUnitAttr());
+  mlir::Block *entry = function.addEntryBlock();
+  OpBuilder::InsertionGuard guard(builder);
+  builder.setInsertionPointToStart(entry);
+  for (auto [param, argument] :
+       llvm::zip(func.params, entry->getArguments()))
+    bindings[param.get()] = {argument, isSlotParam(*param)};
+  for (const auto &result : func.results)
+    allocSlot(*result);
+  if (func.body)
+    genBlock(*func.body);
+  SmallVector<Value> results;
+  SMLoc end = func.body ? func.body->loc : func.loc;
+  for (const auto &result : func.results)
+    results.push_back(dialect::LoadOp::create(builder, loc(result->loc),
+                                            bindings[result.get()].value));
+  func::ReturnOp::create(builder, loc(end), results);
+  currentFunc = nullptr;
+}
+
+func::FuncOp IRGenerator::declareRuntimeFunction(llvm::StringRef base,
+                                                 llvm::StringRef simitName,
+                                                 FunctionType type) {
+  for (unsigned k = 0;; ++k) {
+    std::string name = k == 0 ? base.str() : (base + "_" + Twine(k)).str();
+    auto it = runtimeFunctions.find(name);
+    if (it != runtimeFunctions.end()) {
+      if (it->second.getFunctionType() == type)
+        return it->second;
+      continue;
+    }
+    OpBuilder::InsertionGuard guard(builder);
+    builder.setInsertionPointToEnd(module.getBody());
+    auto decl = func::FuncOp::create(builder, module.getLoc(), name, type);
+    decl.setPrivate();
+    bool isHost = !base.starts_with("simit_rt_");
+    decl->setAttr(isHost ? "simit.extern_function" : "simit.runtime_function",
+                  builder.getStringAttr(simitName));
+    runtimeFunctions[name] = decl;
+    return decl;
+  }
+}
+
+/// Runs the verifier; its messages become internal errors at the source
+/// position of the offending operation.
+bool IRGenerator::verifyModule() {
+  llvm::SourceMgr &sourceMgr = diags.getSourceMgr();
+  bool ok = true;
+  ScopedDiagnosticHandler handler(&context, [&](mlir::Diagnostic &diag) {
+    if (diag.getSeverity() != mlir::DiagnosticSeverity::Error)
+      return success();
+    ok = false;
+    SMLoc where;
+    if (auto fileLoc = dyn_cast<FileLineColLoc>(diag.getLocation()))
+      if (sourceMgr.getNumBuffers() != 0)
+        where = sourceMgr.FindLocForLineAndColumn(sourceMgr.getMainFileID(),
+                                                  fileLoc.getLine(),
+                                                  fileLoc.getColumn());
+    std::string text;
+    llvm::raw_string_ostream os(text);
+    os << "internal error: the generated IR does not verify: " << diag;
+    for (const mlir::Diagnostic &note : diag.getNotes())
+      os << "; " << note;
+    diags.error(where, text);
+    return success();
+  });
+  return succeeded(verify(module)) && ok;
+}
+
+Value IRGenerator::unsupported(SMLoc where, const Twine &what, mlir::Type type) {
+  diags.error(where, "not supported by the IR generator: " + what);
+  failed = true;
+  if (!type)
+    type = builder.getI32Type();
+  return ub::PoisonOp::create(builder, loc(where), type);
+}

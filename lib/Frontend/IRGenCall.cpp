@@ -1,0 +1,200 @@
+//===- IRGenCall.cpp - Calls, intrinsics and maps -------------------------===//
+//
+// User functions are func.call; an `inout` tensor argument passes its
+// variable's slot, or a temporary slot copied back into the argument (a
+// component, block or field) after the call. Intrinsics become math,
+// arith, complex and simit ops, or calls of the runtime (see IRGen.cpp).
+// `map` is simit.assemble with `reduce +` and simit.map otherwise.
+//
+//===----------------------------------------------------------------------===//
+
+#include "IRGenImpl.h"
+
+#include "mlir/Dialect/Arith/IR/Arith.h"
+#include "mlir/Dialect/Complex/IR/Complex.h"
+#include "mlir/Dialect/Math/IR/Math.h"
+
+using namespace simit::frontend;
+using namespace mlir;
+namespace dialect = mlir::simit;
+namespace frontend = ::simit::frontend;
+
+SmallVector<Value> IRGenerator::genValues(const Expr &e) {
+  if (auto *call = dyn_cast<CallExpr>(&e))
+    return genCall(*call);
+  if (auto *map = dyn_cast<MapExpr>(&e))
+    return genMap(*map);
+  return {genExpr(e)};
+}
+
+SmallVector<Value> IRGenerator::genCall(const CallExpr &e) {
+  switch (e.intrinsic) {
+  case Intrinsic::None:
+    return genUserCall(e);
+  case Intrinsic::Lu: return genRuntimeCall(e, "lu");
+  case Intrinsic::Chol: return genRuntimeCall(e, "chol");
+  case Intrinsic::LuSolve: return genRuntimeCall(e, "lusolve");
+  case Intrinsic::LltSolve: return genRuntimeCall(e, "lltsolve");
+  case Intrinsic::LuMatSolve: return genRuntimeCall(e, "lumatsolve");
+  case Intrinsic::LltMatSolve: return genRuntimeCall(e, "lltmatsolve");
+  case Intrinsic::LuFree: return genRuntimeCall(e, "lufree");
+  case Intrinsic::CholFree: return genRuntimeCall(e, "cholfree");
+  case Intrinsic::TriangularSolve: return genRuntimeCall(e, "triangularSolve");
+  case Intrinsic::Clock: return genRuntimeCall(e, "clock");
+  case Intrinsic::StoreTime: return genRuntimeCall(e, "storeTime");
+  default:
+    return {genIntrinsic(e)};
+  }
+}
+
+SmallVector<mlir::Type> IRGenerator::convertResultTypes(const Expr &e) {
+  SmallVector<mlir::Type> types;
+  if (e.type->isResults()) {
+    for (const TypePtr &t : e.type->results)
+      types.push_back(convertType(t, e.loc));
+  } else if (!e.type->isVoid()) {
+    types.push_back(convertType(e.type, e.loc));
+  }
+  return types;
+}
+
+SmallVector<Value> IRGenerator::genRuntimeCall(const CallExpr &e,
+                                               StringRef name) {
+  SmallVector<Value> args;
+  for (const ExprPtr &arg : e.args)
+    args.push_back(genExpr(*arg));
+  SmallVector<mlir::Type> results = convertResultTypes(e);
+  func::FuncOp callee = declareRuntimeFunction(
+      ("simit_rt_" + name).str(), name,
+      builder.getFunctionType(ValueRange(args).getTypes(), results));
+  auto call = func::CallOp::create(builder, loc(e.loc), callee, args);
+  return SmallVector<Value>(call.getResults());
+}
+
+SmallVector<Value> IRGenerator::genUserCall(const CallExpr &e) {
+  const FuncDecl &callee = *e.func;
+  struct CopyBack {
+    const Expr *argument;
+    Value slot;
+  };
+  SmallVector<CopyBack> copyBacks;
+  SmallVector<Value> args;
+  for (auto [param, arg] : llvm::zip(callee.params, e.args)) {
+    if (!isSlotParam(*param)) {
+      args.push_back(genExpr(*arg));
+      continue;
+    }
+    // Pass a variable's own slot; anything else through a temporary.
+    if (auto *name = dyn_cast<NameExpr>(arg.get())) {
+      auto *var = dyn_cast<VarDecl>(name->decl);
+      auto it = var ? bindings.find(var) : bindings.end();
+      if (var && var->role == VarDecl::Role::Extern) {
+        args.push_back(slotOf(*var, arg->loc));
+        continue;
+      }
+      if (it != bindings.end() && it->second.isSlot) {
+        args.push_back(it->second.value);
+        continue;
+      }
+    }
+    Value value = genExpr(*arg);
+    Value slot = dialect::AllocOp::create(
+        builder, loc(arg->loc), dialect::RefType::get(&context, value.getType()));
+    dialect::StoreOp::create(builder, loc(arg->loc), value, slot);
+    args.push_back(slot);
+    copyBacks.push_back({arg.get(), slot});
+  }
+
+  func::CallOp call;
+  if (callee.isExtern) {
+    SmallVector<mlir::Type> results = convertResultTypes(e);
+    func::FuncOp decl = declareRuntimeFunction(
+        callee.name, callee.name,
+        builder.getFunctionType(ValueRange(args).getTypes(), results));
+    call = func::CallOp::create(builder, loc(e.loc), decl, args);
+  } else {
+    auto function = module.lookupSymbol<func::FuncOp>(symbolOf(callee));
+    if (!function)
+      return {unsupported(e.loc, "a call of '" + callee.name +
+                                     "' before its definition")};
+    call = func::CallOp::create(builder, loc(e.loc), function, args);
+  }
+  for (const CopyBack &copy : copyBacks)
+    writeTarget(*copy.argument,
+                dialect::LoadOp::create(builder, loc(copy.argument->loc),
+                                      copy.slot),
+                copy.argument->loc);
+  return SmallVector<Value>(call.getResults());
+}
+
+Value IRGenerator::genIntrinsic(const CallExpr &e) {
+  SmallVector<Value> args;
+  for (const ExprPtr &arg : e.args)
+    args.push_back(genExpr(*arg));
+  Location l = loc(e.loc);
+  mlir::Type resultType = convertType(e.type, e.loc);
+  switch (e.intrinsic) {
+  case Intrinsic::Mod: return arith::RemSIOp::create(builder, l, args[0], args[1]);
+  case Intrinsic::Sin: return math::SinOp::create(builder, l, args[0]);
+  case Intrinsic::Cos: return math::CosOp::create(builder, l, args[0]);
+  case Intrinsic::Tan: return math::TanOp::create(builder, l, args[0]);
+  case Intrinsic::Asin: return math::AsinOp::create(builder, l, args[0]);
+  case Intrinsic::Acos: return math::AcosOp::create(builder, l, args[0]);
+  case Intrinsic::Sqrt: return math::SqrtOp::create(builder, l, args[0]);
+  case Intrinsic::Cbrt: return math::CbrtOp::create(builder, l, args[0]);
+  case Intrinsic::Log: return math::LogOp::create(builder, l, args[0]);
+  case Intrinsic::Exp: return math::ExpOp::create(builder, l, args[0]);
+  case Intrinsic::Abs: return math::AbsFOp::create(builder, l, args[0]);
+  case Intrinsic::Atan2: return math::Atan2Op::create(builder, l, args[0], args[1]);
+  case Intrinsic::Pow: return math::PowFOp::create(builder, l, args[0], args[1]);
+  case Intrinsic::Max: return arith::MaximumFOp::create(builder, l, args[0], args[1]);
+  case Intrinsic::Min: return arith::MinimumFOp::create(builder, l, args[0], args[1]);
+  case Intrinsic::Det:
+  case Intrinsic::Det2:
+  case Intrinsic::Det4:
+    return dialect::DetOp::create(builder, l, resultType, args[0]);
+  case Intrinsic::Inv:
+  case Intrinsic::Inv2:
+  case Intrinsic::Inv4:
+    return dialect::InvOp::create(builder, l, args[0]);
+  case Intrinsic::Cross: return dialect::CrossOp::create(builder, l, args[0], args[1]);
+  case Intrinsic::Norm: return dialect::NormOp::create(builder, l, resultType, args[0]);
+  case Intrinsic::Dot: return dialect::DotOp::create(builder, l, resultType, args[0], args[1]);
+  case Intrinsic::CreateComplex:
+    return complex::CreateOp::create(builder, l, resultType, args[0], args[1]);
+  case Intrinsic::ComplexNorm: return complex::AbsOp::create(builder, l, args[0]);
+  case Intrinsic::ComplexGetReal: return complex::ReOp::create(builder, l, args[0]);
+  case Intrinsic::ComplexGetImag: return complex::ImOp::create(builder, l, args[0]);
+  case Intrinsic::ComplexConj: return complex::ConjOp::create(builder, l, args[0]);
+  default:
+    return unsupported(e.loc, "intrinsic '" + e.callee + "'", resultType);
+  }
+}
+
+SmallVector<Value> IRGenerator::genMap(const MapExpr &e) {
+  const FuncDecl &callee = *e.func;
+  auto function = module.lookupSymbol<func::FuncOp>(symbolOf(callee));
+  if (!function)
+    return {unsupported(e.funcLoc, "a map of '" + callee.name +
+                                       "' before its definition")};
+  SmallVector<Value> extras;
+  for (auto [param, arg] : llvm::zip(callee.params, e.args)) {
+    if (isSlotParam(*param))
+      return {unsupported(arg->loc, "an inout extra argument of a map")};
+    extras.push_back(genExpr(*arg));
+  }
+  Value set = genSet(e.targetSet, e.targetLoc);
+  Value grid = e.grid ? genSet(e.grid, e.throughLoc) : Value();
+  TypeRange results = function.getResultTypes();
+  Location l = loc(e.loc);
+  if (e.reduce)
+    return SmallVector<Value>(
+        dialect::AssembleOp::create(builder, l, results, symbolOf(callee),
+                                  extras, set, grid,
+                                  dialect::ReductionKind::Add)
+            .getResults());
+  return SmallVector<Value>(
+      dialect::MapOp::create(builder, l, results, symbolOf(callee), extras, set,
+                           grid)
+          .getResults());
+}

@@ -1,0 +1,393 @@
+//===- IRGenStmt.cpp - Statements and assignment targets ------------------===//
+//
+// `var`s and results live in zero-initialised simit.alloc slots, so control
+// flow needs no region results: `if` is scf.if (elif in the else region),
+// `while` scf.while with the condition in the before-region, `do … end
+// while` scf.while with the body and the condition in the before-region,
+// `for i in a:b` scf.for over index casts, `for p in S` scf.for up to
+// simit.set_size with simit.set_element.
+//
+// A range loop with constant bounds whose variable picks an endpoint
+// (`v(i)`) is unrolled, so every endpoint is a constant simit.tuple_get:
+// element functions may write results only at their element and endpoints,
+// and the map verifier recognises endpoints by their simit.tuple_get.
+//
+//===----------------------------------------------------------------------===//
+
+#include "IRGenImpl.h"
+
+#include "mlir/Dialect/Arith/IR/Arith.h"
+#include "mlir/Dialect/SCF/IR/SCF.h"
+
+#include <functional>
+
+using namespace simit::frontend;
+using namespace mlir;
+namespace dialect = mlir::simit;
+namespace frontend = ::simit::frontend;
+
+//===----------------------------------------------------------------------===//
+// AST walk
+//===----------------------------------------------------------------------===//
+
+using ExprVisitor = std::function<void(const Expr &)>;
+
+static void walkExpr(const Expr *e, const ExprVisitor &visit);
+
+static void walkExprs(const std::vector<ExprPtr> &exprs,
+                      const ExprVisitor &visit) {
+  for (const ExprPtr &e : exprs)
+    walkExpr(e.get(), visit);
+}
+
+static void walkExpr(const Expr *e, const ExprVisitor &visit) {
+  if (!e)
+    return;
+  visit(*e);
+  switch (e->getKind()) {
+  case Expr::Kind::Call:
+    walkExprs(cast<CallExpr>(e)->args, visit);
+    break;
+  case Expr::Kind::Read:
+    walkExpr(cast<ReadExpr>(e)->base.get(), visit);
+    walkExprs(cast<ReadExpr>(e)->indices, visit);
+    break;
+  case Expr::Kind::TupleRead:
+    walkExpr(cast<TupleReadExpr>(e)->base.get(), visit);
+    walkExpr(cast<TupleReadExpr>(e)->index.get(), visit);
+    break;
+  case Expr::Kind::Field:
+    walkExpr(cast<FieldExpr>(e)->base.get(), visit);
+    break;
+  case Expr::Kind::SetRead:
+    walkExpr(cast<SetReadExpr>(e)->base.get(), visit);
+    walkExprs(cast<SetReadExpr>(e)->offsets, visit);
+    walkExprs(cast<SetReadExpr>(e)->directions, visit);
+    break;
+  case Expr::Kind::Unary:
+    walkExpr(cast<UnaryExpr>(e)->operand.get(), visit);
+    break;
+  case Expr::Kind::Binary:
+    walkExpr(cast<BinaryExpr>(e)->lhs.get(), visit);
+    walkExpr(cast<BinaryExpr>(e)->rhs.get(), visit);
+    break;
+  case Expr::Kind::Compare:
+    walkExprs(cast<CompareExpr>(e)->operands, visit);
+    break;
+  case Expr::Kind::Transpose:
+    walkExpr(cast<TransposeExpr>(e)->operand.get(), visit);
+    break;
+  case Expr::Kind::Map:
+    walkExprs(cast<MapExpr>(e)->args, visit);
+    break;
+  default:
+    break;
+  }
+}
+
+static void walkBlock(const mlir::Block *block, const ExprVisitor &visit) {
+  if (!block)
+    return;
+  for (const StmtPtr &stmt : block->stmts) {
+    switch (stmt->getKind()) {
+    case Stmt::Kind::VarDecl:
+      walkExpr(cast<VarDeclStmt>(*stmt).var->init.get(), visit);
+      break;
+    case Stmt::Kind::Assign:
+      walkExprs(cast<AssignStmt>(*stmt).targets, visit);
+      walkExpr(cast<AssignStmt>(*stmt).value.get(), visit);
+      break;
+    case Stmt::Kind::Expr:
+      walkExpr(cast<ExprStmt>(*stmt).expr.get(), visit);
+      break;
+    case Stmt::Kind::If: {
+      auto &s = cast<IfStmt>(*stmt);
+      walkExprs(s.conditions, visit);
+      for (const auto &b : s.blocks)
+        walkBlock(b.get(), visit);
+      walkBlock(s.elseBlock.get(), visit);
+      break;
+    }
+    case Stmt::Kind::While:
+      walkExpr(cast<WhileStmt>(*stmt).condition.get(), visit);
+      walkBlock(cast<WhileStmt>(*stmt).body.get(), visit);
+      break;
+    case Stmt::Kind::DoWhile:
+      walkBlock(cast<DoWhileStmt>(*stmt).body.get(), visit);
+      walkExpr(cast<DoWhileStmt>(*stmt).condition.get(), visit);
+      break;
+    case Stmt::Kind::For: {
+      auto &s = cast<ForStmt>(*stmt);
+      walkExpr(s.lower.get(), visit);
+      walkExpr(s.upper.get(), visit);
+      walkBlock(s.body.get(), visit);
+      break;
+    }
+    case Stmt::Kind::Print:
+      walkExprs(cast<PrintStmt>(*stmt).args, visit);
+      break;
+    case Stmt::Kind::Apply:
+      walkExpr(cast<ApplyStmt>(*stmt).map.get(), visit);
+      break;
+    case Stmt::Kind::IVarDecl:
+      break;
+    }
+  }
+}
+
+/// Whether `var` occurs in the position of a tuple read inside `body`.
+static bool picksEndpoints(const Block &body, const VarDecl *var) {
+  bool found = false;
+  walkBlock(&body, [&](const Expr &e) {
+    auto *read = dyn_cast<TupleReadExpr>(&e);
+    if (!read || !read->index)
+      return;
+    walkExpr(read->index.get(), [&](const Expr &inner) {
+      if (auto *name = dyn_cast<NameExpr>(&inner))
+        found |= name->decl == var;
+    });
+  });
+  return found;
+}
+
+//===----------------------------------------------------------------------===//
+// Statements
+//===----------------------------------------------------------------------===//
+
+void IRGenerator::genBlock(const Block &block) {
+  for (const StmtPtr &stmt : block.stmts)
+    genStmt(*stmt);
+}
+
+void IRGenerator::genStmt(const Stmt &stmt) {
+  switch (stmt.getKind()) {
+  case Stmt::Kind::VarDecl:
+    genVarDecl(*cast<VarDeclStmt>(stmt).var);
+    return;
+  case Stmt::Kind::IVarDecl:
+    return; // index variables only name loops of index expressions
+  case Stmt::Kind::Assign: {
+    auto &assign = cast<AssignStmt>(stmt);
+    if (assign.isIndexExpr)
+      genIndexAssign(assign);
+    else
+      genAssign(assign);
+    return;
+  }
+  case Stmt::Kind::Expr:
+    (void)genValues(*cast<ExprStmt>(stmt).expr);
+    return;
+  case Stmt::Kind::If:
+    genIf(cast<IfStmt>(stmt), 0);
+    return;
+  case Stmt::Kind::While:
+    genWhile(cast<WhileStmt>(stmt));
+    return;
+  case Stmt::Kind::DoWhile:
+    genDoWhile(cast<DoWhileStmt>(stmt));
+    return;
+  case Stmt::Kind::For:
+    genFor(cast<ForStmt>(stmt));
+    return;
+  case Stmt::Kind::Print:
+    genPrint(cast<PrintStmt>(stmt));
+    return;
+  case Stmt::Kind::Apply:
+    (void)genMap(*cast<ApplyStmt>(stmt).map);
+    return;
+  }
+}
+
+Value IRGenerator::allocSlot(const VarDecl &var) {
+  mlir::Type type = convertType(var.type, var.loc);
+  Value slot = dialect::AllocOp::create(builder, loc(var.loc),
+                                      dialect::RefType::get(&context, type));
+  bindings[&var] = {slot, /*isSlot=*/true};
+  return slot;
+}
+
+Value IRGenerator::slotOf(const VarDecl &var, SMLoc where) {
+  if (var.role == VarDecl::Role::Extern) {
+    mlir::Type type = convertType(var.type, where);
+    return dialect::ExternRefOp::create(builder, loc(where),
+                                      dialect::RefType::get(&context, type),
+                                      var.name);
+  }
+  auto it = bindings.find(&var);
+  if (it != bindings.end() && it->second.isSlot)
+    return it->second.value;
+  return unsupported(where, "writing '" + var.name + "'",
+                     dialect::RefType::get(&context,
+                                         convertType(var.type, where)));
+}
+
+void IRGenerator::genVarDecl(const VarDecl &var) {
+  mlir::Type type = convertType(var.type, var.loc);
+  if (var.role == VarDecl::Role::Const) {
+    // Constant literals take the declared shape (leading 1s may differ).
+    std::optional<FoldedLiteral> literal = foldLiteral(*var.init);
+    Value value = literal && !literal->shape.empty()
+                      ? genConstant(*literal, type, var.init->loc)
+                      : coerce(genExpr(*var.init), type, var.init->loc);
+    bindings[&var] = {value, /*isSlot=*/false};
+    return;
+  }
+  Value init = var.init ? genExpr(*var.init) : Value();
+  Value slot = allocSlot(var);
+  if (init)
+    dialect::StoreOp::create(builder, loc(var.init->loc),
+                           coerce(init, type, var.init->loc), slot);
+}
+
+void IRGenerator::genAssign(const AssignStmt &stmt) {
+  SmallVector<Value> values = stmt.targets.size() == 1
+                                  ? SmallVector<Value>{genExpr(*stmt.value)}
+                                  : genValues(*stmt.value);
+  if (values.size() != stmt.targets.size()) {
+    unsupported(stmt.loc, "an assignment of " + Twine(values.size()) +
+                              " values to " + Twine(stmt.targets.size()) +
+                              " targets");
+    return;
+  }
+  for (auto [target, value] : llvm::zip(stmt.targets, values))
+    writeTarget(*target, value, stmt.value->loc);
+}
+
+void IRGenerator::writeTarget(const Expr &target, Value value, SMLoc where) {
+  Location l = loc(target.loc);
+  if (auto *name = dyn_cast<NameExpr>(&target)) {
+    auto *var = cast<VarDecl>(name->decl);
+    mlir::Type type = convertType(var->type, target.loc);
+    if (var->role == VarDecl::Role::Implicit) {
+      bindings[var] = {coerce(value, type, where), /*isSlot=*/false};
+      return;
+    }
+    dialect::StoreOp::create(builder, l, coerce(value, type, where),
+                           slotOf(*var, target.loc));
+    return;
+  }
+  if (auto *field = dyn_cast<FieldExpr>(&target)) {
+    Value base = genExpr(*field->base);
+    if (field->isSetField)
+      dialect::FieldWriteOp::create(builder, l, value, base, field->field);
+    else
+      dialect::ElemWriteOp::create(builder, l, value, base, field->field);
+    return;
+  }
+  if (auto *read = dyn_cast<ReadExpr>(&target); read && !read->isSlice()) {
+    // Read the whole, replace the part, write the whole back.
+    Value whole = genExpr(*read->base);
+    SmallVector<Value> indices;
+    for (const ExprPtr &index : read->indices)
+      indices.push_back(genIndex(*index));
+    Value part = coerce(value, convertType(target.type, target.loc), where);
+    Value updated =
+        dialect::InsertOp::create(builder, l, part, whole, indices);
+    writeTarget(*read->base, updated, where);
+    return;
+  }
+  unsupported(target.loc, "this assignment target");
+}
+
+void IRGenerator::genIf(const IfStmt &stmt, size_t branch) {
+  const Expr &condition = *stmt.conditions[branch];
+  bool hasElse = branch + 1 < stmt.conditions.size() || stmt.elseBlock;
+  Value c = genExpr(condition);
+  auto ifOp = scf::IfOp::create(builder, loc(condition.loc), c, hasElse);
+  OpBuilder::InsertionGuard guard(builder);
+  builder.setInsertionPoint(ifOp.thenBlock()->getTerminator());
+  genBlock(*stmt.blocks[branch]);
+  if (!hasElse)
+    return;
+  builder.setInsertionPoint(ifOp.elseBlock()->getTerminator());
+  if (branch + 1 < stmt.conditions.size())
+    genIf(stmt, branch + 1);
+  else
+    genBlock(*stmt.elseBlock);
+}
+
+void IRGenerator::genWhile(const WhileStmt &stmt) {
+  Location l = loc(stmt.loc);
+  auto whileOp = scf::WhileOp::create(builder, l, TypeRange(), ValueRange());
+  OpBuilder::InsertionGuard guard(builder);
+  builder.createBlock(&whileOp.getBefore());
+  Value c = genExpr(*stmt.condition);
+  scf::ConditionOp::create(builder, loc(stmt.condition->loc), c,
+                           ValueRange());
+  builder.createBlock(&whileOp.getAfter());
+  genBlock(*stmt.body);
+  scf::YieldOp::create(builder, l);
+}
+
+void IRGenerator::genDoWhile(const DoWhileStmt &stmt) {
+  Location l = loc(stmt.loc);
+  auto whileOp = scf::WhileOp::create(builder, l, TypeRange(), ValueRange());
+  OpBuilder::InsertionGuard guard(builder);
+  builder.createBlock(&whileOp.getBefore());
+  genBlock(*stmt.body);
+  Value c = genExpr(*stmt.condition);
+  scf::ConditionOp::create(builder, loc(stmt.condition->loc), c,
+                           ValueRange());
+  builder.createBlock(&whileOp.getAfter());
+  scf::YieldOp::create(builder, l);
+}
+
+void IRGenerator::genFor(const ForStmt &stmt) {
+  if (stmt.isRange()) {
+    genRangeFor(stmt, genExpr(*stmt.lower), genExpr(*stmt.upper));
+    return;
+  }
+  Dim domain = stmt.domainDim;
+  if (domain.kind == Dim::Kind::Generic && currentFunc &&
+      domain.generic->index < currentFunc->binding.size())
+    domain = currentFunc->binding[domain.generic->index];
+  if (domain.kind == Dim::Kind::Range) {
+    genRangeFor(stmt, intConstant(0, stmt.domainLoc),
+                intConstant(domain.size, stmt.domainLoc));
+    return;
+  }
+  if (domain.kind != Dim::Kind::Set) {
+    unsupported(stmt.domainLoc, "a loop over an unbound generic parameter");
+    return;
+  }
+  Location l = loc(stmt.loc);
+  Value set = genSet(domain.set, stmt.domainLoc);
+  Value size = dialect::SetSizeOp::create(builder, loc(stmt.domainLoc), set);
+  auto forOp = scf::ForOp::create(builder, l, indexConstant(0, stmt.loc), size,
+                                  indexConstant(1, stmt.loc));
+  OpBuilder::InsertionGuard guard(builder);
+  builder.setInsertionPoint(forOp.getBody()->getTerminator());
+  Value element = dialect::SetElementOp::create(builder, loc(stmt.var->loc), set,
+                                              forOp.getInductionVar());
+  bindings[stmt.var.get()] = {element, /*isSlot=*/false};
+  genBlock(*stmt.body);
+}
+
+void IRGenerator::genRangeFor(const ForStmt &stmt, Value lower, Value upper) {
+  std::optional<int64_t> lo = constantInt(lower), hi = constantInt(upper);
+  if (lo && hi && picksEndpoints(*stmt.body, stmt.var.get())) {
+    for (int64_t i = *lo; i < *hi; ++i) {
+      bindings[stmt.var.get()] = {intConstant(i, stmt.var->loc), false};
+      genBlock(*stmt.body);
+    }
+    return;
+  }
+  Location l = loc(stmt.loc);
+  auto forOp = scf::ForOp::create(builder, l, toIndex(lower, stmt.loc),
+                                  toIndex(upper, stmt.loc),
+                                  indexConstant(1, stmt.loc));
+  OpBuilder::InsertionGuard guard(builder);
+  builder.setInsertionPoint(forOp.getBody()->getTerminator());
+  Value i = arith::IndexCastOp::create(builder, loc(stmt.var->loc),
+                                       builder.getI32Type(),
+                                       forOp.getInductionVar());
+  bindings[stmt.var.get()] = {i, /*isSlot=*/false};
+  genBlock(*stmt.body);
+}
+
+void IRGenerator::genPrint(const PrintStmt &stmt) {
+  SmallVector<Value> values;
+  for (const ExprPtr &arg : stmt.args)
+    values.push_back(genExpr(*arg));
+  dialect::PrintOp::create(builder, loc(stmt.loc), values, stmt.newline);
+}

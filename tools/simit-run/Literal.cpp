@@ -1,0 +1,515 @@
+//===--- Literal.cpp - Simit literals of assertions and --eval ------------===//
+
+#include "Literal.h"
+
+#include "simit/Frontend/AST.h"
+
+#include "llvm/ADT/StringExtras.h"
+#include "llvm/Support/Casting.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace simit;
+
+size_t Literal::numComponents() const {
+  size_t n = 1;
+  for (int64_t d : shape)
+    n *= d;
+  return n;
+}
+
+static Literal transpose(Literal literal) {
+  if (literal.shape.size() == 1) {
+    literal.column = !literal.column;
+  } else if (literal.shape.size() == 2) {
+    int64_t rows = literal.shape[0], cols = literal.shape[1];
+    size_t width = literal.kind == Literal::Kind::Complex ? 2 : 1;
+    std::vector<double> flipped(literal.values.size());
+    for (int64_t i = 0; i < rows; ++i)
+      for (int64_t j = 0; j < cols; ++j)
+        for (size_t w = 0; w < width; ++w)
+          flipped[(j * rows + i) * width + w] =
+              literal.values[(i * cols + j) * width + w];
+    literal.values = std::move(flipped);
+    std::swap(literal.shape[0], literal.shape[1]);
+  }
+  return literal;
+}
+
+llvm::Expected<Literal> simit::literalFromExpr(const frontend::Expr &expr) {
+  using namespace frontend;
+  Literal literal;
+  if (auto *e = llvm::dyn_cast<IntLiteral>(&expr)) {
+    literal.kind = Literal::Kind::Int;
+    literal.values = {static_cast<double>(e->value)};
+  } else if (auto *e = llvm::dyn_cast<FloatLiteral>(&expr)) {
+    literal.values = {e->value};
+  } else if (auto *e = llvm::dyn_cast<BoolLiteral>(&expr)) {
+    literal.kind = Literal::Kind::Bool;
+    literal.values = {e->value ? 1.0 : 0.0};
+  } else if (auto *e = llvm::dyn_cast<StringLiteral>(&expr)) {
+    literal.kind = Literal::Kind::String;
+    literal.text = e->value;
+  } else if (auto *e = llvm::dyn_cast<ComplexLiteral>(&expr)) {
+    literal.kind = Literal::Kind::Complex;
+    literal.values = {e->re, e->im};
+  } else if (auto *e = llvm::dyn_cast<DenseLiteral>(&expr)) {
+    literal.shape = e->shape;
+    literal.column = e->column;
+    switch (e->component) {
+    case frontend::ScalarKind::Int:
+      literal.kind = Literal::Kind::Int;
+      literal.values.assign(e->intValues.begin(), e->intValues.end());
+      break;
+    case frontend::ScalarKind::Float:
+      literal.values = e->floatValues;
+      break;
+    case frontend::ScalarKind::Complex:
+      literal.kind = Literal::Kind::Complex;
+      literal.values = e->complexValues;
+      break;
+    default:
+      return llvm::createStringError("unsupported dense literal");
+    }
+  } else if (auto *e = llvm::dyn_cast<UnaryExpr>(&expr)) {
+    llvm::Expected<Literal> operand = literalFromExpr(*e->operand);
+    if (!operand || e->op == UnaryExpr::Op::Plus)
+      return operand;
+    if (e->op != UnaryExpr::Op::Neg || operand->kind == Literal::Kind::Bool ||
+        operand->kind == Literal::Kind::String)
+      return llvm::createStringError("not a literal");
+    for (double &v : operand->values)
+      v = -v;
+    return operand;
+  } else if (auto *e = llvm::dyn_cast<TransposeExpr>(&expr)) {
+    llvm::Expected<Literal> operand = literalFromExpr(*e->operand);
+    if (!operand)
+      return operand;
+    return transpose(std::move(*operand));
+  } else {
+    return llvm::createStringError("not a literal");
+  }
+  return literal;
+}
+
+//===--- Parsing --eval calls ---------------------------------------------===//
+
+namespace {
+class CallParser {
+public:
+  explicit CallParser(llvm::StringRef text) : text(text) {}
+
+  llvm::Expected<CallText> parse() {
+    CallText call;
+    skipSpace();
+    size_t start = pos;
+    while (pos < text.size() && (llvm::isAlnum(text[pos]) || text[pos] == '_'))
+      ++pos;
+    if (pos == start || llvm::isDigit(text[start]))
+      return error("expected a function name");
+    call.function = text.slice(start, pos).str();
+    if (!consume('('))
+      return error("expected '('");
+    if (!consume(')')) {
+      do {
+        llvm::Expected<Literal> arg = literal();
+        if (!arg)
+          return arg.takeError();
+        call.args.push_back(std::move(*arg));
+      } while (consume(','));
+      if (!consume(')'))
+        return error("expected ',' or ')'");
+    }
+    skipSpace();
+    if (pos != text.size())
+      return error("unexpected text after the call");
+    return call;
+  }
+
+private:
+  llvm::Error error(const llvm::Twine &what) {
+    return llvm::createStringError("--eval: column " + llvm::Twine(pos + 1) +
+                                   ": " + what);
+  }
+  void skipSpace() {
+    while (pos < text.size() && llvm::isSpace(text[pos]))
+      ++pos;
+  }
+  bool consume(char c) {
+    skipSpace();
+    if (pos < text.size() && text[pos] == c) {
+      ++pos;
+      return true;
+    }
+    return false;
+  }
+  bool peek(char c) {
+    skipSpace();
+    return pos < text.size() && text[pos] == c;
+  }
+
+  /// [+-] number, with its kind.
+  llvm::Error number(double &value, Literal::Kind &kind) {
+    skipSpace();
+    bool negative = false;
+    if (pos < text.size() && (text[pos] == '-' || text[pos] == '+'))
+      negative = text[pos++] == '-';
+    skipSpace();
+    size_t start = pos;
+    while (pos < text.size() && llvm::isDigit(text[pos]))
+      ++pos;
+    if (pos == start)
+      return error("expected a number");
+    kind = Literal::Kind::Int;
+    if (pos < text.size() && text[pos] == '.') {
+      kind = Literal::Kind::Float;
+      ++pos;
+      size_t digits = pos;
+      while (pos < text.size() && llvm::isDigit(text[pos]))
+        ++pos;
+      if (pos == digits)
+        return error("expected digits after '.'");
+    }
+    if (pos < text.size() && (text[pos] == 'e' || text[pos] == 'E')) {
+      kind = Literal::Kind::Float;
+      ++pos;
+      if (pos < text.size() && (text[pos] == '+' || text[pos] == '-'))
+        ++pos;
+      size_t digits = pos;
+      while (pos < text.size() && llvm::isDigit(text[pos]))
+        ++pos;
+      if (pos == digits)
+        return error("expected an exponent");
+    }
+    value = std::strtod(text.slice(start, pos).str().c_str(), nullptr);
+    if (negative)
+      value = -value;
+    return llvm::Error::success();
+  }
+
+  /// `[ ... ]`: rows separated by `;`, or nested literals.
+  llvm::Expected<Literal> dense() {
+    Literal result;
+    if (peek('[')) {
+      std::vector<Literal> parts;
+      while (peek('[')) {
+        ++pos;
+        llvm::Expected<Literal> part = dense();
+        if (!part)
+          return part.takeError();
+        parts.push_back(std::move(*part));
+        consume(',');
+      }
+      if (!consume(']'))
+        return error("expected ']'");
+      result.kind = parts[0].kind;
+      result.shape = parts[0].shape;
+      result.shape.insert(result.shape.begin(), parts.size());
+      for (const Literal &part : parts) {
+        if (part.shape != parts[0].shape || part.kind != parts[0].kind)
+          return error("mismatched dimension sizes or element types");
+        llvm::append_range(result.values, part.values);
+      }
+      return result;
+    }
+    std::vector<size_t> rowLengths{0};
+    bool first = true;
+    while (!consume(']')) {
+      if (consume(';')) {
+        rowLengths.push_back(0);
+        continue;
+      }
+      double value;
+      Literal::Kind kind;
+      skipSpace();
+      size_t start = pos;
+      if (llvm::Error err = number(value, kind))
+        return std::move(err);
+      if (!first && kind != result.kind) {
+        pos = start;
+        return error("mismatched element types");
+      }
+      result.kind = kind;
+      first = false;
+      result.values.push_back(value);
+      ++rowLengths.back();
+      consume(',');
+    }
+    if (first)
+      return error("an empty literal");
+    for (size_t length : rowLengths)
+      if (length != rowLengths[0])
+        return error("mismatched dimension sizes");
+    if (rowLengths.size() == 1)
+      result.shape = {static_cast<int64_t>(rowLengths[0])};
+    else
+      result.shape = {static_cast<int64_t>(rowLengths.size()),
+                      static_cast<int64_t>(rowLengths[0])};
+    return result;
+  }
+
+  llvm::Expected<Literal> literal() {
+    skipSpace();
+    Literal result;
+    if (consume('-')) {
+      llvm::Expected<Literal> operand = literal();
+      if (!operand)
+        return operand;
+      if (operand->kind == Literal::Kind::Bool ||
+          operand->kind == Literal::Kind::String)
+        return error("cannot negate a bool or a string");
+      for (double &v : operand->values)
+        v = -v;
+      return operand;
+    }
+    if (consume('+'))
+      return literal();
+    if (consume('[')) {
+      llvm::Expected<Literal> value = dense();
+      if (!value)
+        return value;
+      result = std::move(*value);
+    } else if (consume('<')) {
+      result.kind = Literal::Kind::Complex;
+      double re, im;
+      Literal::Kind kind;
+      if (llvm::Error err = number(re, kind))
+        return std::move(err);
+      if (!consume(','))
+        return error("expected ','");
+      if (llvm::Error err = number(im, kind))
+        return std::move(err);
+      if (!consume('>'))
+        return error("expected '>'");
+      result.values = {re, im};
+    } else if (text.substr(pos).starts_with("true") ||
+               text.substr(pos).starts_with("false")) {
+      bool value = text.substr(pos).starts_with("true");
+      pos += value ? 4 : 5;
+      result.kind = Literal::Kind::Bool;
+      result.values = {value ? 1.0 : 0.0};
+    } else if (peek('"')) {
+      size_t end = text.find('"', pos + 1);
+      if (end == llvm::StringRef::npos)
+        return error("unclosed string");
+      result.kind = Literal::Kind::String;
+      result.text = text.slice(pos + 1, end).str();
+      pos = end + 1;
+    } else {
+      double value;
+      if (llvm::Error err = number(value, result.kind))
+        return std::move(err);
+      result.values = {value};
+    }
+    while (consume('\''))
+      result = transpose(std::move(result));
+    return result;
+  }
+
+  llvm::StringRef text;
+  size_t pos = 0;
+};
+} // namespace
+
+llvm::Expected<CallText> simit::parseCall(llvm::StringRef text) {
+  return CallParser(text).parse();
+}
+
+//===--- Host buffers and comparison --------------------------------------===//
+
+static llvm::StringRef kindName(Literal::Kind kind) {
+  switch (kind) {
+  case Literal::Kind::Int:
+    return "an int";
+  case Literal::Kind::Float:
+    return "a float";
+  case Literal::Kind::Bool:
+    return "a bool";
+  case Literal::Kind::Complex:
+    return "a complex";
+  case Literal::Kind::String:
+    return "a string";
+  }
+  llvm_unreachable("unknown literal kind");
+}
+
+static bool kindMatches(Literal::Kind kind, ScalarKind scalar) {
+  switch (kind) {
+  case Literal::Kind::Int:
+    return scalar == ScalarKind::Int32 || scalar == ScalarKind::Int64 ||
+           scalar == ScalarKind::Index;
+  case Literal::Kind::Float:
+    return scalar == ScalarKind::Float64 || scalar == ScalarKind::Float32;
+  case Literal::Kind::Bool:
+    return scalar == ScalarKind::Bool;
+  case Literal::Kind::Complex:
+  case Literal::Kind::String:
+    return false;
+  }
+  llvm_unreachable("unknown literal kind");
+}
+
+llvm::Error simit::toHostBuffer(const Literal &literal, const ValueType &type,
+                                std::vector<uint64_t> &storage,
+                                std::vector<int> &shape,
+                                ComponentType &component) {
+  if (!kindMatches(literal.kind, type.scalar) ||
+      !componentTypeFor(type.scalar, component))
+    return llvm::createStringError(kindName(literal.kind) +
+                                   " literal cannot be passed as " +
+                                   type.str());
+  if (literal.shape != type.shape)
+    return llvm::createStringError("a literal of " +
+                                   llvm::Twine(literal.numComponents()) +
+                                   " components cannot be passed as " +
+                                   type.str());
+  shape.assign(literal.shape.begin(), literal.shape.end());
+  size_t size = scalarSize(type.scalar);
+  storage.assign((literal.values.size() * size + 7) / 8, 0);
+  auto *bytes = reinterpret_cast<uint8_t *>(storage.data());
+  for (size_t i = 0; i < literal.values.size(); ++i) {
+    double v = literal.values[i];
+    uint8_t *p = bytes + i * size;
+    switch (type.scalar) {
+    case ScalarKind::Float64:
+      std::memcpy(p, &v, 8);
+      break;
+    case ScalarKind::Float32: {
+      float f = static_cast<float>(v);
+      std::memcpy(p, &f, 4);
+      break;
+    }
+    case ScalarKind::Int32: {
+      int32_t n = static_cast<int32_t>(v);
+      std::memcpy(p, &n, 4);
+      break;
+    }
+    case ScalarKind::Bool:
+      *p = v != 0;
+      break;
+    case ScalarKind::Int64:
+    case ScalarKind::Index:
+      llvm_unreachable("no component type");
+    }
+  }
+  return llvm::Error::success();
+}
+
+std::string simit::compareResult(const HostValue &actual,
+                                 const Literal &expected) {
+  if (!kindMatches(expected.kind, actual.scalar))
+    return "the result is " + scalarKindName(actual.scalar).str() +
+           ", the expected value " + kindName(expected.kind).str();
+  if (actual.shape != expected.shape)
+    return "the result has shape [" + llvm::join(llvm::map_range(actual.shape, [](int64_t d) { return std::to_string(d); }), ", ") +
+           "], the expected value [" +
+           llvm::join(llvm::map_range(expected.shape, [](int64_t d) { return std::to_string(d); }), ", ") + "]";
+  for (size_t i = 0; i < expected.values.size(); ++i) {
+    double a = actual.component(i), e = expected.values[i];
+    bool equal;
+    if (expected.kind != Literal::Kind::Float)
+      equal = a == e;
+    else if (e == 0.0)
+      equal = a == 0.0;
+    else
+      equal = a == e || std::fabs(a - e) / std::max(std::fabs(a), std::fabs(e)) <=
+                            0.001;
+    if (!equal)
+      return formatValue(actual) + " != " + formatLiteral(expected);
+  }
+  return "";
+}
+
+/// The shortest text that reads back as `v`, always with a '.' or an
+/// exponent so that it is a float literal.
+static std::string formatFloat(double v, int maxDigits) {
+  if (std::isnan(v))
+    return "nan";
+  if (std::isinf(v))
+    return v < 0 ? "-inf" : "inf";
+  char buffer[64];
+  for (int digits = 1; digits <= maxDigits; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
+    if (std::strtod(buffer, nullptr) == v || digits == maxDigits)
+      break;
+  }
+  std::string text = buffer;
+  if (text.find_first_of(".e") == std::string::npos)
+    text += ".0";
+  return text;
+}
+
+static std::string formatComponents(const std::vector<int64_t> &shape,
+                                    size_t &next,
+                                    const std::function<std::string(size_t)> &component,
+                                    size_t level) {
+  size_t rank = shape.size() - level;
+  if (rank == 1) {
+    std::vector<std::string> items;
+    for (int64_t i = 0; i < shape[level]; ++i)
+      items.push_back(component(next++));
+    return "[" + llvm::join(items, ", ") + "]";
+  }
+  if (rank == 2) {
+    std::vector<std::string> rows;
+    for (int64_t i = 0; i < shape[level]; ++i) {
+      std::vector<std::string> items;
+      for (int64_t j = 0; j < shape[level + 1]; ++j)
+        items.push_back(component(next++));
+      rows.push_back(llvm::join(items, ", "));
+    }
+    return "[" + llvm::join(rows, "; ") + "]";
+  }
+  std::vector<std::string> parts;
+  for (int64_t i = 0; i < shape[level]; ++i)
+    parts.push_back(formatComponents(shape, next, component, level + 1));
+  return "[" + llvm::join(parts, ", ") + "]";
+}
+
+std::string simit::formatValue(const HostValue &value) {
+  auto component = [&](size_t i) -> std::string {
+    double v = value.component(i);
+    switch (value.scalar) {
+    case ScalarKind::Float64:
+      return formatFloat(v, 17);
+    case ScalarKind::Float32:
+      return formatFloat(v, 9);
+    case ScalarKind::Bool:
+      return v != 0 ? "true" : "false";
+    case ScalarKind::Int32:
+    case ScalarKind::Int64:
+    case ScalarKind::Index:
+      return std::to_string(static_cast<int64_t>(v));
+    }
+    llvm_unreachable("unknown scalar kind");
+  };
+  if (value.shape.empty())
+    return component(0);
+  size_t next = 0;
+  return formatComponents(value.shape, next, component, 0);
+}
+
+std::string simit::formatLiteral(const Literal &literal) {
+  auto component = [&](size_t i) -> std::string {
+    switch (literal.kind) {
+    case Literal::Kind::Float:
+      return formatFloat(literal.values[i], 17);
+    case Literal::Kind::Bool:
+      return literal.values[i] != 0 ? "true" : "false";
+    case Literal::Kind::Int:
+      return std::to_string(static_cast<int64_t>(literal.values[i]));
+    case Literal::Kind::Complex:
+      return "<" + formatFloat(literal.values[2 * i], 17) + ", " +
+             formatFloat(literal.values[2 * i + 1], 17) + ">";
+    case Literal::Kind::String:
+      return "\"" + literal.text + "\"";
+    }
+    llvm_unreachable("unknown literal kind");
+  };
+  if (literal.shape.empty())
+    return component(0);
+  size_t next = 0;
+  std::string text = formatComponents(literal.shape, next, component, 0);
+  return literal.column ? text + "'" : text;
+}

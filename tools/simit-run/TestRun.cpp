@@ -1,0 +1,236 @@
+//===--- TestRun.cpp - Running %! assertions and --eval calls -------------===//
+//
+// language.md section 11: every enabled `%%%` section is compiled on its
+// own, and its assertions run in order, stopping at the section's first
+// failure. An assertion names a non-generic function, passes literals of the
+// parameter types (orientation included) and expects one result of the
+// result type (orientation ignored); results compare by compareResult.
+//
+//===----------------------------------------------------------------------===//
+
+#include "TestRun.h"
+
+#include "Literal.h"
+
+#include "simit/Engine/Program.h"
+#include "simit/Frontend/Frontend.h"
+#include "simit/Frontend/Types.h"
+
+#include "llvm/Support/MemoryBuffer.h"
+#include "llvm/Support/SourceMgr.h"
+#include "llvm/Support/raw_ostream.h"
+
+using namespace simit;
+
+namespace {
+/// Host storage of the arguments of one call.
+struct Arguments {
+  std::vector<std::vector<uint64_t>> storage;
+};
+
+/// Binds `args` to the parameters of `function`, in order.
+llvm::Error bindArguments(Function &function, llvm::ArrayRef<Literal> args,
+                          Arguments &holder) {
+  std::vector<const ArgumentBinding *> params;
+  for (const ArgumentBinding &arg : function.signature().arguments)
+    if (arg.kind == ArgumentBinding::Kind::Parameter)
+      params.push_back(&arg);
+  if (params.size() != args.size())
+    return llvm::createStringError(
+        "function '" + function.name() + "' takes " +
+        llvm::Twine(params.size()) + " parameters, " +
+        llvm::Twine(args.size()) + " given");
+  holder.storage.resize(args.size());
+  for (size_t i = 0; i < args.size(); ++i) {
+    std::vector<int> shape;
+    ComponentType component;
+    if (llvm::Error err = toHostBuffer(args[i], params[i]->type,
+                                       holder.storage[i], shape, component))
+      return llvm::createStringError("argument " + llvm::Twine(i + 1) + ": " +
+                                     llvm::toString(std::move(err)));
+    if (llvm::Error err = function.bind(params[i]->name,
+                                        holder.storage[i].data(), component,
+                                        shape))
+      return err;
+  }
+  return llvm::Error::success();
+}
+
+/// The text of line `line` (1-based) of `text`.
+llvm::StringRef lineText(llvm::StringRef text, unsigned line) {
+  for (unsigned i = 1; i < line && !text.empty(); ++i)
+    text = text.split('\n').second;
+  return text.split('\n').first.rtrim();
+}
+
+class SectionRunner {
+public:
+  SectionRunner(const TestRunOptions &options, llvm::raw_ostream &os)
+      : options(options), os(os) {}
+
+  unsigned passed = 0, failed = 0, notRun = 0;
+
+  void run(const frontend::Section &section) {
+    llvm::SourceMgr sourceMgr;
+    unsigned buffer = sourceMgr.AddNewSourceBuffer(
+        llvm::MemoryBuffer::getMemBufferCopy(section.text, options.path),
+        llvm::SMLoc());
+    frontend::DiagnosticEngine diags(sourceMgr);
+    std::unique_ptr<frontend::Program> ast =
+        frontend::parseProgram(sourceMgr, buffer, diags);
+    if (!diags.hasErrors())
+      frontend::checkProgram(*ast, diags);
+    if (diags.hasErrors()) {
+      diags.print(os);
+      sectionFailed(section, "does not compile",
+                    ast ? ast->tests.size() : 0);
+      return;
+    }
+    if (ast->tests.empty())
+      return;
+
+    ProgramOptions programOptions;
+    programOptions.precision = options.precision;
+    for (const frontend::TestLine &test : ast->tests)
+      if (test.func)
+        programOptions.hostFunctions.push_back(test.funcName);
+    Program program(programOptions);
+    if (llvm::Error err = program.loadString(section.text, options.path)) {
+      os << llvm::toString(std::move(err)) << "\n";
+      sectionFailed(section, "does not compile", ast->tests.size());
+      return;
+    }
+    for (size_t i = 0; i < ast->tests.size(); ++i) {
+      std::string problem = runAssertion(program, ast->tests[i]);
+      if (problem.empty()) {
+        ++passed;
+        continue;
+      }
+      unsigned line = section.firstLine + ast->tests[i].line - 1;
+      os << options.path << ":" << line << ": error: " << problem << "\n  "
+         << lineText(section.text, ast->tests[i].line) << "\n";
+      ++failed;
+      notRun += ast->tests.size() - i - 1;
+      return;
+    }
+  }
+
+private:
+  void sectionFailed(const frontend::Section &section, llvm::StringRef why,
+                     size_t assertions) {
+    os << options.path << ":" << section.firstLine << ": error: section";
+    if (!section.name.empty())
+      os << " '" << section.name << "'";
+    os << " " << why << "\n";
+    // Each of its assertions fails; a section without any counts once.
+    failed += std::max<size_t>(assertions, 1);
+  }
+
+  std::string runAssertion(Program &program, const frontend::TestLine &test) {
+    const frontend::FuncDecl *func = test.func;
+    if (!func || func->isGeneric())
+      return "attempting to test unknown function '" + test.funcName + "'";
+    if (func->params.size() != test.args.size())
+      return "function '" + test.funcName + "' takes " +
+             std::to_string(func->params.size()) + " arguments, " +
+             std::to_string(test.args.size()) + " given";
+    std::vector<Literal> args;
+    for (size_t i = 0; i < test.args.size(); ++i) {
+      const frontend::Expr &arg = *test.args[i];
+      if (!arg.type || !frontend::typesEqual(func->params[i]->type, arg.type))
+        return "argument " + std::to_string(i + 1) + " of type " +
+               (arg.type ? arg.type->str() : std::string("?")) +
+               " does not match parameter '" + func->params[i]->name +
+               "' of type " + func->params[i]->type->str();
+      llvm::Expected<Literal> literal = literalFromExpr(arg);
+      if (!literal)
+        return llvm::toString(literal.takeError());
+      args.push_back(std::move(*literal));
+    }
+    if (func->results.size() != 1)
+      return "function '" + test.funcName + "' has " +
+             std::to_string(func->results.size()) +
+             " results; only functions with one result can be tested";
+    const frontend::Expr &expected = *test.expected;
+    if (!expected.type ||
+        !frontend::typesEqual(func->results[0]->type, expected.type,
+                              /*orientation=*/false))
+      return "expected value of type " +
+             (expected.type ? expected.type->str() : std::string("?")) +
+             " does not match the result type " +
+             func->results[0]->type->str();
+    llvm::Expected<Literal> expectedValue = literalFromExpr(expected);
+    if (!expectedValue)
+      return llvm::toString(expectedValue.takeError());
+
+    llvm::Expected<Function> function = program.compile(test.funcName);
+    if (!function)
+      return llvm::toString(function.takeError());
+    Arguments holder;
+    if (llvm::Error err = bindArguments(*function, args, holder))
+      return llvm::toString(std::move(err));
+    if (llvm::Error err = function->run())
+      return llvm::toString(std::move(err));
+    if (function->results().size() != 1)
+      return "the compiled function returned " +
+             std::to_string(function->results().size()) + " values";
+    return compareResult(function->results()[0], *expectedValue);
+  }
+
+  const TestRunOptions &options;
+  llvm::raw_ostream &os;
+};
+} // namespace
+
+int simit::runTests(const TestRunOptions &options, llvm::raw_ostream &os) {
+  auto file = llvm::MemoryBuffer::getFile(options.path, /*IsText=*/true);
+  if (!file) {
+    os << options.path << ": error: cannot read the file: "
+       << file.getError().message() << "\n";
+    return 1;
+  }
+  SectionRunner runner(options, os);
+  for (const frontend::Section &section :
+       frontend::splitSections((*file)->getBuffer()))
+    if (!section.disabled)
+      runner.run(section);
+  os << runner.passed << " passed, " << runner.failed << " failed";
+  if (runner.notRun)
+    os << " (" << runner.notRun << " not run after a failure)";
+  os << "\n";
+  return runner.failed ? 1 : 0;
+}
+
+int simit::runEval(const EvalOptions &options, llvm::raw_ostream &os) {
+  llvm::Expected<CallText> call = parseCall(options.call);
+  if (!call) {
+    llvm::errs() << llvm::toString(call.takeError()) << "\n";
+    return 1;
+  }
+  ProgramOptions programOptions;
+  programOptions.precision = options.precision;
+  programOptions.hostFunctions = {call->function};
+  Program program(programOptions);
+  if (llvm::Error err = program.loadFile(options.path)) {
+    llvm::errs() << llvm::toString(std::move(err)) << "\n";
+    return 1;
+  }
+  llvm::Expected<Function> function = program.compile(call->function);
+  if (!function) {
+    llvm::errs() << options.path << ": " << llvm::toString(function.takeError())
+                 << "\n";
+    return 1;
+  }
+  Arguments holder;
+  if (llvm::Error err = bindArguments(*function, call->args, holder)) {
+    llvm::errs() << "--eval: " << llvm::toString(std::move(err)) << "\n";
+    return 1;
+  }
+  if (llvm::Error err = function->run()) {
+    llvm::errs() << llvm::toString(std::move(err)) << "\n";
+    return 1;
+  }
+  for (const HostValue &result : function->results())
+    os << formatValue(result) << "\n";
+  return 0;
+}

@@ -259,10 +259,9 @@ llvm::Error Function::Impl::prepareArgument(const ArgumentBinding &arg,
   }
   case Kind::Extern:
   case Kind::Parameter: {
-    auto it = buffers.find(arg.name);
+    auto it = buffers.find(arg.bufferKey());
     if (it == buffers.end())
-      return error((arg.kind == Kind::Extern ? "extern '" : "parameter '") +
-                   arg.name + "' is not bound");
+      return error(arg.describe() + " is not bound");
     const HostBuffer &buffer = it->second;
     ComponentType expected;
     if (!componentTypeFor(type.scalar, expected))
@@ -394,11 +393,16 @@ std::vector<std::string> Function::requiredSets() const {
 std::vector<std::string> Function::requiredTensors() const {
   std::vector<std::string> names;
   for (const ArgumentBinding &arg : signature().arguments)
-    if ((arg.kind == ArgumentBinding::Kind::Extern ||
-         arg.kind == ArgumentBinding::Kind::Parameter) &&
+    if (arg.kind == ArgumentBinding::Kind::Extern &&
         !llvm::is_contained(names, arg.name))
       names.push_back(arg.name);
   return names;
+}
+
+unsigned Function::numParameters() const {
+  return llvm::count_if(signature().arguments, [](const ArgumentBinding &arg) {
+    return arg.kind == ArgumentBinding::Kind::Parameter;
+  });
 }
 
 llvm::Error Function::bind(llvm::StringRef name, Set &set) {
@@ -412,9 +416,20 @@ llvm::Error Function::bind(llvm::StringRef name, Set &set) {
 llvm::Error Function::bind(llvm::StringRef name, void *data, ComponentType type,
                            llvm::ArrayRef<int> shape) {
   if (!llvm::is_contained(requiredTensors(), name.str()))
-    return impl->error("has no extern tensor or parameter named '" + name +
-                       "'");
+    return impl->error("uses no extern tensor named '" + name + "'");
   impl->buffers[name] = HostBuffer{data, type, shape.vec()};
+  impl->initialized = false;
+  return llvm::Error::success();
+}
+
+llvm::Error Function::bindParameter(unsigned index, void *data,
+                                    ComponentType type,
+                                    llvm::ArrayRef<int> shape) {
+  if (index >= numParameters())
+    return impl->error("has " + llvm::Twine(numParameters()) +
+                       " parameters, not " + llvm::Twine(index + 1));
+  impl->buffers["#" + std::to_string(index)] =
+      HostBuffer{data, type, shape.vec()};
   impl->initialized = false;
   return llvm::Error::success();
 }
@@ -474,7 +489,7 @@ std::string Function::findNonFinite() const {
     }
     if (arg.kind == ArgumentBinding::Kind::Extern ||
         arg.kind == ArgumentBinding::Kind::Parameter) {
-      auto it = impl->buffers.find(arg.name);
+      auto it = impl->buffers.find(arg.bufferKey());
       if (it == impl->buffers.end())
         continue;
       int64_t count = 1;

@@ -134,9 +134,13 @@ std::string ArgumentBinding::describe() const {
   case Kind::Extern:
     return "extern '" + name + "'";
   case Kind::Parameter:
-    return "parameter '" + name + "'";
+    return "parameter " + std::to_string(index);
   }
   llvm_unreachable("unknown binding kind");
+}
+
+std::string ArgumentBinding::bufferKey() const {
+  return kind == Kind::Parameter ? "#" + std::to_string(index) : name;
 }
 
 namespace {
@@ -196,8 +200,14 @@ public:
         return err;
       return get("cols", binding.cols);
     case Kind::Extern:
-    case Kind::Parameter:
       return get("name", binding.name);
+    case Kind::Parameter: {
+      auto index = dict.getAs<mlir::IntegerAttr>("index");
+      if (!index || index.getInt() < 0)
+        return error("expected a non-negative integer 'index'");
+      binding.index = index.getInt();
+      return llvm::Error::success();
+    }
     }
     llvm_unreachable("unknown binding kind");
   }
@@ -283,6 +293,23 @@ llvm::Expected<HostSignature> simit::readHostSignature(mlir::func::FuncOp func) 
       return err;
     signature.arguments.push_back(std::move(binding));
   }
+  // Parameters are numbered 0..k-1, each once, so callers can bind them by
+  // position.
+  std::vector<bool> seen;
+  for (const ArgumentBinding &arg : signature.arguments)
+    if (arg.kind == ArgumentBinding::Kind::Parameter) {
+      if (static_cast<size_t>(arg.index) >= seen.size())
+        seen.resize(arg.index + 1, false);
+      if (seen[arg.index])
+        return llvm::createStringError("function '" + signature.function +
+                                       "': parameter " +
+                                       llvm::Twine(arg.index) +
+                                       " is bound twice");
+      seen[arg.index] = true;
+    }
+  if (llvm::is_contained(seen, false))
+    return llvm::createStringError("function '" + signature.function +
+                                   "': its parameter indices have a gap");
   for (mlir::Type result : type.getResults()) {
     llvm::Expected<ValueType> valueType = toValueType(result);
     if (!valueType)

@@ -5,8 +5,8 @@
 #include "RuntimeSymbols.h"
 
 #include "simit/Dialect/Simit/IR/Simit.h"
+#include "simit/Dialect/Simit/Transforms/Passes.h"
 
-#include "mlir/Conversion/Passes.h"
 #include "mlir/Dialect/Affine/IR/AffineOps.h"
 #include "mlir/Dialect/Arith/IR/Arith.h"
 #include "mlir/Dialect/Complex/IR/Complex.h"
@@ -16,7 +16,6 @@
 #include "mlir/Dialect/LLVMIR/LLVMDialect.h"
 #include "mlir/Dialect/Math/IR/Math.h"
 #include "mlir/Dialect/MemRef/IR/MemRef.h"
-#include "mlir/Dialect/MemRef/Transforms/Passes.h"
 #include "mlir/Dialect/SCF/IR/SCF.h"
 #include "mlir/Dialect/Tensor/IR/Tensor.h"
 #include "mlir/Dialect/Vector/IR/VectorOps.h"
@@ -35,9 +34,6 @@
 
 using namespace simit;
 
-/// The pass pipeline of docs/lowering.md that takes simit IR to the LLVM
-/// dialect.
-static constexpr llvm::StringLiteral kSimitPipeline = "simit-cpu-pipeline";
 /// The pass whose output is the "loops" stage of --emit.
 static constexpr llvm::StringLiteral kLoopsPass = "convert-simit-to-loops";
 
@@ -49,6 +45,7 @@ void simit::registerEngineDialects(mlir::DialectRegistry &registry) {
                   mlir::affine::AffineDialect, mlir::cf::ControlFlowDialect,
                   mlir::index::IndexDialect, mlir::LLVM::LLVMDialect,
                   mlir::vector::VectorDialect>();
+  mlir::simit::registerSimitInlinerInterface(registry);
   mlir::registerBuiltinDialectTranslation(registry);
   mlir::registerLLVMDialectTranslation(registry);
 }
@@ -99,38 +96,6 @@ private:
 };
 } // namespace
 
-/// MLIR's standard conversions of func/scf/arith/math/memref/cf to the LLVM
-/// dialect, for input that is already loops (no simit ops).
-static void addLoopsToLLVMPasses(mlir::PassManager &pm) {
-  pm.addPass(mlir::createLowerAffinePass());
-  pm.addPass(mlir::createSCFToControlFlowPass());
-  pm.addPass(mlir::memref::createExpandStridedMetadataPass());
-  pm.addPass(mlir::createConvertMathToLLVMPass());
-  pm.addPass(mlir::createConvertMathToLibmPass());
-  pm.addPass(mlir::createArithToLLVMConversionPass());
-  pm.addPass(mlir::createConvertIndexToLLVMPass());
-  pm.addPass(mlir::createFinalizeMemRefToLLVMConversionPass());
-  pm.addPass(mlir::createConvertControlFlowToLLVMPass());
-  pm.addPass(mlir::createConvertFuncToLLVMPass());
-  pm.addPass(mlir::createReconcileUnrealizedCastsPass());
-}
-
-static bool containsSimitOps(mlir::ModuleOp module) {
-  mlir::Dialect *simit =
-      module.getContext()->getLoadedDialect<mlir::simit::SimitDialect>();
-  if (!simit)
-    return false;
-  bool found = false;
-  module.walk([&](mlir::Operation *op) {
-    if (op->getDialect() == simit) {
-      found = true;
-      return mlir::WalkResult::interrupt();
-    }
-    return mlir::WalkResult::advance();
-  });
-  return found;
-}
-
 llvm::Error simit::lowerToLLVM(mlir::ModuleOp module, LoweringResult &result) {
   mlir::MLIRContext *context = module.getContext();
   std::string diagnostics;
@@ -150,11 +115,7 @@ llvm::Error simit::lowerToLLVM(mlir::ModuleOp module, LoweringResult &result) {
   SignatureRecorder *recorderPtr = recorder.get();
   pm.addInstrumentation(std::move(recorder));
 
-  if (containsSimitOps(module))
-    return llvm::createStringError(
-        "this build has no '" + kSimitPipeline +
-        "' pass pipeline yet, so simit IR cannot be lowered");
-  addLoopsToLLVMPasses(pm);
+  mlir::simit::buildSimitCpuPipeline(pm);
 
   mlir::LogicalResult status = pm.run(module);
   if (llvm::Error err = recorderPtr->takeError())

@@ -6,6 +6,8 @@
 #include "Lowering.h"
 #include "SimImport.h"
 
+#include "simit/Frontend/IRGen.h"
+
 #include "mlir/IR/BuiltinOps.h"
 #include "mlir/IR/Diagnostics.h"
 #include "mlir/IR/MLIRContext.h"
@@ -35,6 +37,7 @@ struct Program::Impl {
     registerEngineDialects(registry);
     context.appendDialectRegistry(registry);
     context.loadAllAvailableDialects();
+    frontend::loadIRGenDialects(context);
   }
 
   void reset(mlir::OwningOpRef<mlir::ModuleOp> newModule) {

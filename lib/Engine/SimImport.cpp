@@ -3,6 +3,7 @@
 #include "SimImport.h"
 
 #include "simit/Frontend/Frontend.h"
+#include "simit/Frontend/IRGen.h"
 
 #include "llvm/ADT/STLExtras.h"
 #include "llvm/Support/MemoryBuffer.h"
@@ -30,8 +31,15 @@ simit::importSimit(llvm::StringRef source, llvm::StringRef bufferName,
   for (std::unique_ptr<frontend::FuncDecl> &func : program->funcs)
     if (llvm::is_contained(options.hostFunctions, func->name))
       func->isExport = true;
-  (void)context;
-  return llvm::createStringError(
-      bufferName + ": the program is legal, but this build's frontend has no "
-                   "IR generator yet, so it cannot be compiled");
+  frontend::IRGenOptions irgenOptions;
+  irgenOptions.singlePrecision = options.precision == FloatPrecision::Single;
+  mlir::OwningOpRef<mlir::ModuleOp> module =
+      frontend::generateIR(*program, diags, context, irgenOptions);
+  if (!module || diags.hasErrors()) {
+    std::string text;
+    llvm::raw_string_ostream os(text);
+    diags.print(os);
+    return llvm::createStringError(text);
+  }
+  return module;
 }

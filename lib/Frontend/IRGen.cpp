@@ -25,7 +25,9 @@
 #include "mlir/Dialect/Tensor/IR/Tensor.h"
 #include "mlir/Dialect/UB/IR/UBOps.h"
 #include "mlir/IR/Diagnostics.h"
+#include "mlir/IR/Iterators.h"
 #include "mlir/IR/Verifier.h"
+#include "mlir/Interfaces/SideEffectInterfaces.h"
 
 using namespace simit::frontend;
 using namespace mlir;
@@ -80,9 +82,22 @@ OwningOpRef<ModuleOp> IRGenerator::generate() {
     }
     genFunction(*func);
   }
-  if (failed || !verifyModule())
+  if (failed)
+    return nullptr;
+  eraseDeadOps();
+  if (!verifyModule())
     return nullptr;
   return owned;
+}
+
+/// Generation leaves unused side-effect-free values behind (the int
+/// constants of indices that became `index` constants, loads of variables
+/// read only to be replaced); they go, innermost first.
+void IRGenerator::eraseDeadOps() {
+  module.walk<WalkOrder::PostOrder, ReverseIterator>([&](Operation *op) {
+    if (op != module && isOpTriviallyDead(op))
+      op->erase();
+  });
 }
 
 void IRGenerator::genExtern(const VarDecl &global) {

@@ -158,7 +158,15 @@ Value IRGenerator::genIntrinsic(const CallExpr &e) {
   case Intrinsic::Inv4:
     return dialect::InvOp::create(builder, l, args[0]);
   case Intrinsic::Cross: return dialect::CrossOp::create(builder, l, args[0], args[1]);
-  case Intrinsic::Norm: return dialect::NormOp::create(builder, l, resultType, args[0]);
+  case Intrinsic::Norm: {
+    if (!isa<IntegerType>(dialect::getComponentType(args[0].getType())))
+      return dialect::NormOp::create(builder, l, resultType, args[0]);
+    // The norm of an int vector is a float: sqrt of its int dot product.
+    Value squares = dialect::DotOp::create(builder, l, builder.getI32Type(),
+                                         args[0], args[0]);
+    Value asFloat = arith::SIToFPOp::create(builder, l, resultType, squares);
+    return math::SqrtOp::create(builder, l, asFloat);
+  }
   case Intrinsic::Dot: return dialect::DotOp::create(builder, l, resultType, args[0], args[1]);
   case Intrinsic::CreateComplex:
     return complex::CreateOp::create(builder, l, resultType, args[0], args[1]);

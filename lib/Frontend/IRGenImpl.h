@@ -20,6 +20,7 @@
 #include "llvm/ADT/StringMap.h"
 
 #include <complex>
+#include <functional>
 #include <optional>
 
 namespace simit::frontend {
@@ -39,6 +40,14 @@ inline std::string typeString(mlir::Type type) {
   os << type;
   return text;
 }
+
+using ExprVisitor = std::function<void(const Expr &)>;
+
+/// Calls `visit` on `e` (if not null) and every expression inside it,
+/// outer first.
+void walkExpr(const Expr *e, const ExprVisitor &visit);
+
+struct IndexExprState;
 
 /// A literal after folding unary `-`/`+` and `'`: its values row-major.
 struct FoldedLiteral {
@@ -69,6 +78,7 @@ private:
   mlir::func::FuncOp declareRuntimeFunction(llvm::StringRef base,
                                             llvm::StringRef simitName,
                                             mlir::FunctionType type);
+  void eraseDeadOps();
   bool verifyModule();
 
   //===--- IRGenTypes.cpp -------------------------------------------------===//
@@ -78,8 +88,13 @@ private:
   /// The IR type of a tensor, element, tuple or opaque value.
   mlir::Type convertType(const TypePtr &type, SMLoc where);
   mlir::simit::ElementType elementType(const ElementDecl *element);
-  /// The type of a set variable (extern or parameter), named after it.
+  /// The type of a set variable (extern or parameter).
   mlir::simit::SetType setType(const VarDecl *set);
+  /// The IR name of a set: an extern's own name; for a set parameter, the
+  /// one extern of its type (sets are identified by name in the IR, so a
+  /// grid parameter must name the grid the function is mapped through), or
+  /// the parameter's name when there is no such single extern.
+  std::string setName(const VarDecl *set);
   mlir::Attribute dimAttr(const Dim &dim, SMLoc where);
   /// The type a parameter has in the function signature.
   mlir::Type paramType(const VarDecl &param);
@@ -152,6 +167,16 @@ private:
 
   //===--- IRGenIndexExpr.cpp ---------------------------------------------===//
   void genIndexAssign(const AssignStmt &stmt);
+  /// Evaluates the operands of an index expression outside it: reads with
+  /// index variables and scalar subexpressions without them.
+  void collectIndexInputs(const Expr &e, IndexExprState &state);
+  /// The scalar component `e` computes inside the index expression's body.
+  mlir::Value genIndexBody(const Expr &e, IndexExprState &state);
+  mlir::Value genIndexBodyOp(const Expr &e, IndexExprState &state);
+  /// Writes a computed value over distinct free variables to a target that
+  /// repeats variables or mixes in fixed indices (`B(i,i)`, `B(i,0)`).
+  void writeIndexedTarget(const ReadExpr &target, mlir::Value value,
+                          IndexExprState &state);
 
   //===--- Errors ---------------------------------------------------------===//
   /// Reports a construct the generator does not support and returns a

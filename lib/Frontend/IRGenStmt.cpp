@@ -19,8 +19,6 @@
 #include "mlir/Dialect/Arith/IR/Arith.h"
 #include "mlir/Dialect/SCF/IR/SCF.h"
 
-#include <functional>
-
 using namespace simit::frontend;
 using namespace mlir;
 namespace dialect = mlir::simit;
@@ -30,17 +28,13 @@ namespace frontend = ::simit::frontend;
 // AST walk
 //===----------------------------------------------------------------------===//
 
-using ExprVisitor = std::function<void(const Expr &)>;
-
-static void walkExpr(const Expr *e, const ExprVisitor &visit);
-
 static void walkExprs(const std::vector<ExprPtr> &exprs,
                       const ExprVisitor &visit) {
   for (const ExprPtr &e : exprs)
     walkExpr(e.get(), visit);
 }
 
-static void walkExpr(const Expr *e, const ExprVisitor &visit) {
+void frontend::walkExpr(const Expr *e, const ExprVisitor &visit) {
   if (!e)
     return;
   visit(*e);
@@ -85,7 +79,7 @@ static void walkExpr(const Expr *e, const ExprVisitor &visit) {
   }
 }
 
-static void walkBlock(const mlir::Block *block, const ExprVisitor &visit) {
+static void walkBlock(const frontend::Block *block, const ExprVisitor &visit) {
   if (!block)
     return;
   for (const StmtPtr &stmt : block->stmts) {
@@ -136,7 +130,7 @@ static void walkBlock(const mlir::Block *block, const ExprVisitor &visit) {
 }
 
 /// Whether `var` occurs in the position of a tuple read inside `body`.
-static bool picksEndpoints(const Block &body, const VarDecl *var) {
+static bool picksEndpoints(const frontend::Block &body, const VarDecl *var) {
   bool found = false;
   walkBlock(&body, [&](const Expr &e) {
     auto *read = dyn_cast<TupleReadExpr>(&e);
@@ -154,7 +148,7 @@ static bool picksEndpoints(const Block &body, const VarDecl *var) {
 // Statements
 //===----------------------------------------------------------------------===//
 
-void IRGenerator::genBlock(const Block &block) {
+void IRGenerator::genBlock(const frontend::Block &block) {
   for (const StmtPtr &stmt : block.stmts)
     genStmt(*stmt);
 }

@@ -52,7 +52,7 @@ Attribute IRGenerator::dimAttr(const Dim &dim, SMLoc where) {
   case Dim::Kind::Range:
     return builder.getI64IntegerAttr(dim.size);
   case Dim::Kind::Set:
-    return builder.getStringAttr(dim.set->name);
+    return builder.getStringAttr(setName(dim.set));
   case Dim::Kind::Generic:
     if (currentFunc && dim.generic->index < currentFunc->binding.size())
       return dimAttr(currentFunc->binding[dim.generic->index], where);
@@ -121,12 +121,30 @@ dialect::ElementType IRGenerator::elementType(const ElementDecl *element) {
   return type;
 }
 
+std::string IRGenerator::setName(const VarDecl *set) {
+  if (set->role == VarDecl::Role::Extern)
+    return set->name;
+  const VarDecl *match = nullptr;
+  for (const auto &global : program.globals) {
+    const frontend::Type *type = global->type.get();
+    if (global->role != VarDecl::Role::Extern || !type || !type->isSet() ||
+        type->element != set->type->element ||
+        type->endpoints != set->type->endpoints ||
+        type->gridRank != set->type->gridRank)
+      continue;
+    if (match)
+      return set->name; // ambiguous
+    match = global.get();
+  }
+  return match ? match->name : set->name;
+}
+
 dialect::SetType IRGenerator::setType(const VarDecl *set) {
   const frontend::Type &type = *set->type;
   SmallVector<StringAttr> endpoints;
   for (const VarDecl *endpoint : type.endpoints)
     endpoints.push_back(builder.getStringAttr(endpoint->name));
-  return dialect::SetType::get(&context, builder.getStringAttr(set->name),
+  return dialect::SetType::get(&context, builder.getStringAttr(setName(set)),
                              elementType(type.element), endpoints,
                              type.gridRank);
 }

@@ -89,8 +89,8 @@ llvm::Error bindFromScene(const SceneDescription &scene, SetRegistry &registry,
   for (const ArgumentBinding &arg : function.signature().arguments) {
     if (arg.kind == ArgumentBinding::Kind::Parameter)
       return llvm::createStringError(
-          "function '" + named.name + "' takes parameter '" + arg.name +
-          "'; a scene can only run functions without parameters");
+          "function '" + named.name + "' takes parameters; a scene can only "
+          "run functions without parameters");
     if (arg.kind != ArgumentBinding::Kind::Extern)
       continue;
     ExternTensor *tensor = registry.findExtern(arg.name);

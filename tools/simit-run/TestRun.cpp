@@ -28,29 +28,27 @@ struct Arguments {
   std::vector<std::vector<uint64_t>> storage;
 };
 
-/// Binds `args` to the parameters of `function`, in order.
+/// Binds literal i to the function's parameter i.
 llvm::Error bindArguments(Function &function, llvm::ArrayRef<Literal> args,
                           Arguments &holder) {
-  std::vector<const ArgumentBinding *> params;
-  for (const ArgumentBinding &arg : function.signature().arguments)
-    if (arg.kind == ArgumentBinding::Kind::Parameter)
-      params.push_back(&arg);
-  if (params.size() != args.size())
+  if (function.numParameters() != args.size())
     return llvm::createStringError(
         "function '" + function.name() + "' takes " +
-        llvm::Twine(params.size()) + " parameters, " +
+        llvm::Twine(function.numParameters()) + " parameters, " +
         llvm::Twine(args.size()) + " given");
   holder.storage.resize(args.size());
-  for (size_t i = 0; i < args.size(); ++i) {
+  for (const ArgumentBinding &param : function.signature().arguments) {
+    if (param.kind != ArgumentBinding::Kind::Parameter)
+      continue;
+    size_t i = static_cast<size_t>(param.index);
     std::vector<int> shape;
     ComponentType component;
-    if (llvm::Error err = toHostBuffer(args[i], params[i]->type,
-                                       holder.storage[i], shape, component))
+    if (llvm::Error err = toHostBuffer(args[i], param.type, holder.storage[i],
+                                       shape, component))
       return llvm::createStringError("argument " + llvm::Twine(i + 1) + ": " +
                                      llvm::toString(std::move(err)));
-    if (llvm::Error err = function.bind(params[i]->name,
-                                        holder.storage[i].data(), component,
-                                        shape))
+    if (llvm::Error err = function.bindParameter(
+            i, holder.storage[i].data(), component, shape))
       return err;
   }
   return llvm::Error::success();

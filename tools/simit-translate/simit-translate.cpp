@@ -63,7 +63,7 @@ static bool processProgram(llvm::StringRef text, llvm::StringRef bufferName) {
     IRGenOptions options;
     options.singlePrecision = singlePrecision;
     module = generateIR(*program, diags, context, options);
-    ok = module != nullptr;
+    ok = static_cast<bool>(module);
   }
   llvm::outs().flush();
   diags.print(llvm::errs());

@@ -113,8 +113,8 @@ constexpr const char *kAxpy = R"mlir(
 func.func @axpy(%a: f64, %x: memref<3xf64>, %y: memref<3xf64>, %n: i32)
     -> (memref<3xf64>, f64, i32)
     attributes {simit.bindings = [
-      {kind = "param", name = "a"}, {kind = "param", name = "x"},
-      {kind = "param", name = "y"}, {kind = "param", name = "n"}]} {
+      {kind = "param", index = 0}, {kind = "param", index = 1},
+      {kind = "param", index = 2}, {kind = "param", index = 3}]} {
   %c0 = arith.constant 0 : index
   %c1 = arith.constant 1 : index
   %c3 = arith.constant 3 : index
@@ -278,10 +278,18 @@ TEST(FunctionTest, PassesParametersAndReturnsResults) {
   double x[3] = {1.0, 2.0, 3.0};
   double y[3] = {10.0, 20.0, 30.0};
   int32_t n = 41;
-  ASSERT_EQ(message(axpy.bind("a", &a)), "success");
-  ASSERT_EQ(message(axpy.bind("x", x, {3})), "success");
-  ASSERT_EQ(message(axpy.bind("y", y, {3})), "success");
-  ASSERT_EQ(message(axpy.bind("n", &n)), "success");
+  ASSERT_EQ(axpy.numParameters(), 4u);
+  ASSERT_EQ(message(axpy.bindParameter(0, &a, ComponentType::Float64, {})),
+            "success");
+  ASSERT_EQ(message(axpy.bindParameter(1, x, ComponentType::Float64, {3})),
+            "success");
+  ASSERT_EQ(message(axpy.bindParameter(2, y, ComponentType::Float64, {3})),
+            "success");
+  EXPECT_EQ(message(axpy.run()), "function 'axpy': parameter 3 is not bound");
+  ASSERT_EQ(message(axpy.bindParameter(3, &n, ComponentType::Int32, {})),
+            "success");
+  EXPECT_EQ(message(axpy.bindParameter(4, &n, ComponentType::Int32, {})),
+            "function 'axpy': has 4 parameters, not 5");
   ASSERT_EQ(message(axpy.run()), "success");
   llvm::ArrayRef<HostValue> results = axpy.results();
   ASSERT_EQ(results.size(), 3u);
@@ -382,7 +390,7 @@ TEST(FunctionTest, RejectsBindingNamesItDoesNotUse) {
   EXPECT_EQ(message(scale.bind("verts", other)),
             "function 'scale': uses no set named 'verts'");
   EXPECT_EQ(message(scale.bind("g", &g)),
-            "function 'scale': has no extern tensor or parameter named 'g'");
+            "function 'scale': uses no extern tensor named 'g'");
 }
 
 TEST(FunctionTest, FindsTheFirstNonFiniteComponent) {

@@ -54,7 +54,7 @@ TEST_F(HostABITest, ReadsEveryKind) {
         {kind = "pattern_locations", set = "springs", rows = "points", cols = "points"},
         {kind = "extern", name = "h"},
         {kind = "extern", name = "g"},
-        {kind = "param", name = "n"}]}
+        {kind = "param", index = 0}]}
   )mlir");
   ASSERT_TRUE(!!signature) << llvm::toString(signature.takeError());
   EXPECT_EQ(signature->function, "step");
@@ -77,7 +77,7 @@ TEST_F(HostABITest, ReadsEveryKind) {
   EXPECT_EQ(args[6].type.str(), "memref<f64>");
   EXPECT_EQ(args[7].type.str(), "memref<3xf32>");
   EXPECT_EQ(args[8].kind, Kind::Parameter);
-  EXPECT_EQ(args[8].name, "n");
+  EXPECT_EQ(args[8].index, 0);
   EXPECT_FALSE(args[8].type.isMemRef);
   ASSERT_EQ(signature->results.size(), 1u);
   EXPECT_EQ(signature->results[0].str(), "f64");
@@ -119,8 +119,8 @@ TEST_F(HostABITest, RejectsATypeThatDoesNotFitTheKind) {
 
 TEST_F(HostABITest, RejectsUnsupportedHostTypes) {
   std::string error = readError(R"mlir(func.func private @f(i16)
-      attributes {simit.bindings = [{kind = "param", name = "a"}]})mlir");
-  EXPECT_NE(error.find("parameter 'a': unsupported host type i16"), std::string::npos)
+      attributes {simit.bindings = [{kind = "param", index = 0}]})mlir");
+  EXPECT_NE(error.find("parameter 0: unsupported host type i16"), std::string::npos)
       << error;
 }
 

@@ -61,17 +61,23 @@ public:
   /// What each argument of the compiled code carries.
   const HostSignature &signature() const;
 
-  /// The names the function needs bound: sets, and extern tensors and
-  /// parameters (bound with the buffer form of bind).
+  /// The names the function needs bound: sets, and extern tensors (bound
+  /// with the buffer form of bind).
   std::vector<std::string> requiredSets() const;
   std::vector<std::string> requiredTensors() const;
+  /// The number of the function's own parameters (bound by bindParameter).
+  unsigned numParameters() const;
 
   /// Binds the extern set `name`. Checked against the program by init().
   llvm::Error bind(llvm::StringRef name, Set &set);
-  /// Binds an extern tensor or a parameter to a host buffer of components
-  /// of `type`, row-major, of the given shape ({} for a scalar).
+  /// Binds an extern tensor to a host buffer of components of `type`,
+  /// row-major, of the given shape ({} for a scalar).
   llvm::Error bind(llvm::StringRef name, void *data, ComponentType type,
                    llvm::ArrayRef<int> shape);
+  /// Binds parameter `index` (0-based, in the Simit signature's order) to a
+  /// host buffer, as bind does for externs.
+  llvm::Error bindParameter(unsigned index, void *data, ComponentType type,
+                            llvm::ArrayRef<int> shape);
   template <typename T>
   llvm::Error bind(llvm::StringRef name, T *data, llvm::ArrayRef<int> shape = {}) {
     return bind(name, static_cast<void *>(data), ComponentTypeOf<T>::value,

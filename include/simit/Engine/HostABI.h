@@ -69,11 +69,17 @@ struct ArgumentBinding {
     PatternColIdx,    // memref<?xi32>: BCSR block columns
     PatternLocations, // memref<?x(c*c)xi32>: per-edge block locations
     Extern,           // an extern tensor `name`
-    Parameter,        // the function's own parameter `name`
+    Parameter,        // the function's own parameter number `index`
   };
   Kind kind = Kind::Parameter;
   std::string set, field, rows, cols, name;
+  /// Parameter: its position among the Simit function's parameters.
+  int64_t index = -1;
   ValueType type;
+
+  /// The key Function binds it under: the extern's name, or "#<index>" for
+  /// a parameter.
+  std::string bufferKey() const;
 
   /// How errors name it: "field 'points.x'", "extern 'h'", ...
   std::string describe() const;

@@ -2,8 +2,8 @@
 func.func @axpy(%a: f64, %x: memref<3xf64>, %y: memref<3xf64>, %n: i32)
     -> (memref<3xf64>, f64, i32)
     attributes {simit.bindings = [
-      {kind = "param", name = "a"}, {kind = "param", name = "x"},
-      {kind = "param", name = "y"}, {kind = "param", name = "n"}]} {
+      {kind = "param", index = 0}, {kind = "param", index = 1},
+      {kind = "param", index = 2}, {kind = "param", index = 3}]} {
   %c0 = arith.constant 0 : index
   %c1 = arith.constant 1 : index
   %c3 = arith.constant 3 : index
@@ -24,7 +24,7 @@ func.func @axpy(%a: f64, %x: memref<3xf64>, %y: memref<3xf64>, %n: i32)
 
 // The transpose of a 2 x 3 matrix and whether its (0, 1) entry is positive.
 func.func @flip(%m: memref<2x3xf64>) -> (memref<3x2xf64>, i1)
-    attributes {simit.bindings = [{kind = "param", name = "m"}]} {
+    attributes {simit.bindings = [{kind = "param", index = 0}]} {
   %c0 = arith.constant 0 : index
   %c1 = arith.constant 1 : index
   %c2 = arith.constant 2 : index

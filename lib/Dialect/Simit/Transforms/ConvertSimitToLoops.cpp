@@ -14,6 +14,9 @@
 #include "mlir/IR/IRMapping.h"
 #include "llvm/ADT/DenseSet.h"
 
+#include <numeric>
+#include <tuple>
+
 namespace mlir {
 namespace simit {
 #define GEN_PASS_DEF_CONVERTSIMITTOLOOPS
@@ -302,7 +305,7 @@ void FunctionLowering::fill(Location loc, Value array, Value scalar) {
 }
 
 Value FunctionLowering::allocSystem(Location loc, Type type,
-                                    const Storage &storage) {
+                                    const Storage &storage, bool zeroFill) {
   auto memref = cast<MemRefType>(convertType(type));
   auto system = cast<SystemTensorType>(type);
   StringAttr denseSet;
@@ -313,7 +316,8 @@ Value FunctionLowering::allocSystem(Location loc, Type type,
     }
   Value size = numBlocks(storage, denseSet);
   Value array = memref::AllocOp::create(b, loc, memref, ValueRange{size});
-  fill(loc, array, zeroOf(memref.getElementType()));
+  if (zeroFill)
+    fill(loc, array, zeroOf(memref.getElementType()));
   return array;
 }
 
@@ -618,7 +622,8 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
     if (cast<SystemTensorType>(type).getOrder() != 1)
       return op->emitError("a system matrix of unknown sparsity cannot be "
                            "created here; assemble it with a map");
-    Value array = allocSystem(loc, type, Storage::dense());
+    Value array = allocSystem(loc, type, Storage::dense(),
+                               /*zeroFill=*/isa<ZerosOp>(op));
     if (auto broadcast = dyn_cast<BroadcastOp>(op))
       fill(loc, array, lookup(broadcast.getValue()));
     storages[op->getResult(0)] = Storage::dense();
@@ -846,8 +851,36 @@ LogicalResult FunctionLowering::run(func::FuncOp original) {
   if (failed(lowerOps(original.front())))
     return failure();
 
-  for (auto &binding : bindings)
-    bindingAttrs.push_back(binding.first);
+  // Bindings in canonical order: by kind, then by the names they carry.
+  SmallVector<unsigned> order(bindings.size());
+  std::iota(order.begin(), order.end(), 0);
+  auto sortKey = [&](unsigned i) {
+    DictionaryAttr dict = bindings[i].first;
+    static const char *const kinds[] = {
+        "set_size",       "endpoints",         "field",  "pattern_rowptr",
+        "pattern_colidx", "pattern_locations", "extern"};
+    StringRef kind = dict.getAs<StringAttr>("kind").getValue();
+    unsigned rank = llvm::find(kinds, kind) - std::begin(kinds);
+    auto text = [&](StringRef key) {
+      auto value = dict.getAs<StringAttr>(key);
+      return value ? value.getValue().str() : std::string();
+    };
+    bool isPattern = kind.starts_with("pattern_");
+    return std::make_tuple(isPattern ? 3u : rank,
+                           text("set") + text("name"), text("field"),
+                           text("rows"), text("cols"), rank);
+  };
+  llvm::stable_sort(order, [&](unsigned x, unsigned y) {
+    return sortKey(x) < sortKey(y);
+  });
+  unsigned firstBinding = original.getNumArguments();
+  for (unsigned i : order) {
+    Value old = bindings[i].second;
+    Value moved = entry->addArgument(old.getType(), old.getLoc());
+    old.replaceAllUsesWith(moved);
+    bindingAttrs.push_back(bindings[i].first);
+  }
+  entry->eraseArguments(firstBinding, bindings.size());
   function.setType(FunctionType::get(
       ctx, function.front().getArgumentTypes(), resultTypes));
   function->setAttr("simit.bindings", ArrayAttr::get(ctx, bindingAttrs));
@@ -868,10 +901,29 @@ struct ConvertSimitToLoops
         elementFunctions.insert(
             op->getAttrOfType<FlatSymbolRefAttr>("callee").getAttr());
     });
+    // Public functions that use the dialect are exported; functions
+    // without simit (host code already lowered) stay as they are.
+    auto usesSimit = [](func::FuncOp function) {
+      auto isSimitType = [](Type type) {
+        return &type.getDialect() ==
+               type.getContext()->getLoadedDialect<SimitDialect>();
+      };
+      if (llvm::any_of(function.getArgumentTypes(), isSimitType) ||
+          llvm::any_of(function.getResultTypes(), isSimitType))
+        return true;
+      return function
+          .walk([](Operation *op) {
+            return isa<SimitDialect>(op->getDialect())
+                       ? WalkResult::interrupt()
+                       : WalkResult::advance();
+          })
+          .wasInterrupted();
+    };
     SmallVector<func::FuncOp> exported;
     for (auto function : module.getOps<func::FuncOp>())
       if (function.isPublic() && !function.isExternal() &&
-          !elementFunctions.contains(function.getSymNameAttr()))
+          !elementFunctions.contains(function.getSymNameAttr()) &&
+          usesSimit(function))
         exported.push_back(function);
 
     bool failedAny = false;

@@ -39,6 +39,15 @@ bool mayWrite(Operation *op, Value memref) {
   });
 }
 
+/// `op` stores the only element of `memref`, so it needs none of the old
+/// contents (a reduction's accumulator getting its initial value).
+bool overwritesAll(Operation *op, Value memref) {
+  auto store = dyn_cast<memref::StoreOp>(op);
+  auto type = cast<MemRefType>(memref.getType());
+  return store && store.getMemRef() == memref && type.hasStaticShape() &&
+         type.getNumElements() == 1;
+}
+
 bool insideLaunch(Operation *op) {
   return op->getParentOfType<gpu::LaunchOp>() != nullptr;
 }
@@ -58,6 +67,9 @@ private:
 
   func::FuncOp function;
   llvm::DenseSet<Operation *> holdsLaunch;
+  /// The last operation this pass put at the start of a block for a block
+  /// argument, so that mirrors appear in argument order.
+  llvm::DenseMap<Block *, Operation *> lastAtBlockStart;
 };
 
 LogicalResult FunctionMemory::run() {
@@ -107,6 +119,8 @@ LogicalResult FunctionMemory::mirror(Value host) {
   OpBuilder b(function.getContext());
   if (def)
     b.setInsertionPointAfter(def);
+  else if (Operation *last = lastAtBlockStart.lookup(defBlock))
+    b.setInsertionPointAfter(last);
   else
     b.setInsertionPointToStart(defBlock);
   SmallPtrSet<Operation *, 8> created;
@@ -122,9 +136,12 @@ LogicalResult FunctionMemory::mirror(Value host) {
                                     ValueRange(), sizes, ValueRange());
   Value device = alloc.getMemref();
   // A fresh allocation has no contents to copy yet.
-  if (!isa_and_nonnull<memref::AllocOp, memref::AllocaOp>(def))
+  bool fresh = isa_and_nonnull<memref::AllocOp, memref::AllocaOp>(def);
+  if (!fresh)
     created.insert(gpu::MemcpyOp::create(b, loc, Type(), ValueRange(), device,
                                          host));
+  if (!def)
+    lastAtBlockStart[defBlock] = &*std::prev(b.getInsertionPoint());
 
   host.replaceUsesWithIf(device, [](OpOperand &use) {
     return insideLaunch(use.getOwner());
@@ -148,7 +165,8 @@ LogicalResult FunctionMemory::mirror(Value host) {
       return user->emitOpError()
              << "passes on a memref that a kernel uses; the GPU path cannot "
                 "follow it through control flow";
-    readRoots.insert(root);
+    if (!overwritesAll(user, host))
+      readRoots.insert(root);
     if (mayWrite(user, host))
       writeRoots.insert(root);
   }
@@ -169,8 +187,14 @@ LogicalResult FunctionMemory::mirror(Value host) {
     }
     return success();
   }
-  b.setInsertionPoint(defBlock->getTerminator());
-  if (kernelWrites)
+  // Host code in the block has its copies already; only a memref that
+  // outlives the block (an argument, or one the terminator passes on) needs
+  // the kernels' results back.
+  Operation *terminator = defBlock->getTerminator();
+  bool outlivesBlock =
+      !def || llvm::is_contained(terminator->getOperands(), host);
+  b.setInsertionPoint(terminator);
+  if (kernelWrites && outlivesBlock)
     gpu::MemcpyOp::create(b, loc, Type(), ValueRange(), host, device);
   gpu::DeallocOp::create(b, loc, Type(), ValueRange(), device);
   return success();

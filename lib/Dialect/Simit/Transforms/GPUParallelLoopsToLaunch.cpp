@@ -51,15 +51,28 @@ FailureOr<Combiner> matchCombiner(Region &reduction) {
 /// max(ceil((ub - lb) / step), 0) for one loop dimension.
 Value tripCount(OpBuilder &b, Location loc, Value lb, Value ub, Value step) {
   Value zero = arith::ConstantIndexOp::create(b, loc, 0);
-  Value extent = arith::SubIOp::create(b, loc, ub, lb);
-  extent = arith::MaxSIOp::create(b, loc, extent, zero);
-  return arith::CeilDivUIOp::create(b, loc, extent, step);
+  Value extent = b.createOrFold<arith::SubIOp>(loc, ub, lb);
+  extent = b.createOrFold<arith::MaxSIOp>(loc, extent, zero);
+  return b.createOrFold<arith::CeilDivUIOp>(loc, extent, step);
+}
+
+/// Adds the `contract` fast-math flag to every floating-point operation in
+/// the kernel.
+void allowContraction(gpu::LaunchOp launch) {
+  launch.walk([](arith::ArithFastMathInterface op) {
+    arith::FastMathFlagsAttr attr = op.getFastMathFlagsAttr();
+    arith::FastMathFlags flags =
+        attr ? attr.getValue() : arith::FastMathFlags::none;
+    op->setAttr(op.getFastMathAttrName(),
+                arith::FastMathFlagsAttr::get(
+                    op->getContext(), flags | arith::FastMathFlags::contract));
+  });
 }
 
 class LoopToLaunch {
 public:
-  LoopToLaunch(scf::ParallelOp loop, int64_t blockSize)
-      : loop(loop), blockSize(blockSize) {}
+  LoopToLaunch(scf::ParallelOp loop, int64_t blockSize, bool fpContract)
+      : loop(loop), blockSize(blockSize), fpContract(fpContract) {}
 
   LogicalResult run();
 
@@ -70,6 +83,7 @@ private:
 
   scf::ParallelOp loop;
   int64_t blockSize;
+  bool fpContract;
   SmallVector<Value> trips;
 };
 
@@ -180,6 +194,8 @@ LogicalResult LoopToLaunch::run() {
                                   acc, ValueRange());
   }
   gpu::TerminatorOp::create(body, loc);
+  if (fpContract)
+    allowContraction(launch);
 
   b.setInsertionPointAfter(launch);
   for (auto [result, acc] : llvm::zip(loop.getResults(), accumulators))
@@ -195,12 +211,13 @@ SmallVector<Value> LoopToLaunch::delinearize(OpBuilder &b, Value linear) {
   for (int64_t dim = trips.size() - 1; dim >= 0; --dim) {
     Value index = rest;
     if (dim > 0) {
-      index = arith::RemUIOp::create(b, loc, rest, trips[dim]);
-      rest = arith::DivUIOp::create(b, loc, rest, trips[dim]);
+      index = b.createOrFold<arith::RemUIOp>(loc, rest, trips[dim]);
+      rest = b.createOrFold<arith::DivUIOp>(loc, rest, trips[dim]);
     }
     Value offset =
-        arith::MulIOp::create(b, loc, index, loop.getStep()[dim]);
-    ivs[dim] = arith::AddIOp::create(b, loc, loop.getLowerBound()[dim], offset);
+        b.createOrFold<arith::MulIOp>(loc, index, loop.getStep()[dim]);
+    ivs[dim] =
+        b.createOrFold<arith::AddIOp>(loc, loop.getLowerBound()[dim], offset);
   }
   return ivs;
 }
@@ -225,7 +242,7 @@ struct ParallelLoopsToGpu
         loops.push_back(loop);
     });
     for (scf::ParallelOp loop : loops)
-      if (failed(LoopToLaunch(loop, blockSize).run()))
+      if (failed(LoopToLaunch(loop, blockSize, fpContract).run()))
         signalPassFailure();
   }
 };

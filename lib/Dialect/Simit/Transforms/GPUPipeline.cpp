@@ -33,7 +33,7 @@ struct GpuPipeline : public simit::impl::SimitGpuPipelineBase<GpuPipeline> {
 
   void buildPipeline(OpPassManager &pm) const {
     pm.addPass(simit::createSimitGpuScatterAtomics());
-    pm.addPass(simit::createSimitParallelLoopsToGpu({blockSize}));
+    pm.addPass(simit::createSimitParallelLoopsToGpu({blockSize, fpContract}));
     pm.addPass(simit::createSimitGpuDeviceMemory());
     pm.addPass(createGpuLaunchSinkIndexComputationsPass());
     pm.addPass(createGpuKernelOutliningPass());

@@ -132,8 +132,9 @@ public:
   Value indexConstant(int64_t value);
   Value zeroOf(Type scalarType);
   /// A fresh array for a system tensor of `type` stored as `storage`, zero
-  /// filled.
-  Value allocSystem(Location loc, Type type, const Storage &storage);
+  /// filled unless the caller writes every component.
+  Value allocSystem(Location loc, Type type, const Storage &storage,
+                    bool zeroFill = true);
   /// The number of blocks of an array stored as `storage`.
   Value numBlocks(const Storage &storage, StringAttr denseSet);
   /// Fills an array with a scalar.

@@ -529,7 +529,8 @@ LogicalResult IndexExprLowering::lower() {
       return op.emitError("a system matrix result needs a sparse input");
     resultStorage = *storage;
   }
-  Value output = l.allocSystem(loc, type, resultStorage);
+  // The loop nest writes every component of the result.
+  Value output = l.allocSystem(loc, type, resultStorage, /*zeroFill=*/false);
   l.storages[op] = resultStorage;
 
   // Loops over the result's levels, then the sum, then the store.

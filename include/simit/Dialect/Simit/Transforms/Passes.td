@@ -127,10 +127,15 @@ def SimitParallelLoopsToGpu : Pass<"simit-parallel-loops-to-gpu", "::mlir::Modul
     block into a scalar accumulator that starts at the loop's initial value;
     the loop's result is loaded from it after the launch. Other combiners are
     reported as errors. Run `simit-gpu-scatter-atomics` first.
+    With fp-contract (the default, like nvcc's -fmad=true), floating-point
+    operations in kernels carry the `contract` fast-math flag, so that a
+    multiply feeding an add becomes one fused multiply-add.
   }];
   let options = [
     Option<"blockSize", "block-size", "int64_t", /*default=*/"256",
-           "Threads per block">
+           "Threads per block">,
+    Option<"fpContract", "fp-contract", "bool", /*default=*/"true",
+           "Let kernels fuse floating-point multiplies and adds">
   ];
   let dependentDialects = ["::mlir::gpu::GPUDialect",
                            "::mlir::memref::MemRefDialect",
@@ -180,7 +185,9 @@ def SimitGpuPipeline : Pass<"simit-gpu-pipeline", "::mlir::ModuleOp"> {
     Option<"optLevel", "opt-level", "int", /*default=*/"3",
            "Optimisation level of the kernel compilation">,
     Option<"blockSize", "block-size", "int64_t", /*default=*/"256",
-           "Threads per block">
+           "Threads per block">,
+    Option<"fpContract", "fp-contract", "bool", /*default=*/"true",
+           "Let kernels fuse floating-point multiplies and adds">
   ];
 }
 

@@ -22,12 +22,14 @@
 #include "mlir/Dialect/Complex/IR/Complex.h"
 #include "mlir/Dialect/Math/IR/Math.h"
 #include "mlir/Dialect/SCF/IR/SCF.h"
-#include "mlir/Dialect/Tensor/IR/Tensor.h"
 #include "mlir/Dialect/UB/IR/UBOps.h"
 #include "mlir/IR/Diagnostics.h"
+#include "mlir/IR/Dominance.h"
+#include "mlir/IR/PatternMatch.h"
 #include "mlir/IR/Iterators.h"
 #include "mlir/IR/Verifier.h"
 #include "mlir/Interfaces/SideEffectInterfaces.h"
+#include "mlir/Transforms/CSE.h"
 
 using namespace simit::frontend;
 using namespace mlir;
@@ -37,8 +39,7 @@ namespace frontend = ::simit::frontend;
 void frontend::loadIRGenDialects(MLIRContext &context) {
   context.loadDialect<dialect::SimitDialect, func::FuncDialect, scf::SCFDialect,
                       arith::ArithDialect, math::MathDialect,
-                      complex::ComplexDialect, tensor::TensorDialect,
-                      ub::UBDialect>();
+                      complex::ComplexDialect, ub::UBDialect>();
 }
 
 OwningOpRef<ModuleOp>
@@ -84,7 +85,7 @@ OwningOpRef<ModuleOp> IRGenerator::generate() {
   }
   if (failed)
     return nullptr;
-  eraseDeadOps();
+  simplify();
   if (!verifyModule())
     return nullptr;
   return owned;
@@ -92,12 +93,17 @@ OwningOpRef<ModuleOp> IRGenerator::generate() {
 
 /// Generation leaves unused side-effect-free values behind (the int
 /// constants of indices that became `index` constants, loads of variables
-/// read only to be replaced); they go, innermost first.
-void IRGenerator::eraseDeadOps() {
+/// read only to be replaced) and repeats values (constants, endpoint reads
+/// of unrolled loops, extern slots); dead ones go, innermost first, and
+/// repeated ones are merged.
+void IRGenerator::simplify() {
   module.walk<WalkOrder::PostOrder, ReverseIterator>([&](Operation *op) {
     if (op != module && isOpTriviallyDead(op))
       op->erase();
   });
+  IRRewriter rewriter(&context);
+  DominanceInfo dominance;
+  eliminateCommonSubExpressions(rewriter, dominance, module);
 }
 
 void IRGenerator::genExtern(const VarDecl &global) {
@@ -130,8 +136,10 @@ void IRGenerator::genFunction(const FuncDecl &func) {
   OpBuilder::InsertionGuard guard(builder);
   builder.setInsertionPointToStart(entry);
   for (auto [param, argument] :
-       llvm::zip(func.params, entry->getArguments()))
+       llvm::zip(func.params, entry->getArguments())) {
+    argument.setLoc(loc(param->loc));
     bindings[param.get()] = {argument, isSlotParam(*param)};
+  }
   for (const auto &result : func.results)
     allocSlot(*result);
   if (func.body)

@@ -122,6 +122,31 @@ Value IRGenerator::coerce(Value value, mlir::Type type, SMLoc where) {
     return value;
   if (dialect::isScalarType(value.getType()) && dialect::isTensorType(type))
     return dialect::BroadcastOp::create(builder, loc(where), type, value);
+  auto from = dyn_cast<RankedTensorType>(value.getType());
+  auto to = dyn_cast<RankedTensorType>(type);
+  if (from && to && from.getElementType() == to.getElementType() &&
+      from.getNumElements() == to.getNumElements()) {
+    // A constant of another shape with as many components (language.md 5:
+    // shapes may differ in leading 1s), copied component by component.
+    Location l = loc(where);
+    Value result = dialect::ZerosOp::create(builder, l, to);
+    auto indicesOf = [&](int64_t linear, ArrayRef<int64_t> shape) {
+      SmallVector<Value> indices(shape.size());
+      for (int64_t d = shape.size() - 1; d >= 0; --d) {
+        indices[d] = indexConstant(linear % shape[d], where);
+        linear /= shape[d];
+      }
+      return indices;
+    };
+    for (int64_t i = 0; i < to.getNumElements(); ++i) {
+      Value component = dialect::ExtractOp::create(
+          builder, l, to.getElementType(), value,
+          indicesOf(i, from.getShape()));
+      result = dialect::InsertOp::create(builder, l, component, result,
+                                         indicesOf(i, to.getShape()));
+    }
+    return result;
+  }
   return unsupported(where, "converting a value of type " +
                                 typeString(value.getType()) + " to " +
                                 typeString(type),

@@ -78,7 +78,8 @@ private:
   mlir::func::FuncOp declareRuntimeFunction(llvm::StringRef base,
                                             llvm::StringRef simitName,
                                             mlir::FunctionType type);
-  void eraseDeadOps();
+  /// Erases dead side-effect-free operations and merges repeated ones.
+  void simplify();
   bool verifyModule();
 
   //===--- IRGenTypes.cpp -------------------------------------------------===//

@@ -325,9 +325,10 @@ void IRGenerator::writeIndexedTarget(const ReadExpr &target, Value value,
   SmallVector<Value> ivs;
   for (int64_t v : distinct) {
     int64_t size = cast<IntegerAttr>(state.domains[v][0]).getInt();
-    auto loop = scf::ForOp::create(builder, l, indexConstant(0, target.loc),
-                                   indexConstant(size, target.loc),
-                                   indexConstant(1, target.loc));
+    Value lower = indexConstant(0, target.loc);
+    Value upper = indexConstant(size, target.loc);
+    Value one = indexConstant(1, target.loc);
+    auto loop = scf::ForOp::create(builder, l, lower, upper, one);
     builder.setInsertionPoint(loop.getBody()->getTerminator());
     ivs.push_back(loop.getInductionVar());
   }

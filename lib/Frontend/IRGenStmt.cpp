@@ -328,7 +328,9 @@ void IRGenerator::genDoWhile(const DoWhileStmt &stmt) {
 
 void IRGenerator::genFor(const ForStmt &stmt) {
   if (stmt.isRange()) {
-    genRangeFor(stmt, genExpr(*stmt.lower), genExpr(*stmt.upper));
+    Value lower = genExpr(*stmt.lower);
+    Value upper = genExpr(*stmt.upper);
+    genRangeFor(stmt, lower, upper);
     return;
   }
   Dim domain = stmt.domainDim;
@@ -336,8 +338,9 @@ void IRGenerator::genFor(const ForStmt &stmt) {
       domain.generic->index < currentFunc->binding.size())
     domain = currentFunc->binding[domain.generic->index];
   if (domain.kind == Dim::Kind::Range) {
-    genRangeFor(stmt, intConstant(0, stmt.domainLoc),
-                intConstant(domain.size, stmt.domainLoc));
+    Value lower = intConstant(0, stmt.domainLoc);
+    Value upper = intConstant(domain.size, stmt.domainLoc);
+    genRangeFor(stmt, lower, upper);
     return;
   }
   if (domain.kind != Dim::Kind::Set) {
@@ -347,8 +350,9 @@ void IRGenerator::genFor(const ForStmt &stmt) {
   Location l = loc(stmt.loc);
   Value set = genSet(domain.set, stmt.domainLoc);
   Value size = dialect::SetSizeOp::create(builder, loc(stmt.domainLoc), set);
-  auto forOp = scf::ForOp::create(builder, l, indexConstant(0, stmt.loc), size,
-                                  indexConstant(1, stmt.loc));
+  Value zero = indexConstant(0, stmt.loc);
+  Value one = indexConstant(1, stmt.loc);
+  auto forOp = scf::ForOp::create(builder, l, zero, size, one);
   OpBuilder::InsertionGuard guard(builder);
   builder.setInsertionPoint(forOp.getBody()->getTerminator());
   Value element = dialect::SetElementOp::create(builder, loc(stmt.var->loc), set,
@@ -367,9 +371,10 @@ void IRGenerator::genRangeFor(const ForStmt &stmt, Value lower, Value upper) {
     return;
   }
   Location l = loc(stmt.loc);
-  auto forOp = scf::ForOp::create(builder, l, toIndex(lower, stmt.loc),
-                                  toIndex(upper, stmt.loc),
-                                  indexConstant(1, stmt.loc));
+  Value lowerIndex = toIndex(lower, stmt.loc);
+  Value upperIndex = toIndex(upper, stmt.loc);
+  Value one = indexConstant(1, stmt.loc);
+  auto forOp = scf::ForOp::create(builder, l, lowerIndex, upperIndex, one);
   OpBuilder::InsertionGuard guard(builder);
   builder.setInsertionPoint(forOp.getBody()->getTerminator());
   Value i = arith::IndexCastOp::create(builder, loc(stmt.var->loc),

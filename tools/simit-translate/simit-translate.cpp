@@ -75,7 +75,8 @@ static bool processProgram(llvm::StringRef text, llvm::StringRef bufferName) {
   }
   mlir::OpPrintingFlags flags;
   if (printDebugLocations)
-    flags.enableDebugInfo(/*enable=*/true, /*prettyForm=*/false);
+    flags.enableDebugInfo(/*enable=*/true, /*prettyForm=*/false)
+        .useLocalScope(); // locations inline, not as #loc aliases
   module->print(llvm::outs(), flags);
   llvm::outs() << "\n";
   return true;

@@ -103,7 +103,6 @@ func.func @stiffness(%np: index, %ne: index, %k: memref<?xf64>,
     }
     memref.store %sum, %f[%r] : memref<?xf64>
   }
-  memref.dealloc %vals : memref<?xf64>
   return
 }
 )mlir";

@@ -901,30 +901,17 @@ struct ConvertSimitToLoops
         elementFunctions.insert(
             op->getAttrOfType<FlatSymbolRefAttr>("callee").getAttr());
     });
-    // Public functions that use the dialect are exported; functions
-    // without simit (host code already lowered) stay as they are.
-    auto usesSimit = [](func::FuncOp function) {
-      auto isSimitType = [](Type type) {
-        return &type.getDialect() ==
-               type.getContext()->getLoadedDialect<SimitDialect>();
-      };
-      if (llvm::any_of(function.getArgumentTypes(), isSimitType) ||
-          llvm::any_of(function.getResultTypes(), isSimitType))
-        return true;
-      return function
-          .walk([](Operation *op) {
-            return isa<SimitDialect>(op->getDialect())
-                       ? WalkResult::interrupt()
-                       : WalkResult::advance();
-          })
-          .wasInterrupted();
-    };
     SmallVector<func::FuncOp> exported;
     for (auto function : module.getOps<func::FuncOp>())
-      if (function.isPublic() && !function.isExternal() &&
-          !elementFunctions.contains(function.getSymNameAttr()) &&
-          usesSimit(function))
+      if (isExportedFunction(function)) {
+        if (function.isExternal() ||
+            elementFunctions.contains(function.getSymNameAttr())) {
+          function.emitError("an exported function needs a body and cannot "
+                             "be mapped over a set");
+          return signalPassFailure();
+        }
         exported.push_back(function);
+      }
 
     bool failedAny = false;
     for (func::FuncOp original : exported) {
@@ -946,13 +933,12 @@ struct ConvertSimitToLoops
     if (failedAny)
       return signalPassFailure();
 
-    // Element functions now live in the set loops; externs are bindings.
+    // Element functions now live in the set loops and externs are
+    // bindings: every other function on simit values is gone.
     SmallVector<Operation *> dead;
     for (Operation &op : module.getOps()) {
       auto function = dyn_cast<func::FuncOp>(op);
-      if ((function && !function.isExternal() &&
-           (function.isPrivate() ||
-            elementFunctions.contains(function.getSymNameAttr()))) ||
+      if ((function && !function.isExternal() && usesSimitDialect(function)) ||
           isa<ExternOp>(op))
         dead.push_back(&op);
     }

@@ -109,13 +109,13 @@ LogicalResult LoopToLaunch::run() {
   for (Value trip : llvm::drop_begin(trips))
     total = arith::MulIOp::create(b, loc, total, trip);
 
-  // Scalar accumulators live at the start of the allocation scope, so that
-  // a set loop inside a host loop does not grow the stack per iteration.
+  // Scalar accumulators live at the start of the function, so that a set
+  // loop inside a host loop (a solver's iterations) reuses one accumulator,
+  // and one device copy of it, across the iterations.
   SmallVector<Value> accumulators;
   if (!combiners.empty()) {
-    Operation *scope =
-        loop->getParentWithTrait<OpTrait::AutomaticAllocationScope>();
-    OpBuilder entry = OpBuilder::atBlockBegin(&scope->getRegion(0).front());
+    auto function = loop->getParentOfType<func::FuncOp>();
+    OpBuilder entry = OpBuilder::atBlockBegin(&function.getBody().front());
     for (Value init : loop.getInitVals()) {
       accumulators.push_back(memref::AllocaOp::create(
           entry, loc, MemRefType::get({}, init.getType())));
@@ -230,7 +230,7 @@ struct ParallelLoopsToGpu
     if (blockSize <= 0 || blockSize > 1024) {
       getOperation().emitError("simit-parallel-loops-to-gpu: block-size must "
                                "be in [1, 1024], got ")
-          << blockSize;
+          << static_cast<int64_t>(blockSize);
       return signalPassFailure();
     }
     SmallVector<scf::ParallelOp> loops;

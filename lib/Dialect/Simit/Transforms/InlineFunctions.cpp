@@ -105,10 +105,12 @@ struct InlineFunctions
       }
     }
 
-    // Private functions nothing refers to any more are gone for good.
+    // Functions of the program that are neither exported nor referenced
+    // any more (by a map) are gone for good.
     SmallVector<func::FuncOp> unused;
     for (auto function : module.getOps<func::FuncOp>())
-      if (function.isPrivate() && !function.isExternal() &&
+      if (!isExportedFunction(function) && !function.isExternal() &&
+          usesSimitDialect(function) &&
           SymbolTable::symbolKnownUseEmpty(function, module))
         unused.push_back(function);
     for (func::FuncOp function : unused)
@@ -116,6 +118,26 @@ struct InlineFunctions
   }
 };
 } // namespace
+
+bool mlir::simit::isExportedFunction(func::FuncOp function) {
+  return function->hasAttr("simit.export");
+}
+
+bool mlir::simit::usesSimitDialect(func::FuncOp function) {
+  auto isSimitType = [](Type type) {
+    return isa<SimitDialect>(type.getDialect());
+  };
+  if (llvm::any_of(function.getArgumentTypes(), isSimitType) ||
+      llvm::any_of(function.getResultTypes(), isSimitType))
+    return true;
+  return function
+      .walk([](Operation *op) {
+        return isa_and_nonnull<SimitDialect>(op->getDialect())
+                   ? WalkResult::interrupt()
+                   : WalkResult::advance();
+      })
+      .wasInterrupted();
+}
 
 void mlir::simit::registerSimitInlinerInterface(DialectRegistry &registry) {
   func::registerInlinerExtension(registry);

@@ -46,16 +46,22 @@
 
 // The block reduction is a butterfly of warp shuffles (a double is two
 // 32-bit halves), then shared memory across the warps.
-// PTX:     .visible .entry dot_kernel(
-// PTX:     fma.rn.f64
-// PTX:     shfl.sync.bfly.b32
-// PTX:     st.shared.b64
-// PTX:     bar.sync 0;
-// PTX:     ld.shared.b64
-// PTX:     setp.ne.b64 {{.*}}, 0;
-// PTX:     atom.global.add.f64
-// PTX-NOT: atom.global
-// PTX:     ret;
+// PTX:      .visible .entry dot_kernel(
+// PTX:      .shared .align 8 .b8 __wg_dot_kernel_0[256];
+// PTX:      fma.rn.f64
+// PTX:      shfl.sync.bfly.b32
+// PTX:      st.shared.b64
+// PTX:      bar.sync 0;
+// PTX:      shfl.sync.bfly.b32
+// PTX:      st.shared.b64 [__wg_dot_kernel_0], %{{.*}};
+// PTX:      bar.sync 0;
+// Thread 0 alone adds the block's sum to the accumulator.
+// PTX-NEXT: setp.ne.b32 %[[NOTFIRST:p[0-9]+]], %r{{[0-9]+}}, 0;
+// PTX-NEXT: @%[[NOTFIRST]] bra
+// PTX-NEXT: ld.shared.b64 %[[SUM:rd[0-9]+]], [__wg_dot_kernel_0];
+// PTX-NEXT: atom.global.add.f64 %rd{{[0-9]+}}, [%rd{{[0-9]+}}], %[[SUM]];
+// PTX-NOT:  atom.global
+// PTX:      ret;
 
 // The dot product of two vectors over a vertex set (3 components each), a
 // scalar reduction that the loop returns.

@@ -79,7 +79,7 @@ func.func private @springForce(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -
   return %K4, %f2 : !K, !F
 }
 
-func.func @step() {
+func.func @step() attributes {simit.export} {
   %points = simit.get_set @points : !Points
   %springs = simit.get_set @springs : !Springs
   %M, %fm = simit.assemble @pointMass() to %points reduce <add> : (!Points) -> (!K, !F)

@@ -24,6 +24,14 @@ namespace simit {
 #define GEN_PASS_REGISTRATION
 #include "simit/Dialect/Simit/Transforms/Passes.h.inc"
 
+/// Whether `function` is an entry point the host calls: it carries the
+/// `simit.export` unit attribute (the frontend's `export func`).
+bool isExportedFunction(func::FuncOp function);
+
+/// Whether `function` has simit types in its signature or simit operations
+/// in its body (host code such as test drivers has neither).
+bool usesSimitDialect(func::FuncOp function);
+
 /// Registers the simit dialect's inliner interface (every simit op may be
 /// inlined) together with func's, as a dialect extension.
 void registerSimitInlinerInterface(DialectRegistry &registry);

@@ -18,6 +18,7 @@
 #include "llvm/ADT/STLExtras.h"
 #include "llvm/ADT/StringMap.h"
 #include "llvm/Support/FormatVariadic.h"
+#include "llvm/Support/MathExtras.h"
 
 #include <cmath>
 #include <cstring>
@@ -75,13 +76,47 @@ std::string shapeString(llvm::ArrayRef<int> shape) {
       shape, [](int d) { return static_cast<int64_t>(d); })));
 }
 
-/// Byte size and alignment of a value in the struct of results.
-size_t valueSize(const ValueType &type) {
-  return type.isMemRef ? 8 * (3 + 2 * type.rank()) : scalarSize(type.scalar);
-}
+/// Alignment and byte size of a value in memory, as LLVM lays it out on
+/// x86-64: a vector is aligned to its size rounded up to a power of two.
 size_t valueAlignment(const ValueType &type) {
-  return type.isMemRef ? 8 : scalarSize(type.scalar);
+  if (type.isMemRef)
+    return 8;
+  if (type.isVector)
+    return llvm::PowerOf2Ceil(type.numComponents() * scalarSize(type.scalar));
+  return scalarSize(type.scalar);
 }
+size_t valueSize(const ValueType &type) {
+  if (type.isMemRef)
+    return 8 * (3 + 2 * type.rank());
+  size_t align = valueAlignment(type);
+  return (type.numComponents() * scalarSize(type.scalar) + align - 1) / align *
+         align;
+}
+
+/// Zeroed bytes aligned for any value the JIT loads or stores whole.
+class AlignedBytes {
+public:
+  static constexpr size_t kAlignment = 256;
+  void assign(size_t size) {
+    storage.assign(size + kAlignment, 0);
+    uintptr_t base = reinterpret_cast<uintptr_t>(storage.data());
+    offset = (kAlignment - base % kAlignment) % kAlignment;
+  }
+  uint8_t *data() { return storage.data() + offset; }
+  void clear() { std::fill(storage.begin(), storage.end(), 0); }
+
+private:
+  std::vector<uint8_t> storage;
+  size_t offset = 0;
+};
+
+/// A vector argument: copied from its bound buffer before every call, since
+/// the compiled code loads it whole with the vector's alignment.
+struct VectorCopy {
+  const void *source;
+  size_t offset, bytes;
+  size_t argument; // its position in Impl::args
+};
 } // namespace
 
 struct Function::Impl {
@@ -99,8 +134,11 @@ struct Function::Impl {
   /// per init() and never reallocated afterwards.
   std::vector<int64_t> words;
   std::vector<void *> args;
+  AlignedBytes vectorStorage;
+  size_t vectorBytes = 0;
+  std::vector<VectorCopy> vectorCopies;
   std::vector<size_t> resultOffsets;
-  std::vector<uint64_t> resultStorage;
+  AlignedBytes resultStorage;
   std::vector<HostValue> results;
 
   const HostSignature &signature() const { return compiled->signature; }
@@ -268,16 +306,33 @@ llvm::Error Function::Impl::prepareArgument(const ArgumentBinding &arg,
       return error(arg.describe() + " has host type " + type.str() +
                    ", which no host buffer provides");
     std::vector<int64_t> bufferShape(buffer.shape.begin(), buffer.shape.end());
-    if (buffer.type != expected || bufferShape != type.shape)
+    // A vector is the lowering's flattened form of a local tensor: any
+    // buffer of as many components fits it.
+    int64_t bufferComponents = 1;
+    for (int64_t dim : bufferShape)
+      bufferComponents *= dim;
+    bool shapeFits = type.isVector
+                         ? bufferComponents == type.numComponents()
+                         : bufferShape == type.shape;
+    if (buffer.type != expected || !shapeFits)
       return error(arg.describe() + " is bound to " +
                    componentTypeName(buffer.type).str() + " of shape " +
                    shapeString(buffer.shape) + ", but the program expects " +
                    componentTypeName(expected).str() + " of shape " +
                    shapeString(type.shape));
-    if (type.isMemRef)
+    if (type.isMemRef) {
       pushMemRef(word, buffer.data, type.shape);
-    else
+    } else if (type.isVector) {
+      size_t align = valueAlignment(type);
+      size_t offset = (vectorBytes + align - 1) / align * align;
+      vectorCopies.push_back(
+          {buffer.data, offset, type.numComponents() * scalarSize(type.scalar),
+           args.size()});
+      vectorBytes = offset + valueSize(type);
+      args.push_back(nullptr); // set once vectorStorage is allocated
+    } else {
       args.push_back(buffer.data);
+    }
     return llvm::Error::success();
   }
   }
@@ -289,26 +344,30 @@ llvm::Error Function::Impl::init() {
   setVersions.clear();
   patterns.clear();
   args.clear();
+  vectorCopies.clear();
+  vectorBytes = 0;
   words.assign(wordsNeeded(*compiled), 0);
   size_t word = 0;
   for (const ArgumentBinding &arg : signature().arguments)
     if (llvm::Error err = prepareArgument(arg, word))
       return err;
+  vectorStorage.assign(vectorBytes);
+  for (const VectorCopy &copy : vectorCopies)
+    args[copy.argument] = vectorStorage.data() + copy.offset;
 
   if (compiled->convention == MemRefConvention::BarePointer &&
       llvm::any_of(signature().results,
                    [](const ValueType &t) { return t.isMemRef; }))
     return error("memref results need the descriptor calling convention");
-  size_t offset = 0, alignment = 8;
+  size_t offset = 0;
   resultOffsets.clear();
   for (const ValueType &result : signature().results) {
     size_t align = valueAlignment(result);
     offset = (offset + align - 1) / align * align;
     resultOffsets.push_back(offset);
     offset += valueSize(result);
-    alignment = std::max(alignment, align);
   }
-  resultStorage.assign((offset + 7) / 8, 0);
+  resultStorage.assign(offset);
   if (!signature().results.empty())
     args.push_back(resultStorage.data());
 
@@ -320,12 +379,19 @@ llvm::Error Function::Impl::init() {
 
 void Function::Impl::decodeResults() {
   results.clear();
-  const uint8_t *base = reinterpret_cast<const uint8_t *>(resultStorage.data());
+  const uint8_t *base = resultStorage.data();
   for (auto [type, offset] :
        llvm::zip_equal(signature().results, resultOffsets)) {
     HostValue value;
     value.scalar = type.scalar;
     size_t elementSize = scalarSize(type.scalar);
+    if (type.isVector) {
+      value.shape = type.shape;
+      value.bytes.assign(base + offset,
+                         base + offset + type.numComponents() * elementSize);
+      results.push_back(std::move(value));
+      continue;
+    }
     if (!type.isMemRef) {
       value.bytes.assign(base + offset, base + offset + elementSize);
       results.push_back(std::move(value));
@@ -443,7 +509,10 @@ llvm::Error Function::run() {
   if (!current)
     if (llvm::Error err = impl->init())
       return err;
-  std::fill(impl->resultStorage.begin(), impl->resultStorage.end(), 0);
+  impl->resultStorage.clear();
+  for (const VectorCopy &copy : impl->vectorCopies)
+    std::memcpy(impl->vectorStorage.data() + copy.offset, copy.source,
+                copy.bytes);
   impl->compiled->entry(impl->args.data());
   impl->decodeResults();
   return llvm::Error::success();

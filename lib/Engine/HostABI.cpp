@@ -65,10 +65,17 @@ bool simit::componentTypeFor(ScalarKind kind, ComponentType &type) {
   llvm_unreachable("unknown scalar kind");
 }
 
+int64_t ValueType::numComponents() const {
+  int64_t n = 1;
+  for (int64_t dim : shape)
+    n *= dim;
+  return n;
+}
+
 std::string ValueType::str() const {
-  if (!isMemRef)
+  if (!isMemRef && !isVector)
     return scalarKindName(scalar).str();
-  std::string text = "memref<";
+  std::string text = isVector ? "vector<" : "memref<";
   for (int64_t dim : shape)
     text += (dim == kDynamic ? std::string("?") : std::to_string(dim)) + "x";
   return text + scalarKindName(scalar).str() + ">";
@@ -111,6 +118,15 @@ llvm::Expected<ValueType> simit::toValueType(mlir::Type type) {
       result.shape.push_back(mlir::ShapedType::isDynamic(dim)
                                  ? ValueType::kDynamic
                                  : dim);
+    return result;
+  }
+  if (auto vector = llvm::dyn_cast<mlir::VectorType>(type)) {
+    if (vector.isScalable() || !toScalarKind(vector.getElementType(),
+                                             result.scalar) ||
+        result.scalar == ScalarKind::Bool)
+      return typeError(type, "only fixed vectors of numbers are supported");
+    result.isVector = true;
+    result.shape.assign(vector.getShape().begin(), vector.getShape().end());
     return result;
   }
   if (!toScalarKind(type, result.scalar))
@@ -232,7 +248,7 @@ static llvm::Error checkKindType(const HostSignature &signature,
   };
   switch (binding.kind) {
   case Kind::SetSize:
-    if (type.isMemRef ||
+    if (type.isMemRef || type.isVector ||
         (type.scalar != ScalarKind::Index && type.scalar != ScalarKind::Int64 &&
          type.scalar != ScalarKind::Int32))
       return fail("an integer or index");

@@ -429,6 +429,10 @@ Value IRGenerator::genTupleRead(const TupleReadExpr &e) {
   if (!e.index)
     return dialect::TupleGetOp::create(builder, l, elementType, tuple,
                                      e.memberIndex);
+  auto fixed = endpointPositions.find(&e);
+  if (fixed != endpointPositions.end())
+    return dialect::TupleGetOp::create(builder, l, elementType, tuple,
+                                     fixed->second);
   Value index = genExpr(*e.index);
   if (std::optional<int64_t> constant = constantInt(index))
     return dialect::TupleGetOp::create(builder, l, elementType, tuple,

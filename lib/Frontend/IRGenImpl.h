@@ -165,6 +165,10 @@ private:
   /// Writes `value` to an assignment target (copies back through reads and
   /// fields: load, simit.insert, store).
   void writeTarget(const Expr &target, mlir::Value value, SMLoc where);
+  /// Runs `write` once per position of the tuple `pick` reads, under a test
+  /// of `position`, with `pick` fixed to that position.
+  void writeAtEachEndpoint(const TupleReadExpr &pick, mlir::Value position,
+                           llvm::function_ref<void()> write);
 
   //===--- IRGenIndexExpr.cpp ---------------------------------------------===//
   void genIndexAssign(const AssignStmt &stmt);
@@ -200,6 +204,9 @@ private:
   // The function being generated.
   const FuncDecl *currentFunc = nullptr;
   llvm::DenseMap<const VarDecl *, Binding> bindings;
+  /// Tuple reads fixed to one position while a write is generated per
+  /// endpoint.
+  llvm::DenseMap<const TupleReadExpr *, int64_t> endpointPositions;
 };
 
 } // namespace simit::frontend

@@ -269,6 +269,18 @@ void IRGenerator::writeTarget(const Expr &target, Value value, SMLoc where) {
     return;
   }
   if (auto *read = dyn_cast<ReadExpr>(&target); read && !read->isSlice()) {
+    // An endpoint picked by a computed position: one write per position.
+    for (const ExprPtr &index : read->indices) {
+      auto *pick = dyn_cast<TupleReadExpr>(index.get());
+      if (!pick || !pick->index || endpointPositions.count(pick))
+        continue;
+      Value position = genExpr(*pick->index);
+      if (constantInt(position))
+        continue;
+      writeAtEachEndpoint(*pick, position,
+                          [&] { writeTarget(target, value, where); });
+      return;
+    }
     // Read the whole, replace the part, write the whole back.
     Value whole = genExpr(*read->base);
     SmallVector<Value> indices;
@@ -281,6 +293,32 @@ void IRGenerator::writeTarget(const Expr &target, Value value, SMLoc where) {
     return;
   }
   unsupported(target.loc, "this assignment target");
+}
+
+void IRGenerator::writeAtEachEndpoint(const TupleReadExpr &pick,
+                                      Value position,
+                                      llvm::function_ref<void()> write) {
+  // if position == 0 { write v(0) } else if ... else { write v(n-1) }: the
+  // map verifier accepts writes at constant endpoints only.
+  unsigned size = cast<dialect::TupleType>(
+                      convertType(pick.base->type, pick.loc))
+                      .size();
+  OpBuilder::InsertionGuard guard(builder);
+  Location l = loc(pick.loc);
+  for (unsigned k = 0; k < size; ++k) {
+    endpointPositions[&pick] = k;
+    if (k + 1 == size) {
+      write();
+      break;
+    }
+    Value isK = arith::CmpIOp::create(builder, l, arith::CmpIPredicate::eq,
+                                      position, intConstant(k, pick.loc));
+    auto ifOp = scf::IfOp::create(builder, l, isK, /*withElseRegion=*/true);
+    builder.setInsertionPoint(ifOp.thenBlock()->getTerminator());
+    write();
+    builder.setInsertionPoint(ifOp.elseBlock()->getTerminator());
+  }
+  endpointPositions.erase(&pick);
 }
 
 void IRGenerator::genIf(const IfStmt &stmt, size_t branch) {

@@ -41,22 +41,27 @@ llvm::StringRef scalarKindName(ScalarKind kind);
 /// (Int64 and Index have none).
 bool componentTypeFor(ScalarKind kind, ComponentType &type);
 
-/// The machine type of one argument or result: a scalar or a memref.
+/// The machine type of one argument or result: a scalar, a memref, or a
+/// vector passed by value (the lowering's form of small dense tensors).
 struct ValueType {
   static constexpr int64_t kDynamic = -1;
 
   ScalarKind scalar = ScalarKind::Float64;
   bool isMemRef = false;
-  /// Memref dimensions, kDynamic for `?`; empty for a scalar or rank 0.
+  bool isVector = false;
+  /// Memref or vector dimensions, kDynamic for `?`; empty for a scalar or
+  /// a rank-0 memref.
   std::vector<int64_t> shape;
 
   int64_t rank() const { return static_cast<int64_t>(shape.size()); }
-  /// "memref<?x3xf64>", "f64".
+  /// Components of a vector (1 for a scalar).
+  int64_t numComponents() const;
+  /// "memref<?x3xf64>", "vector<9xf64>", "f64".
   std::string str() const;
 };
 
-/// Reads an MLIR type (index, i1/i32/i64, f32/f64 or a memref of them with
-/// the identity layout) as a ValueType.
+/// Reads an MLIR type (index, i1/i32/i64, f32/f64, a memref of them with the
+/// identity layout, or a static vector of numbers) as a ValueType.
 llvm::Expected<ValueType> toValueType(mlir::Type type);
 
 /// What one argument carries.

@@ -327,31 +327,33 @@ StringAttr FunctionLowering::elementSetOf(Value original) {
 
 bool FunctionLowering::canAlias(Operation *read,
                                 function_ref<bool(Operation *)> writes) {
+  auto writesInside = [&](Operation *op) {
+    return op
+        ->walk([&](Operation *nested) {
+          return writes(nested) ? WalkResult::interrupt()
+                                : WalkResult::advance();
+        })
+        .wasInterrupted();
+  };
   Block *block = read->getBlock();
   Operation *last = read;
   for (Operation *user : read->getResult(0).getUsers()) {
     Operation *ancestor = block->findAncestorOpInBlock(*user);
     if (!ancestor)
       return false;
+    // A use inside a loop or branch may come after a write in that region
+    // (a later iteration).
+    if (ancestor != user && writesInside(ancestor))
+      return false;
     if (last->isBeforeInBlock(ancestor))
       last = ancestor;
   }
+  // A write between the read and its last use changes what the use sees;
+  // the last user itself reads its operands before it writes.
   for (Operation *op = read->getNextNode(); op && op != last;
-       op = op->getNextNode()) {
-    bool clobbers = false;
-    op->walk([&](Operation *nested) {
-      if (writes(nested)) {
-        clobbers = true;
-        return WalkResult::interrupt();
-      }
-      return WalkResult::advance();
-    });
-    if (clobbers)
+       op = op->getNextNode())
+    if (writesInside(op))
       return false;
-  }
-  // The last user itself may write after reading; only a user that writes
-  // the source while still using the value later would matter, and a
-  // single operation reads its operands before writing.
   return true;
 }
 
@@ -471,12 +473,12 @@ LogicalResult FunctionLowering::lowerWhile(scf::WhileOp op) {
       storages[arg] = storages[init];
 
   auto loop = scf::WhileOp::create(b, op.getLoc(), afterTypes, inits);
+  OpBuilder::InsertionGuard guard(b);
   SmallVector<Type> beforeTypes = llvm::to_vector(ValueRange(inits).getTypes());
   SmallVector<Location> beforeLocs(beforeTypes.size(), op.getLoc());
   SmallVector<Location> afterLocs(afterTypes.size(), op.getLoc());
   Block *before = b.createBlock(&loop.getBefore(), {}, beforeTypes, beforeLocs);
   Block *after = b.createBlock(&loop.getAfter(), {}, afterTypes, afterLocs);
-  OpBuilder::InsertionGuard guard(b);
 
   for (auto [from, to] :
        llvm::zip(op.getBeforeArguments(), before->getArguments()))
@@ -503,7 +505,6 @@ LogicalResult FunctionLowering::lowerWhile(scf::WhileOp op) {
     return failure();
   scf::YieldOp::create(b, op.getLoc(),
                        keptOperands(*this, op.getYieldOp().getOperands()));
-  b.setInsertionPointAfter(loop);
   for (auto [from, to] : llvm::zip(op.getResults(), loop.getResults()))
     map(from, to);
   return success();
@@ -658,8 +659,50 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
     return success();
   }
   if (auto store = dyn_cast<StoreOp>(op)) {
-    memref::CopyOp::create(b, loc, lookup(store.getValue()),
-                           lookup(store.getRef()));
+    Value value = lookup(store.getValue()), buffer = lookup(store.getRef());
+    if (value != buffer)
+      memref::CopyOp::create(b, loc, value, buffer);
+    return success();
+  }
+  if (auto insert = dyn_cast<InsertOp>(op)) {
+    auto type = cast<SystemTensorType>(insert.getTensor().getType());
+    if (type.getOrder() != 1)
+      return op->emitError("writing one block of a system matrix is not "
+                           "supported by the loop lowering");
+    // `v(p) = b` on a variable (load, insert, store back) writes the
+    // variable's array in place; otherwise the vector is copied first.
+    Value tensor = lookup(insert.getTensor());
+    auto load = insert.getTensor().getDefiningOp<LoadOp>();
+    auto store = insert->hasOneUse()
+                     ? dyn_cast<StoreOp>(*insert->getUsers().begin())
+                     : StoreOp();
+    bool inPlace = load && store && store.getRef() == load.getRef() &&
+                   tensor == lookup(load.getRef());
+    auto memref = cast<MemRefType>(tensor.getType());
+    Value target = tensor;
+    if (!inPlace) {
+      target = memref::AllocOp::create(
+          b, loc, memref,
+          ValueRange{memref::DimOp::create(b, loc, tensor, 0).getResult()});
+      memref::CopyOp::create(b, loc, tensor, target);
+    }
+    Value position = lookup(insert.getIndices()[0]);
+    Value value = lookup(insert.getValue());
+    for (int64_t c = 0, n = numComponents(insert.getValue().getType()); c < n;
+         ++c) {
+      SmallVector<Value> indices{position};
+      int64_t rest = c;
+      SmallVector<int64_t> blockIdx;
+      for (int64_t d = memref.getRank() - 1; d >= 1; --d) {
+        blockIdx.push_back(rest % memref.getDimSize(d));
+        rest /= memref.getDimSize(d);
+      }
+      for (int64_t i : llvm::reverse(blockIdx))
+        indices.push_back(indexConstant(i));
+      memref::StoreOp::create(b, loc, component(value, c), target, indices);
+    }
+    storages[insert] = Storage::dense();
+    map(insert, target);
     return success();
   }
   if (auto extract = dyn_cast<ExtractOp>(op)) {
@@ -692,6 +735,8 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
   }
   if (auto indexExpr = dyn_cast<IndexExprOp>(op))
     return lowerIndexExpr(indexExpr);
+  if (auto solve = dyn_cast<SolveOp>(op))
+    return lowerSolve(solve);
   if (isa<AddOp, SubOp, MulOp, DivOp, NegOp, ScaleOp, MatVecOp, MatMulOp,
           TransposeOp, DotOp, OuterOp, NormOp>(op))
     return op->emitError("linear algebra on system tensors must be rewritten "
@@ -699,6 +744,72 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
   return op->emitError("'") << op->getName()
                             << "' on system tensors is not supported by the "
                                "loop lowering";
+}
+
+/// The runtime's conjugate gradient solver (lib/Engine/RuntimeFunctions).
+static constexpr llvm::StringLiteral kCgSolve = "simit_rt_cg_solve_bcsr";
+
+LogicalResult FunctionLowering::lowerSolve(SolveOp op) {
+  Location loc = op.getLoc();
+  Storage storage = storages.lookup(op.getMatrix());
+  auto matrixType = cast<SystemTensorType>(op.getMatrix().getType());
+  if (storage.kind != Storage::Kind::Pattern || storage.rows != storage.cols)
+    return op.emitError("solves are supported for square matrices assembled "
+                        "from an edge set; this matrix is stored as ")
+           << storage.describe();
+  SmallVector<int64_t> block = matrixType.getBlockShape();
+  if (!matrixType.getComponentType().isF64() || block.size() != 2 ||
+      block[0] != block[1])
+    return op.emitError("the runtime solver takes f64 matrices of square "
+                        "blocks");
+
+  // func.func private @simit_rt_cg_solve_bcsr(rowptr, colidx, values, b, x,
+  //     tolerance, maxIterations) -> iterations, declared once.
+  MLIRContext *ctx = b.getContext();
+  Type f64 = b.getF64Type();
+  int64_t dyn = ShapedType::kDynamic;
+  Type indexArray = MemRefType::get({dyn}, b.getI32Type());
+  Type values = MemRefType::get({dyn, dyn, dyn}, f64);
+  Type vector = MemRefType::get({dyn, dyn}, f64);
+  auto type = FunctionType::get(
+      ctx, {indexArray, indexArray, values, vector, vector, f64, b.getI32Type()},
+      {b.getI32Type()});
+  auto callee = module.lookupSymbol<func::FuncOp>(kCgSolve);
+  if (!callee) {
+    OpBuilder::InsertionGuard guard(b);
+    b.setInsertionPointToEnd(module.getBody());
+    callee = func::FuncOp::create(b, loc, kCgSolve, type);
+    callee.setPrivate();
+    callee->setAttr("llvm.emit_c_interface", UnitAttr::get(ctx));
+  } else if (callee.getFunctionType() != type) {
+    return op.emitError("@") << kCgSolve << " is declared with another type";
+  }
+
+  // x starts at zero; CG stops when r.r <= 1e-20 or after 2 n iterations
+  // (n unknowns: exact arithmetic needs at most n).
+  Value x = allocSystem(loc, op.getType(), Storage::dense());
+  Value rows = getSetSize(storage.rows);
+  Value unknowns = arith::MulIOp::create(b, loc, rows, indexConstant(block[0]));
+  Value limit = arith::IndexCastOp::create(
+      b, loc, b.getI32Type(),
+      arith::MulIOp::create(b, loc, unknowns, indexConstant(2)));
+  Value tolerance =
+      arith::ConstantOp::create(b, loc, b.getF64FloatAttr(1e-20));
+  auto cast = [&](Value v, Type t) {
+    return memref::CastOp::create(b, loc, t, v).getResult();
+  };
+  func::CallOp::create(
+      b, loc, callee,
+      ValueRange{getPatternArray(BindingKind::PatternRowPtr, storage.edges,
+                                 storage.rows, storage.cols),
+                 getPatternArray(BindingKind::PatternColIdx, storage.edges,
+                                 storage.rows, storage.cols),
+                 cast(lookup(op.getMatrix()), values),
+                 cast(lookup(op.getRhs()), vector), cast(x, vector), tolerance,
+                 limit});
+  storages[op] = Storage::dense();
+  map(op, x);
+  return success();
 }
 
 //===----------------------------------------------------------------------===//

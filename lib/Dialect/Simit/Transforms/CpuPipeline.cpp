@@ -33,6 +33,8 @@ void mlir::simit::buildSimitCpuPipeline(OpPassManager &pm) {
   pm.addPass(createCSEPass());
   // Temporaries of system tensors are freed once no value needs them.
   bufferization::buildBufferDeallocationPipeline(pm);
+  // Prints of vectors (test drivers) become loops of scalar prints.
+  pm.addPass(createConvertVectorToSCFPass());
   pm.addPass(createSCFToControlFlowPass());
   pm.addPass(memref::createExpandStridedMetadataPass());
   pm.addPass(createLowerAffinePass());

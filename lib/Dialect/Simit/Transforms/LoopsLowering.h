@@ -179,6 +179,8 @@ public:
 private:
   Value getBinding(BindingKind kind, ArrayRef<StringRef> names, Type type);
   LogicalResult lowerFunctionReturn(func::ReturnOp op);
+  /// Solves with a pattern matrix call the runtime's CG solver.
+  LogicalResult lowerSolve(SolveOp op);
   LogicalResult lowerFor(scf::ForOp op);
   LogicalResult lowerIf(scf::IfOp op);
   LogicalResult lowerWhile(scf::WhileOp op);

@@ -227,6 +227,9 @@ LogicalResult FunctionLowering::lowerElementAccess(Operation *op,
       return failure();
     auto type = cast<MemRefType>(array.getType());
     Value value = lookup(write.getValue());
+    // Writing an endpoint's field touches an element other edges share.
+    if (element && index != element->element)
+      element->scatters = true;
     for (int64_t c = 0, n = numComponents(fieldType); c < n; ++c)
       memref::StoreOp::create(b, loc, component(value, c), array,
                               componentIndices(*this, type, {index}, c));

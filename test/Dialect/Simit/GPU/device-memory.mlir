@@ -12,12 +12,14 @@ func.func private @host_work(memref<?xf64>)
 
 // CHECK-LABEL: func.func @host_between_kernels
 // CHECK-SAME:    (%[[N:.*]]: index, %[[X:.*]]: memref<?xf64>, %[[Y:.*]]: memref<?xf64>)
-// CHECK:         %[[DX:.*]] = gpu.alloc (%{{.*}}) : memref<?xf64>
-// CHECK-NEXT:    gpu.memcpy %[[DX]], %[[X]]
-// CHECK:         %[[DY:.*]] = gpu.alloc (%{{.*}}) : memref<?xf64>
-// CHECK-NEXT:    gpu.memcpy %[[DY]], %[[Y]]
+// CHECK-DAG:     %[[DIMX:.*]] = memref.dim %[[X]]
+// CHECK-DAG:     %[[DX:.*]] = gpu.alloc (%[[DIMX]]) : memref<?xf64>
+// CHECK-DAG:     gpu.memcpy %[[DX]], %[[X]]
+// CHECK-DAG:     %[[DIMY:.*]] = memref.dim %[[Y]]
+// CHECK-DAG:     %[[DY:.*]] = gpu.alloc (%[[DIMY]]) : memref<?xf64>
+// CHECK-DAG:     gpu.memcpy %[[DY]], %[[Y]]
 // CHECK:         %[[TMP:.*]] = memref.alloc(%[[N]]) : memref<?xf64>
-// CHECK-NEXT:    %[[DIM:.*]] = memref.dim %[[TMP]]
+// CHECK:         %[[DIM:.*]] = memref.dim %[[TMP]]
 // CHECK-NEXT:    %[[DTMP:.*]] = gpu.alloc (%[[DIM]]) : memref<?xf64>
 // CHECK-NOT:     gpu.memcpy %[[DTMP]]
 // CHECK:         gpu.launch
@@ -29,6 +31,7 @@ func.func private @host_work(memref<?xf64>)
 // CHECK-NEXT:    gpu.memcpy %[[X]], %[[DX]]
 // CHECK-NEXT:    scf.for
 // CHECK-NEXT:      memref.load %[[X]]
+// CHECK-NEXT:      arith.addf
 // CHECK-NEXT:      memref.store %{{.*}}, %[[X]]
 // CHECK-NEXT:    }
 // CHECK-NEXT:    gpu.memcpy %[[DX]], %[[X]]
@@ -44,11 +47,11 @@ func.func private @host_work(memref<?xf64>)
 // CHECK-NEXT:    gpu.memcpy %[[DX]], %[[X]]
 // CHECK-NEXT:    gpu.dealloc %[[DTMP]]
 // CHECK-NEXT:    memref.dealloc %[[TMP]]
-// CHECK-NEXT:    gpu.dealloc %[[DX]]
-// CHECK-NEXT:    gpu.dealloc %[[DY]]
-// CHECK-NEXT:    gpu.memcpy %[[X]], %[[DX]]
-// CHECK-NEXT:    gpu.dealloc %[[DX]]
-// CHECK-NEXT:    return
+// CHECK-NOT:     gpu.memcpy %[[Y]]
+// CHECK-DAG:     gpu.dealloc %[[DY]]
+// CHECK-DAG:     gpu.memcpy %[[X]], %[[DX]]
+// CHECK-DAG:     gpu.dealloc %[[DX]]
+// CHECK:         return
 func.func @host_between_kernels(%n: index, %x: memref<?xf64>, %y: memref<?xf64>) {
   %c0 = arith.constant 0 : index
   %c1 = arith.constant 1 : index
@@ -76,5 +79,38 @@ func.func @host_between_kernels(%n: index, %x: memref<?xf64>, %y: memref<?xf64>)
   }
   call @host_work(%x) : (memref<?xf64>) -> ()
   memref.dealloc %tmp : memref<?xf64>
+  return
+}
+
+// -----
+
+// A memref that lives inside a host loop body gets its device buffer there,
+// freed at the end of the body; a scalar the host reads after the kernel
+// wrote it comes back right before the read.
+
+// CHECK-LABEL: func.func @per_iteration
+// CHECK:         scf.for
+// CHECK-NEXT:      %[[ACC:.*]] = memref.alloca() : memref<f64>
+// CHECK-NEXT:      %[[DACC:.*]] = gpu.alloc () : memref<f64>
+// CHECK-NEXT:      gpu.launch
+// CHECK:             memref.atomic_rmw addf %{{.*}}, %[[DACC]][]
+// CHECK:           }
+// CHECK-NEXT:      gpu.memcpy %[[ACC]], %[[DACC]]
+// CHECK-NEXT:      memref.load %[[ACC]][]
+// CHECK-NEXT:      gpu.dealloc %[[DACC]]
+// CHECK-NEXT:    }
+func.func @per_iteration(%n: index, %out: memref<?xf64>) {
+  %c0 = arith.constant 0 : index
+  %c1 = arith.constant 1 : index
+  %one = arith.constant 1.0 : f64
+  scf.for %i = %c0 to %n step %c1 {
+    %acc = memref.alloca() : memref<f64>
+    gpu.launch blocks(%bx, %by, %bz) in (%gx = %n, %gy = %c1, %gz = %c1)
+               threads(%tx, %ty, %tz) in (%sx = %c1, %sy = %c1, %sz = %c1) {
+      %old = memref.atomic_rmw addf %one, %acc[] : (f64, memref<f64>) -> f64
+      gpu.terminator
+    }
+    %v = memref.load %acc[] : memref<f64>
+  }
   return
 }

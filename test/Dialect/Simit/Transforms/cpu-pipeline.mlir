@@ -1,0 +1,42 @@
+// The whole CPU pipeline on the frontend's IR of the two target programs:
+// LLVM dialect that mlir-translate accepts, with the C interface of every
+// exported function.
+//
+// RUN: simit-opt %S/Inputs/springs-frontend.mlir --simit-cpu-pipeline \
+// RUN:   | mlir-translate --mlir-to-llvmir | FileCheck %s --check-prefix=SPRINGS
+// RUN: simit-opt %S/Inputs/neo-hookean-frontend.mlir --simit-cpu-pipeline \
+// RUN:   | mlir-translate --mlir-to-llvmir | FileCheck %s --check-prefix=FEM
+// RUN: simit-opt %s --simit-cpu-pipeline | FileCheck %s --check-prefix=LLVM
+
+// SPRINGS-DAG: define void @init(
+// SPRINGS-DAG: define void @_mlir_ciface_init(
+// SPRINGS-DAG: define void @step(
+// SPRINGS-DAG: define void @_mlir_ciface_step(
+// SPRINGS-DAG: call ptr @malloc(
+// SPRINGS-DAG: call void @free(
+
+// FEM-DAG: define void @init(
+// FEM-DAG: define void @step(
+// FEM-DAG: define void @_mlir_ciface_step(
+
+// Only the LLVM dialect is left, and the bindings stay on the function.
+// LLVM-LABEL: llvm.func @scale(
+// LLVM-SAME: simit.bindings = [{index = 0 : i64, kind = "param"}, {kind = "set_size", set = "points"}, {field = "x", kind = "field", set = "points"}]
+// LLVM-NOT: simit.
+// LLVM-NOT: scf.
+// LLVM-NOT: memref.
+// LLVM-NOT: vector.{{[a-z_]+}} %
+// LLVM: llvm.func @_mlir_ciface_scale(
+
+!Point = !simit.element<"Point", {x : tensor<3xf64>}>
+!F = !simit.tensor<["points"] x tensor<3xf64>>
+!Points = !simit.set<"points", !Point>
+simit.extern @points : !Points
+
+func.func @scale(%s : f64) attributes {simit.export} {
+  %points = simit.get_set @points : !Points
+  %x = simit.field_read %points["x"] : !Points -> !F
+  %y = simit.scale %s, %x : f64, !F
+  simit.field_write %y, %points["x"] : !F, !Points
+  return
+}

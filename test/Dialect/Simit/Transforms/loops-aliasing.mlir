@@ -1,0 +1,62 @@
+// RUN: simit-opt %s --simit-linalg-to-index-expr --convert-simit-to-loops \
+// RUN:   --canonicalize | FileCheck %s
+
+!Point = !simit.element<"Point", {x : tensor<3xf64>, v : tensor<3xf64>}>
+!F = !simit.tensor<["points"] x tensor<3xf64>>
+!Points = !simit.set<"points", !Point>
+simit.extern @points : !Points
+
+// x = x + v reads the field arrays in place: nothing is copied.
+// CHECK-LABEL: func.func @in_place(
+// CHECK-SAME: %[[N:[^:]*]]: index, %[[V:[^:]*]]: memref<?x3xf64>, %[[X:[^:]*]]: memref<?x3xf64>)
+// CHECK-NOT: memref.copy %[[X]]
+// CHECK: %[[Y:.*]] = memref.alloc(%[[N]])
+// CHECK: memref.load %[[X]]
+// CHECK: memref.load %[[V]]
+// CHECK: memref.copy %[[Y]], %[[X]]
+func.func @in_place() attributes {simit.export} {
+  %points = simit.get_set @points : !Points
+  %x = simit.field_read %points["x"] : !Points -> !F
+  %v = simit.field_read %points["v"] : !Points -> !F
+  %y = simit.add %x, %v : !F
+  simit.field_write %y, %points["x"] : !F, !Points
+  return
+}
+
+// The old x is used after x is written: the read copies.
+// CHECK-LABEL: func.func @old_value(
+// CHECK-SAME: %[[N:[^:]*]]: index, %[[V:[^:]*]]: memref<?x3xf64>, %[[X:[^:]*]]: memref<?x3xf64>)
+// CHECK: %[[OLD:.*]] = memref.alloc(%[[N]])
+// CHECK: memref.copy %[[X]], %[[OLD]]
+// CHECK: memref.copy %[[V]], %[[X]]
+// CHECK: memref.copy %[[OLD]], %[[V]]
+func.func @old_value() attributes {simit.export} {
+  %points = simit.get_set @points : !Points
+  %x = simit.field_read %points["x"] : !Points -> !F
+  %v = simit.field_read %points["v"] : !Points -> !F
+  simit.field_write %v, %points["x"] : !F, !Points
+  simit.field_write %x, %points["v"] : !F, !Points
+  return
+}
+
+// A read used in a loop that writes the field sees the old value in every
+// iteration: copied.
+// CHECK-LABEL: func.func @loop(
+// CHECK-SAME: %[[N:[^:]*]]: index, %[[X:[^:]*]]: memref<?x3xf64>)
+// CHECK: %[[OLD:.*]] = memref.alloc(%[[N]])
+// CHECK: memref.copy %[[X]], %[[OLD]]
+// CHECK: scf.for
+// CHECK: memref.load %[[OLD]]
+// CHECK: memref.copy %{{.*}}, %[[X]]
+func.func @loop() attributes {simit.export} {
+  %points = simit.get_set @points : !Points
+  %x = simit.field_read %points["x"] : !Points -> !F
+  %c0 = arith.constant 0 : index
+  %c1 = arith.constant 1 : index
+  %c4 = arith.constant 4 : index
+  scf.for %i = %c0 to %c4 step %c1 {
+    %y = simit.add %x, %x : !F
+    simit.field_write %y, %points["x"] : !F, !Points
+  }
+  return
+}

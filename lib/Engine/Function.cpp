@@ -424,6 +424,11 @@ void Function::Impl::decodeResults() {
 
 //===--- Function ---------------------------------------------------------===//
 
+/// The error of using a Function that no Program compiled.
+static llvm::Error notCompiled() {
+  return llvm::createStringError("the function was not compiled by a Program");
+}
+
 Function::Function() = default;
 Function::Function(Function &&) = default;
 Function &Function::operator=(Function &&) = default;
@@ -472,6 +477,8 @@ unsigned Function::numParameters() const {
 }
 
 llvm::Error Function::bind(llvm::StringRef name, Set &set) {
+  if (!impl)
+    return notCompiled();
   if (!llvm::is_contained(requiredSets(), name.str()))
     return impl->error("uses no set named '" + name + "'");
   impl->sets[name] = &set;
@@ -481,6 +488,8 @@ llvm::Error Function::bind(llvm::StringRef name, Set &set) {
 
 llvm::Error Function::bind(llvm::StringRef name, void *data, ComponentType type,
                            llvm::ArrayRef<int> shape) {
+  if (!impl)
+    return notCompiled();
   if (!llvm::is_contained(requiredTensors(), name.str()))
     return impl->error("uses no extern tensor named '" + name + "'");
   impl->buffers[name] = HostBuffer{data, type, shape.vec()};
@@ -491,6 +500,8 @@ llvm::Error Function::bind(llvm::StringRef name, void *data, ComponentType type,
 llvm::Error Function::bindParameter(unsigned index, void *data,
                                     ComponentType type,
                                     llvm::ArrayRef<int> shape) {
+  if (!impl)
+    return notCompiled();
   if (index >= numParameters())
     return impl->error("has " + llvm::Twine(numParameters()) +
                        " parameters, not " + llvm::Twine(index + 1));
@@ -500,9 +511,15 @@ llvm::Error Function::bindParameter(unsigned index, void *data,
   return llvm::Error::success();
 }
 
-llvm::Error Function::init() { return impl->init(); }
+llvm::Error Function::init() {
+  if (!impl)
+    return notCompiled();
+  return impl->init();
+}
 
 llvm::Error Function::run() {
+  if (!impl)
+    return notCompiled();
   bool current = impl->initialized;
   for (auto [set, version] : impl->setVersions)
     current = current && set->version() == version;

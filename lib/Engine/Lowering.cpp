@@ -96,17 +96,37 @@ private:
 };
 } // namespace
 
+/// `file:line:col` of the first source position in `loc` (the .sim
+/// position the frontend gave the op), else MLIR's own spelling.
+static std::string describeLocation(mlir::Location loc) {
+  std::string text;
+  loc->walk([&](mlir::Location nested) {
+    if (auto file = llvm::dyn_cast<mlir::FileLineColLoc>(nested)) {
+      text = (file.getFilename().getValue() + ":" +
+              llvm::Twine(file.getLine()) + ":" + llvm::Twine(file.getColumn()))
+                 .str();
+      return mlir::WalkResult::interrupt();
+    }
+    return mlir::WalkResult::advance();
+  });
+  if (text.empty()) {
+    llvm::raw_string_ostream os(text);
+    os << loc;
+  }
+  return text;
+}
+
 llvm::Error simit::lowerToLLVM(mlir::ModuleOp module, LoweringResult &result) {
   mlir::MLIRContext *context = module.getContext();
   std::string diagnostics;
   mlir::ScopedDiagnosticHandler handler(context, [&](mlir::Diagnostic &diag) {
     llvm::raw_string_ostream os(diagnostics);
-    os << diag.getLocation() << ": "
+    os << describeLocation(diag.getLocation()) << ": "
        << (diag.getSeverity() == mlir::DiagnosticSeverity::Error ? "error: "
                                                                   : "note: ")
        << diag << "\n";
     for (mlir::Diagnostic &note : diag.getNotes())
-      os << note.getLocation() << ": note: " << note << "\n";
+      os << describeLocation(note.getLocation()) << ": note: " << note << "\n";
     return mlir::success();
   });
 

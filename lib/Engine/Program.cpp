@@ -37,6 +37,8 @@ struct Program::Impl {
     registerEngineDialects(registry);
     context.appendDialectRegistry(registry);
     context.loadAllAvailableDialects();
+    // Diagnostics name the .sim position; the op dump would bury it.
+    context.printOpOnDiagnostic(false);
     frontend::loadIRGenDialects(context);
   }
 

@@ -21,6 +21,7 @@
 #include "IRGenImpl.h"
 
 #include "mlir/Dialect/Arith/IR/Arith.h"
+#include "mlir/Dialect/Complex/IR/Complex.h"
 #include "mlir/Dialect/SCF/IR/SCF.h"
 
 using namespace simit::frontend;
@@ -195,6 +196,8 @@ Value IRGenerator::genIndexBodyOp(const Expr &e, IndexExprState &state) {
     if (isa<IntegerType>(operand.getType()))
       return arith::SubIOp::create(builder, loc(e.loc), intConstant(0, e.loc),
                                    operand);
+    if (isa<ComplexType>(operand.getType()))
+      return complex::NegOp::create(builder, loc(e.loc), operand);
     return arith::NegFOp::create(builder, loc(e.loc), operand);
   }
   auto &binary = cast<BinaryExpr>(e);

@@ -133,6 +133,19 @@ func.func @axpy(%a: f64, %x: memref<3xf64>, %y: memref<3xf64>, %n: i32)
 }
 )mlir";
 
+/// Local tensors cross by value as vectors: (s v, sum of v) for a 2 x 2
+/// matrix flattened row-major, as the lowering passes it.
+constexpr const char *kVectors = R"mlir(
+func.func @vscale(%v: vector<4xf64>, %s: f64) -> (vector<4xf64>, f64)
+    attributes {simit.bindings = [
+      {kind = "param", index = 0}, {kind = "param", index = 1}]} {
+  %b = vector.broadcast %s : f64 to vector<4xf64>
+  %r = arith.mulf %v, %b : vector<4xf64>
+  %sum = vector.reduction <add>, %v : vector<4xf64> into f64
+  return %r, %sum : vector<4xf64>, f64
+}
+)mlir";
+
 /// Reads the endpoints: d(s) = e(s, 1) - e(s, 0) as a float.
 constexpr const char *kEndpoints = R"mlir(
 func.func @spans(%ne: index, %ends: memref<?x2xi32>, %d: memref<?xf64>)
@@ -302,6 +315,40 @@ TEST(FunctionTest, PassesParametersAndReturnsResults) {
   EXPECT_EQ(results[2].component(0), 42.0);
 }
 
+TEST(FunctionTest, PassesAndReturnsVectorsByValue) {
+  Program program;
+  Function vscale = compile(program, kVectors, "vscale");
+  // Host buffers need no particular alignment: the engine copies vector
+  // arguments into aligned storage before each call.
+  double storage[5] = {0.0, 1.0, -2.0, 3.5, 4.0};
+  double s = 2.0;
+  ASSERT_EQ(message(vscale.bindParameter(0, storage + 1,
+                                         ComponentType::Float64, {2, 2})),
+            "success");
+  ASSERT_EQ(message(vscale.bindParameter(1, &s, ComponentType::Float64, {})),
+            "success");
+  ASSERT_EQ(message(vscale.run()), "success");
+  ASSERT_EQ(vscale.results().size(), 2u);
+  const HostValue &scaled = vscale.results()[0];
+  EXPECT_EQ(scaled.shape, (std::vector<int64_t>{4}));
+  EXPECT_EQ(scaled.component(0), 2.0);
+  EXPECT_EQ(scaled.component(1), -4.0);
+  EXPECT_EQ(scaled.component(2), 7.0);
+  EXPECT_EQ(scaled.component(3), 8.0);
+  EXPECT_EQ(vscale.results()[1].component(0), 6.5);
+  // The copy is taken per run, so host changes are seen.
+  storage[1] = 10.0;
+  ASSERT_EQ(message(vscale.run()), "success");
+  EXPECT_EQ(vscale.results()[0].component(0), 20.0);
+  // A buffer of another component count does not fit.
+  ASSERT_EQ(message(vscale.bindParameter(0, storage, ComponentType::Float64,
+                                         {5})),
+            "success");
+  EXPECT_EQ(message(vscale.init()),
+            "function 'vscale': parameter 0 is bound to float64 of shape [5], "
+            "but the program expects float64 of shape [4]");
+}
+
 TEST(FunctionTest, ListsWhatItNeeds) {
   Program program;
   Function stiffness = compile(program, kStiffness, "stiffness");
@@ -408,4 +455,12 @@ TEST(FunctionTest, FindsTheFirstNonFiniteComponent) {
             "field 'points.x' of element 1, component 2, is nan");
   x.set(1, {0.0, 0.0, 0.0});
   EXPECT_EQ(scale.findNonFinite(), "");
+}
+
+TEST(FunctionTest, AnUncompiledFunctionReportsIt) {
+  Function empty;
+  Set points("points");
+  EXPECT_EQ(message(empty.bind("points", points)),
+            "the function was not compiled by a Program");
+  EXPECT_EQ(message(empty.run()), "the function was not compiled by a Program");
 }

@@ -836,9 +836,16 @@ LogicalResult FunctionLowering::lowerOp(Operation *op) {
     return lowerWhile(loop);
   if (auto ret = dyn_cast<func::ReturnOp>(op))
     return element ? success() : lowerFunctionReturn(ret);
-  if (isa<func::CallOp>(op))
+  if (auto call = dyn_cast<func::CallOp>(op)) {
+    auto callee = module.lookupSymbol<func::FuncOp>(call.getCalleeAttr());
+    if (callee && callee.isExternal())
+      return op->emitError("'@")
+             << call.getCallee()
+             << "' is implemented by the host or runtime; calling it is not "
+                "supported by the loop lowering yet";
     return op->emitError("calls must be inlined by simit-inline-functions "
                          "before the loop lowering");
+  }
   if (op->getDialect() != op->getContext()->getLoadedDialect<SimitDialect>()) {
     bool handled = false;
     if (failed(lowerLocalOp(op, handled)))

@@ -31,6 +31,8 @@ void mlir::simit::buildSimitCpuPipeline(OpPassManager &pm) {
   pm.addPass(createConvertSimitToLoops());
   pm.addPass(createCanonicalizerPass());
   pm.addPass(createCSEPass());
+  // scf.parallel runs sequentially below: its stack slots are made once.
+  pm.addNestedPass<func::FuncOp>(createSimitHoistParallelAllocas());
   // Temporaries of system tensors are freed once no value needs them.
   bufferization::buildBufferDeallocationPipeline(pm);
   // Prints of vectors (test drivers) become loops of scalar prints.

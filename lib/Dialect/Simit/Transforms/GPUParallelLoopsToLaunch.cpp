@@ -30,11 +30,13 @@ struct Combiner {
   gpu::AllReduceOperation blockReduction;
 };
 
-/// Recognises a reduction region that adds its two arguments.
+/// Recognises a reduction region that adds its two arguments, of a type
+/// that memref.atomic_rmw accepts (not index).
 FailureOr<Combiner> matchCombiner(Region &reduction) {
   Block &block = reduction.front();
   auto yield = dyn_cast<scf::ReduceReturnOp>(block.getTerminator());
-  if (!yield || block.getOperations().size() != 2)
+  if (!yield || block.getOperations().size() != 2 ||
+      !isa<FloatType, IntegerType>(yield.getResult().getType()))
     return failure();
   Operation *combine = yield.getResult().getDefiningOp();
   if (!combine || combine->getBlock() != &block ||
@@ -95,8 +97,8 @@ LogicalResult LoopToLaunch::run() {
     if (failed(combiner))
       return loop.emitOpError(
           "has a reduction that the GPU path cannot combine: only "
-          "arith.addf and arith.addi of the two region arguments are "
-          "supported");
+          "arith.addf and arith.addi of the two region arguments, on float "
+          "or integer (not index) values, are supported");
     combiners.push_back(*combiner);
   }
 

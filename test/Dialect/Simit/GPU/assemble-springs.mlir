@@ -3,6 +3,8 @@
 // RUN:   --gpu-kernel-outlining | FileCheck %s --check-prefix=KERNEL
 // RUN: simit-opt %s --simit-gpu-pipeline | sed -e 's/\\0A/\n/g' -e 's/\\09/ /g' \
 // RUN:   | FileCheck %s --check-prefix=PTX
+// RUN: %if ptxas %{ simit-opt %s --simit-gpu-pipeline=format=bin \
+// RUN:   | FileCheck %s --check-prefix=CUBIN %}
 
 // Springs sharing a vertex write the same force entry and the same BCSR
 // block, so every scatter is an atomic add on the device; the difference
@@ -107,3 +109,6 @@ func.func @assemble_springs(%n: index, %endpoints: memref<?x2xi32>,
   }
   return
 }
+
+// ptxas accepts the generated assembly and makes an sm_90 ELF cubin.
+// CUBIN: gpu.binary @assemble_springs_kernel [#gpu.object<#nvvm.target<O = 3, chip = "sm_90", features = "+ptx80">, properties = {{.*}}, bin = "\7FELF

@@ -5,6 +5,8 @@
 // RUN:   --gpu-kernel-outlining | FileCheck %s --check-prefix=KERNEL
 // RUN: simit-opt %s --simit-gpu-pipeline | sed -e 's/\\0A/\n/g' -e 's/\\09/ /g' \
 // RUN:   | FileCheck %s --check-prefix=PTX
+// RUN: %if ptxas %{ simit-opt %s --simit-gpu-pipeline=format=bin \
+// RUN:   | FileCheck %s --check-prefix=CUBIN %}
 
 // Each thread computes its vertex's partial (0 when out of range), the block
 // sums them with gpu.all_reduce, thread 0 adds the block's sum atomically
@@ -87,3 +89,6 @@ func.func @dot(%n: index, %a: memref<?x3xf64>, %b: memref<?x3xf64>) -> f64
   }
   return %dot : f64
 }
+
+// ptxas accepts the generated assembly and makes an sm_90 ELF cubin.
+// CUBIN: gpu.binary @dot_kernel [#gpu.object<#nvvm.target<O = 3, chip = "sm_90", features = "+ptx80">, properties = {{.*}}, bin = "\7FELF

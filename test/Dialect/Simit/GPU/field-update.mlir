@@ -4,6 +4,8 @@
 // RUN:   | FileCheck %s --check-prefix=PTX
 // RUN: simit-opt %s --simit-gpu-pipeline="chip=sm_80 features=+ptx75 block-size=128 fp-contract=false" \
 // RUN:   | sed -e 's/\\0A/\n/g' -e 's/\\09/ /g' | FileCheck %s --check-prefix=SM80
+// RUN: %if ptxas %{ simit-opt %s --simit-gpu-pipeline=format=bin \
+// RUN:   | FileCheck %s --check-prefix=CUBIN %}
 
 // x is updated where it lives: iteration i owns x[i], so no atomics; the
 // extern h is copied to the device like any other memref and only x comes
@@ -73,3 +75,6 @@ func.func @step(%n: index, %x: memref<?x3xf64>, %v: memref<?x3xf64>,
   }
   return
 }
+
+// ptxas accepts the generated assembly and makes an sm_90 ELF cubin.
+// CUBIN: gpu.binary @step_kernel [#gpu.object<#nvvm.target<O = 3, chip = "sm_90", features = "+ptx80">, properties = {{.*}}, bin = "\7FELF

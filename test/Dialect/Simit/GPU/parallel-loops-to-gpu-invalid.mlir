@@ -7,7 +7,7 @@ func.func @max_reduction(%n: index, %x: memref<?xf64>) -> f64 {
   %c0 = arith.constant 0 : index
   %c1 = arith.constant 1 : index
   %init = arith.constant 0.0 : f64
-  // expected-error @+1 {{'scf.parallel' op has a reduction that the GPU path cannot combine: only arith.addf and arith.addi of the two region arguments are supported}}
+  // expected-error @+1 {{'scf.parallel' op has a reduction that the GPU path cannot combine: only arith.addf and arith.addi of the two region arguments, on float or integer (not index) values, are supported}}
   %r = scf.parallel (%i) = (%c0) to (%n) step (%c1) init (%init) -> f64 {
     %xi = memref.load %x[%i] : memref<?xf64>
     scf.reduce(%xi : f64) {
@@ -37,4 +37,21 @@ func.func @not_a_sum(%n: index, %x: memref<?xf64>) -> f64 {
     }
   }
   return %r : f64
+}
+
+// -----
+
+// memref.atomic_rmw has no index form.
+func.func @index_count(%n: index) -> index {
+  %c0 = arith.constant 0 : index
+  %c1 = arith.constant 1 : index
+  // expected-error @+1 {{has a reduction that the GPU path cannot combine}}
+  %r = scf.parallel (%i) = (%c0) to (%n) step (%c1) init (%c0) -> index {
+    scf.reduce(%c1 : index) {
+    ^bb0(%a: index, %b: index):
+      %m = arith.addi %a, %b : index
+      scf.reduce.return %m : index
+    }
+  }
+  return %r : index
 }

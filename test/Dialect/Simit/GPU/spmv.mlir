@@ -6,6 +6,8 @@
 // RUN: simit-opt %s --simit-gpu-pipeline | FileCheck %s --check-prefix=HOST
 // RUN: simit-opt %s --simit-gpu-pipeline | sed -e 's/\\0A/\n/g' -e 's/\\09/ /g' \
 // RUN:   | FileCheck %s --check-prefix=PTX
+// RUN: %if ptxas %{ simit-opt %s --simit-gpu-pipeline=format=bin \
+// RUN:   | FileCheck %s --check-prefix=CUBIN %}
 
 // One thread per block row: 256-thread blocks, ceil(rows / 256) of them, the
 // matrix, x and the pattern copied to the device once, y copied back.
@@ -113,3 +115,6 @@ func.func @spmv(%rows: index, %rowptr: memref<?xi32>, %colidx: memref<?xi32>,
   }
   return
 }
+
+// ptxas accepts the generated assembly and makes an sm_90 ELF cubin.
+// CUBIN: gpu.binary @spmv_kernel [#gpu.object<#nvvm.target<O = 3, chip = "sm_90", features = "+ptx80">, properties = {{.*}}, bin = "\7FELF

@@ -60,3 +60,36 @@ func.func @loop() attributes {simit.export} {
   }
   return
 }
+
+// `f(p) = ...` on a variable in a loop over the set writes the variable's
+// array in place: no copy per element.
+// CHECK-LABEL: func.func @host_loop(
+// CHECK-SAME: %[[N:[^:]*]]: index, %[[X:[^:]*]]: memref<?x3xf64>)
+// CHECK: %[[F:.*]] = memref.alloc(%[[N]]) : memref<?x3xf64>
+// CHECK: scf.for %[[P:.*]] = %c0 to %[[N]] step %c1 {
+// CHECK-NOT: memref.alloc
+// CHECK-NOT: memref.copy
+// CHECK:   %[[X0:.*]] = memref.load %[[X]][%[[P]], %c0]
+// CHECK:   %[[D:.*]] = arith.addf %[[X0]], %[[X0]] : f64
+// CHECK:   memref.store %[[D]], %[[F]][%[[P]], %c0]
+// CHECK: }
+// CHECK: memref.copy %[[F]], %[[X]]
+func.func @host_loop() attributes {simit.export} {
+  %points = simit.get_set @points : !Points
+  %f = simit.alloc : !simit.ref<!F>
+  %x = simit.field_read %points["x"] : !Points -> !F
+  %c0 = arith.constant 0 : index
+  %c1 = arith.constant 1 : index
+  %n = simit.set_size %points : !Points
+  scf.for %i = %c0 to %n step %c1 {
+    %p = simit.set_element %points[%i] : !Points -> !Point
+    %xp = simit.extract %x[%p] : !F, (!Point) -> tensor<3xf64>
+    %d = simit.add %xp, %xp : tensor<3xf64>
+    %old = simit.load %f : !simit.ref<!F>
+    %new = simit.insert %d into %old[%p] : tensor<3xf64> into !F, (!Point)
+    simit.store %new, %f : !simit.ref<!F>
+  }
+  %final = simit.load %f : !simit.ref<!F>
+  simit.field_write %final, %points["x"] : !F, !Points
+  return
+}

@@ -131,3 +131,13 @@ func.func @grid() attributes {simit.export} {
   simit.map @stencil() to %points through %cells : (!Points, !Cells) -> ()
   return
 }
+
+// -----
+
+func.func private @simit_rt_clock() -> f64
+
+func.func @clock() -> f64 attributes {simit.export} {
+  // expected-error @below {{'@simit_rt_clock' is implemented by the host or runtime; calling it is not supported by the loop lowering yet}}
+  %t = func.call @simit_rt_clock() : () -> f64
+  return %t : f64
+}

@@ -84,6 +84,21 @@ def ConvertSimitToLoops : Pass<"convert-simit-to-loops", "::mlir::ModuleOp"> {
                            "::mlir::vector::VectorDialect"];
 }
 
+def SimitHoistParallelAllocas : Pass<"simit-hoist-parallel-allocas", "::mlir::func::FuncOp"> {
+  let summary = "Moves stack slots out of scf.parallel bodies (CPU, sequential)";
+  let description = [{
+    A `memref.alloca` with a static shape in the body of an `scf.parallel`
+    (an automatic allocation scope: one slot per iteration) moves to the
+    entry block of the function. On the CPU the pipeline runs `scf.parallel`
+    loops sequentially (scf-to-cf), which keeps no per-iteration stack
+    scope, so without this every element of a set would add its local
+    variables to the stack. One slot for all iterations is only correct when
+    the iterations run one after another; GPU and threaded backends keep the
+    slots in the loop body.
+  }];
+  let dependentDialects = ["::mlir::memref::MemRefDialect"];
+}
+
 def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
   let summary = "Runs every Simit lowering down to the LLVM dialect";
   let description = [{

@@ -116,19 +116,42 @@ static std::string describeLocation(mlir::Location loc) {
   return text;
 }
 
+namespace {
+/// Collects the MLIR diagnostics reported while it lives, so that they end
+/// up in the llvm::Error of the step instead of on stderr.
+class DiagnosticCollector {
+public:
+  explicit DiagnosticCollector(mlir::MLIRContext *context)
+      : handler(context, [this](mlir::Diagnostic &diag) {
+          llvm::raw_string_ostream os(text);
+          os << describeLocation(diag.getLocation()) << ": "
+             << (diag.getSeverity() == mlir::DiagnosticSeverity::Error
+                     ? "error: "
+                     : "note: ")
+             << diag << "\n";
+          for (mlir::Diagnostic &note : diag.getNotes())
+            os << describeLocation(note.getLocation()) << ": note: " << note
+               << "\n";
+          return mlir::success();
+        }) {}
+
+  /// `what`, then the diagnostics.
+  llvm::Error error(const llvm::Twine &what) const {
+    return llvm::createStringError(
+        what + "\n" +
+        (text.empty() ? llvm::StringRef("(no diagnostic)")
+                      : llvm::StringRef(text).rtrim()));
+  }
+
+private:
+  std::string text;
+  mlir::ScopedDiagnosticHandler handler;
+};
+} // namespace
+
 llvm::Error simit::lowerToLLVM(mlir::ModuleOp module, LoweringResult &result) {
   mlir::MLIRContext *context = module.getContext();
-  std::string diagnostics;
-  mlir::ScopedDiagnosticHandler handler(context, [&](mlir::Diagnostic &diag) {
-    llvm::raw_string_ostream os(diagnostics);
-    os << describeLocation(diag.getLocation()) << ": "
-       << (diag.getSeverity() == mlir::DiagnosticSeverity::Error ? "error: "
-                                                                  : "note: ")
-       << diag << "\n";
-    for (mlir::Diagnostic &note : diag.getNotes())
-      os << describeLocation(note.getLocation()) << ": note: " << note << "\n";
-    return mlir::success();
-  });
+  DiagnosticCollector diagnostics(context);
 
   mlir::PassManager pm(context);
   auto recorder = std::make_unique<SignatureRecorder>(result);
@@ -141,9 +164,7 @@ llvm::Error simit::lowerToLLVM(mlir::ModuleOp module, LoweringResult &result) {
   if (llvm::Error err = recorderPtr->takeError())
     return err;
   if (mlir::failed(status))
-    return llvm::createStringError(
-        "lowering failed\n" +
-        (diagnostics.empty() ? std::string("(no diagnostic)\n") : diagnostics));
+    return diagnostics.error("lowering failed");
   return llvm::Error::success();
 }
 
@@ -205,10 +226,11 @@ simit::compileModule(mlir::ModuleOp llvmModule,
   options.jitCodeGenOptLevel = llvm::CodeGenOptLevel::Aggressive;
   options.enableGDBNotificationListener = false;
   options.enablePerfNotificationListener = false;
+  DiagnosticCollector diagnostics(llvmModule.getContext());
   auto engine = mlir::ExecutionEngine::create(llvmModule, options,
                                               std::move(*targetMachine));
   if (!engine)
-    return engine.takeError();
+    return diagnostics.error(llvm::toString(engine.takeError()));
   compiled->engine = std::move(*engine);
   compiled->engine->registerSymbols(runtimeSymbolMap);
   compiled->engine->initialize();

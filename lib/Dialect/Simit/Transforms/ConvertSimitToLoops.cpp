@@ -202,14 +202,6 @@ Value FunctionLowering::getBinding(BindingKind kind, ArrayRef<StringRef> names,
   return argument;
 }
 
-SetType FunctionLowering::getSetType(StringAttr name) {
-  for (auto global : module.getOps<ExternOp>())
-    if (auto set = dyn_cast<SetType>(global.getType()))
-      if (set.getName() == name)
-        return set;
-  return nullptr;
-}
-
 Value FunctionLowering::getSetSize(StringAttr set) {
   return getBinding(BindingKind::SetSize, {set.getValue()},
                     b.getIndexType());
@@ -231,13 +223,12 @@ Value FunctionLowering::getEndpoints(SetType set) {
 }
 
 Value FunctionLowering::getPatternArray(BindingKind kind, StringAttr edges,
-                                        StringAttr rows, StringAttr cols) {
+                                        StringAttr rows, StringAttr cols,
+                                        int64_t cardinality) {
   Type type = MemRefType::get({ShapedType::kDynamic}, b.getI32Type());
-  if (kind == BindingKind::PatternLocations) {
-    SetType set = getSetType(edges);
-    int64_t c = set ? set.getCardinality() : 0;
-    type = MemRefType::get({ShapedType::kDynamic, c * c}, b.getI32Type());
-  }
+  if (kind == BindingKind::PatternLocations)
+    type = MemRefType::get({ShapedType::kDynamic, cardinality * cardinality},
+                           b.getI32Type());
   return getBinding(kind,
                     {edges.getValue(), rows.getValue(), cols.getValue()},
                     type);

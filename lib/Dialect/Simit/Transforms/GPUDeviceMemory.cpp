@@ -68,7 +68,7 @@ private:
   func::FuncOp function;
   llvm::DenseSet<Operation *> holdsLaunch;
   /// The last operation this pass put at the start of a block for a block
-  /// argument, so that mirrors appear in argument order.
+  /// argument, so that later mirrors go after earlier ones.
   llvm::DenseMap<Block *, Operation *> lastAtBlockStart;
 };
 
@@ -165,7 +165,9 @@ LogicalResult FunctionMemory::mirror(Value host) {
       return user->emitOpError()
              << "passes on a memref that a kernel uses; the GPU path cannot "
                 "follow it through control flow";
-    if (!overwritesAll(user, host))
+    // Only an unconditional overwrite may skip the copy back: inside a
+    // larger host region the store might not run.
+    if (root != user || !overwritesAll(user, host))
       readRoots.insert(root);
     if (mayWrite(user, host))
       writeRoots.insert(root);

@@ -10,6 +10,7 @@
 
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
+#include "mlir/Dialect/Bufferization/Pipelines/Passes.h"
 #include "mlir/Dialect/GPU/IR/GPUDialect.h"
 #include "mlir/Dialect/GPU/Pipelines/Passes.h"
 #include "mlir/Dialect/GPU/Transforms/Passes.h"
@@ -17,6 +18,7 @@
 #include "mlir/Pass/PassManager.h"
 #include "mlir/Target/LLVM/NVVM/Target.h"
 #include "mlir/Target/LLVMIR/Dialect/All.h"
+#include "mlir/Transforms/Passes.h"
 
 namespace mlir {
 namespace simit {
@@ -32,6 +34,17 @@ struct GpuPipeline : public simit::impl::SimitGpuPipelineBase<GpuPipeline> {
   using Base::Base;
 
   void buildPipeline(OpPassManager &pm) const {
+    if (lowerSimit) {
+      // The CPU pipeline's first half, without its hoisting of allocas out
+      // of parallel loops: on the GPU those stay private to each thread.
+      pm.addPass(simit::createSimitInlineFunctions());
+      pm.addPass(simit::createSimitLinalgToIndexExpr());
+      pm.addPass(simit::createSimitFuseIndexExpr());
+      pm.addPass(simit::createConvertSimitToLoops());
+      pm.addPass(createCanonicalizerPass());
+      pm.addPass(createCSEPass());
+      bufferization::buildBufferDeallocationPipeline(pm);
+    }
     pm.addPass(simit::createSimitGpuScatterAtomics());
     pm.addPass(simit::createSimitParallelLoopsToGpu({blockSize, fpContract}));
     pm.addPass(simit::createSimitGpuDeviceMemory());

@@ -77,7 +77,6 @@ struct ElementContext {
   /// The lowered output arrays of the map's results and their storage.
   SmallVector<Value> outputs;
   SmallVector<Storage> outputStorages;
-  SmallVector<Type> outputTypes;
   /// Whether writes to results combine with the reduction (assemble) or
   /// store (map).
   bool accumulate = false;
@@ -121,11 +120,11 @@ public:
   Value getSetSize(StringAttr set);
   Value getField(StringAttr set, StringAttr field, Type fieldType);
   Value getEndpoints(SetType set);
+  /// A BCSR array of the pattern of (edges; rows, cols); the location table
+  /// needs the edge set's cardinality.
   Value getPatternArray(BindingKind kind, StringAttr edges, StringAttr rows,
-                        StringAttr cols);
+                        StringAttr cols, int64_t cardinality = 0);
   Value getExtern(ExternOp global);
-  /// The set type declared for `name` by a simit.extern.
-  SetType getSetType(StringAttr name);
 
   //===--- Helpers shared by the parts ----------------------------------===//
 

@@ -529,12 +529,59 @@ LogicalResult IndexExprLowering::lower() {
       return op.emitError("a system matrix result needs a sparse input");
     resultStorage = *storage;
   }
-  // The loop nest writes every component of the result.
-  Value output = l.allocSystem(loc, type, resultStorage, /*zeroFill=*/false);
+  SmallVector<unsigned> free(resultVars.begin(), resultVars.end());
+  bool sparseSum =
+      !resultStorage.isMatrix() && llvm::any_of(summed, [&](unsigned v) {
+        return isa<StringAttr>(level(v, 0));
+      });
+  // A sum over a set into a blocked vector (y = A x) runs each row's blocks
+  // once: for the row, for its blocks, for the block's components, add into
+  // the row of the (zeroed) result. Otherwise every result component is
+  // written once by the loop nest.
+  Value output = l.allocSystem(loc, type, resultStorage, sparseSum);
   l.storages[op] = resultStorage;
+  if (sparseSum) {
+    SmallVector<unsigned> all(free);
+    llvm::append_range(all, summed);
+    std::function<LogicalResult(bool)> loopAll =
+        [&](bool outermost) -> LogicalResult {
+      std::optional<Choice> choice;
+      for (unsigned v : free)
+        if (!isSetBound(v) && isa<StringAttr>(level(v, 0))) {
+          choice = Choice{v, 0};
+          break;
+        }
+      if (!choice)
+        choice = choose(all);
+      if (!choice) {
+        FailureOr<Value> value = evaluate(op.getBody().front());
+        if (failed(value))
+          return failure();
+        SmallVector<Value> indices = levelMajor(type, resultVars);
+        Value old = memref::LoadOp::create(b, loc, output, indices);
+        Value sum = isa<FloatType>(scalarType)
+                        ? arith::AddFOp::create(b, loc, old, *value).getResult()
+                        : arith::AddIOp::create(b, loc, old, *value).getResult();
+        memref::StoreOp::create(b, loc, sum, output, indices);
+        return success();
+      }
+      bool parallel = outermost && choice->coupledBy < 0 &&
+                      llvm::is_contained(free, choice->var);
+      LogicalResult inner = success();
+      emitLoop(*choice, {}, parallel, [&](ValueRange) {
+        if (failed(loopAll(false)))
+          inner = failure();
+        return SmallVector<Value>{};
+      });
+      return inner;
+    };
+    if (failed(loopAll(true)))
+      return failure();
+    l.map(op, output);
+    return success();
+  }
 
   // Loops over the result's levels, then the sum, then the store.
-  SmallVector<unsigned> free(resultVars.begin(), resultVars.end());
   unsigned resultOperand = op.getInputs().size();
   std::function<LogicalResult(bool)> loopFree =
       [&](bool outermost) -> LogicalResult {

@@ -148,7 +148,7 @@ static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
     int64_t c = ctx.set.getCardinality();
     Value locations =
         l.getPatternArray(BindingKind::PatternLocations, storage.edges,
-                          storage.rows, storage.cols);
+                          storage.rows, storage.cols, c);
     Value flat = arith::AddIOp::create(
         b, loc, arith::MulIOp::create(b, loc, i, l.indexConstant(c)), j);
     Value block =

@@ -114,3 +114,40 @@ func.func @per_iteration(%n: index, %out: memref<?xf64>) {
   }
   return
 }
+
+// -----
+
+// An initial value stored under a condition does not overwrite the device's
+// value for sure, so the accumulator comes back first; the unconditional
+// store after the kernel does not need that.
+
+// CHECK-LABEL: func.func @conditional_init
+// CHECK:         %[[ACC:.*]] = memref.alloca() : memref<f64>
+// CHECK-NEXT:    %[[DACC:.*]] = gpu.alloc () : memref<f64>
+// CHECK-NEXT:    gpu.memcpy %[[ACC]], %[[DACC]]
+// CHECK-NEXT:    scf.if
+// CHECK-NEXT:      memref.store
+// CHECK-NEXT:    }
+// CHECK-NEXT:    gpu.memcpy %[[DACC]], %[[ACC]]
+// CHECK-NEXT:    gpu.launch
+// CHECK:         }
+// CHECK-NEXT:    memref.store %{{.*}}, %[[ACC]][]
+// CHECK-NEXT:    gpu.memcpy %[[DACC]], %[[ACC]]
+// CHECK-NEXT:    gpu.dealloc %[[DACC]]
+// CHECK-NEXT:    return
+func.func @conditional_init(%n: index, %reset: i1) {
+  %c1 = arith.constant 1 : index
+  %zero = arith.constant 0.0 : f64
+  %one = arith.constant 1.0 : f64
+  %acc = memref.alloca() : memref<f64>
+  scf.if %reset {
+    memref.store %zero, %acc[] : memref<f64>
+  }
+  gpu.launch blocks(%bx, %by, %bz) in (%gx = %n, %gy = %c1, %gz = %c1)
+             threads(%tx, %ty, %tz) in (%sx = %c1, %sy = %c1, %sz = %c1) {
+    %old = memref.atomic_rmw addf %one, %acc[] : (f64, memref<f64>) -> f64
+    gpu.terminator
+  }
+  memref.store %zero, %acc[] : memref<f64>
+  return
+}

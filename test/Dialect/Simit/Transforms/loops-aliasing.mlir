@@ -70,8 +70,9 @@ func.func @loop() attributes {simit.export} {
 // CHECK-NOT: memref.alloc
 // CHECK-NOT: memref.copy
 // CHECK:   %[[X0:.*]] = memref.load %[[X]][%[[P]], %c0]
-// CHECK:   %[[D:.*]] = arith.addf %[[X0]], %[[X0]] : f64
-// CHECK:   memref.store %[[D]], %[[F]][%[[P]], %c0]
+// CHECK:   %[[D:.*]] = arith.addf %{{.*}}, %{{.*}} : vector<3xf64>
+// CHECK:   %[[D0:.*]] = vector.extract %[[D]][0]
+// CHECK:   memref.store %[[D0]], %[[F]][%[[P]], %c0]
 // CHECK: }
 // CHECK: memref.copy %[[F]], %[[X]]
 func.func @host_loop() attributes {simit.export} {

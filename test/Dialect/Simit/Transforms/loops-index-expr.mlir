@@ -28,26 +28,30 @@ func.func @stiffness(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> !K {
   return %K1 : !K
 }
 
-// A pattern matrix times a vector: the row's blocks from rowptr/colidx, a
-// scalar accumulator per row component.
+// A pattern matrix times a vector: each row's blocks (rowptr/colidx) are
+// visited once, their products added into the zeroed row of the result.
 // CHECK-LABEL: func.func @spmv(
 // CHECK-SAME: %[[NP:[^:]*]]: index, {{.*}}%[[X:[^:]*]]: memref<?x3xf64>, %{{[^:]*}}: memref<?xf64>, %[[ROWPTR:[^:]*]]: memref<?xi32>, %[[COLIDX:[^:]*]]: memref<?xi32>, %{{[^:]*}}: memref<?x4xi32>)
 // CHECK: %[[KV:.*]] = memref.alloc
 // CHECK: scf.parallel
 // CHECK: } {simit.scatter}
 // CHECK: %[[Y:.*]] = memref.alloc(%[[NP]]) : memref<?x3xf64>
+// CHECK: memref.store %cst, %[[Y]]
 // CHECK: scf.parallel (%[[I:.*]]) = (%c0) to (%[[NP]])
-// CHECK:   scf.for %[[A:.*]] = %c0 to %c3
-// CHECK:     %[[I1:.*]] = arith.addi %[[I]], %c1
-// CHECK:     %[[LO:.*]] = memref.load %[[ROWPTR]][%[[I]]]
-// CHECK:     %[[HI:.*]] = memref.load %[[ROWPTR]][%[[I1]]]
-// CHECK:     %[[ROW:.*]] = scf.for %[[K:.*]] = %{{.*}} to %{{.*}} step %c1 iter_args(%{{.*}} = %cst) -> (f64)
-// CHECK:       %[[J32:.*]] = memref.load %[[COLIDX]][%[[K]]]
-// CHECK:       %[[J:.*]] = arith.index_cast %[[J32]]
-// CHECK:       scf.for %[[B:.*]] = %c0 to %c3 step %c1 iter_args
-// CHECK:         memref.load %[[KV]][%[[K]], %[[A]], %[[B]]]
-// CHECK:         memref.load %[[X]][%[[J]], %[[B]]]
-// CHECK:     memref.store %[[ROW]], %[[Y]][%[[I]], %[[A]]]
+// CHECK:   %[[I1:.*]] = arith.addi %[[I]], %c1
+// CHECK:   %[[LO:.*]] = memref.load %[[ROWPTR]][%[[I]]]
+// CHECK:   %[[HI:.*]] = memref.load %[[ROWPTR]][%[[I1]]]
+// CHECK:   scf.for %[[K:.*]] = %{{.*}} to %{{.*}} step %c1 {
+// CHECK:     %[[J32:.*]] = memref.load %[[COLIDX]][%[[K]]]
+// CHECK:     %[[J:.*]] = arith.index_cast %[[J32]]
+// CHECK:     scf.for %[[A:.*]] = %c0 to %c3 step %c1 {
+// CHECK:       scf.for %[[B:.*]] = %c0 to %c3 step %c1 {
+// CHECK:         %[[KAB:.*]] = memref.load %[[KV]][%[[K]], %[[A]], %[[B]]]
+// CHECK:         %[[XB:.*]] = memref.load %[[X]][%[[J]], %[[B]]]
+// CHECK:         %[[P:.*]] = arith.mulf %[[KAB]], %[[XB]]
+// CHECK:         %[[OLD:.*]] = memref.load %[[Y]][%[[I]], %[[A]]]
+// CHECK:         %[[NEW:.*]] = arith.addf %[[OLD]], %[[P]]
+// CHECK:         memref.store %[[NEW]], %[[Y]][%[[I]], %[[A]]]
 // CHECK: return %[[Y]]
 func.func @spmv() -> !F attributes {simit.export} {
   %springs = simit.get_set @springs : !Springs

@@ -182,7 +182,10 @@ def SimitGpuDeviceMemory : Pass<"simit-gpu-device-memory", "::mlir::ModuleOp"> {
 def SimitGpuPipeline : Pass<"simit-gpu-pipeline", "::mlir::ModuleOp"> {
   let summary = "Lowers loops-level IR to LLVM with kernels compiled to PTX";
   let description = [{
-    Runs simit-gpu-scatter-atomics, simit-parallel-loops-to-gpu,
+    With lower-simit, first lowers simit IR to loops as simit-cpu-pipeline
+    does (inlining, index expressions, fusion, convert-simit-to-loops) and
+    frees temporaries (buffer deallocation). Then it runs
+    simit-gpu-scatter-atomics, simit-parallel-loops-to-gpu,
     simit-gpu-device-memory, gpu-launch-sink-index-computations,
     gpu-kernel-outlining and gpu-async-region, then MLIR's NVVM pipeline
     (gpu-lower-to-nvvm-pipeline): host code to the LLVM dialect with GPU
@@ -202,7 +205,10 @@ def SimitGpuPipeline : Pass<"simit-gpu-pipeline", "::mlir::ModuleOp"> {
     Option<"blockSize", "block-size", "int64_t", /*default=*/"256",
            "Threads per block">,
     Option<"fpContract", "fp-contract", "bool", /*default=*/"true",
-           "Let kernels fuse floating-point multiplies and adds">
+           "Let kernels fuse floating-point multiplies and adds">,
+    Option<"lowerSimit", "lower-simit", "bool", /*default=*/"false",
+           "Start from simit IR: first run the passes of the CPU pipeline "
+           "up to convert-simit-to-loops, then buffer deallocation">
   ];
 }
 

@@ -445,6 +445,18 @@ LogicalResult FunctionLowering::lowerIf(scf::IfOp op) {
   for (Value result : op.getResults())
     if (!isSink(result))
       map(result, lowered.getResult(next++));
+  // A matrix chosen by a branch keeps the sparsity both branches agree on.
+  if (op.getNumResults() && !op.getElseRegion().empty())
+    for (auto [result, x, y] :
+         llvm::zip(op.getResults(), op.thenYield().getOperands(),
+                   op.elseYield().getOperands()))
+      if (storages.count(x) && storages.count(y)) {
+        if (storages[x] != storages[y])
+          return op.emitError("the branches yield matrices stored as ")
+                 << storages[x].describe() << " and "
+                 << storages[y].describe();
+        storages[result] = storages[x];
+      }
   return success();
 }
 
@@ -588,9 +600,11 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
     Type fieldType = set.getElement().getFieldType(write.getField());
     Value array = getField(set.getName(), write.getFieldAttr(), fieldType);
     Value value = lookup(write.getValue());
-    if (isSystem(write.getValue().getType()))
-      memref::CopyOp::create(b, loc, value, array);
-    else
+    if (isSystem(write.getValue().getType())) {
+      // An index expression may have been computed into the field itself.
+      if (value != array)
+        memref::CopyOp::create(b, loc, value, array);
+    } else
       fill(loc, array, value);
     return success();
   }

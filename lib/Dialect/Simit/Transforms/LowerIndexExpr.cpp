@@ -84,6 +84,10 @@ private:
   /// Evaluates the body with the bound variables: the scalar it yields.
   FailureOr<Value> evaluate(Block &block);
   LogicalResult lowerLocal();
+  /// The array the result may be computed into directly: that of the
+  /// variable or field the next operation stores the result to, when every
+  /// input reading that array reads it at the result's own position.
+  Value inPlaceTarget();
 
   FunctionLowering &l;
   OpBuilder &b;
@@ -456,6 +460,29 @@ LogicalResult IndexExprLowering::lowerLocal() {
   return success();
 }
 
+Value IndexExprLowering::inPlaceTarget() {
+  if (resultStorage.isMatrix() || !op->hasOneUse())
+    return nullptr;
+  Operation *next = op->getNextNode();
+  if (!next || *op->getUsers().begin() != next)
+    return nullptr;
+  Value target;
+  if (auto store = dyn_cast<StoreOp>(next)) {
+    target = l.lookup(store.getRef());
+  } else if (auto write = dyn_cast<FieldWriteOp>(next)) {
+    auto set = cast<SetType>(write.getSet().getType());
+    target = l.getField(set.getName(), write.getFieldAttr(),
+                        set.getElement().getFieldType(write.getField()));
+  }
+  if (!target || target.getType() != l.convertType(op.getType()))
+    return nullptr;
+  for (auto [i, input] : llvm::enumerate(op.getInputs()))
+    if (l.lookup(input) == target &&
+        op.getInputIndexList(i) != op.getResultIndices())
+      return nullptr;
+  return target;
+}
+
 LogicalResult IndexExprLowering::lower() {
   op.walk([&](IndexSumOp nested) {
     for (int64_t v : nested.getVars())
@@ -538,7 +565,11 @@ LogicalResult IndexExprLowering::lower() {
   // once: for the row, for its blocks, for the block's components, add into
   // the row of the (zeroed) result. Otherwise every result component is
   // written once by the loop nest.
-  Value output = l.allocSystem(loc, type, resultStorage, sparseSum);
+  Value output = inPlaceTarget();
+  if (output && sparseSum)
+    l.fill(loc, output, l.zeroOf(scalarType));
+  if (!output)
+    output = l.allocSystem(loc, type, resultStorage, sparseSum);
   l.storages[op] = resultStorage;
   if (sparseSum) {
     SmallVector<unsigned> all(free);

@@ -119,10 +119,11 @@ static SmallVector<Value> inverse(Arith &a, ArrayRef<Value> m, int64_t n) {
         for (int64_t j = 0; j < n; ++j)
           if (i != r && j != c)
             minor.push_back(m[i * n + j]);
-      Value cofactor = n == 1 ? a.b.create<arith::ConstantOp>(
-                                    a.loc, a.b.getFloatAttr(m[0].getType(), 1))
-                                    .getResult()
-                              : determinant(a, minor, n - 1);
+      Value cofactor =
+          n == 1 ? arith::ConstantOp::create(
+                       a.b, a.loc, a.b.getFloatAttr(m[0].getType(), 1.0))
+                       .getResult()
+                 : determinant(a, minor, n - 1);
       if ((r + c) % 2)
         cofactor = a.neg(cofactor);
       result[c * n + r] = a.mul(cofactor, inverseDet);

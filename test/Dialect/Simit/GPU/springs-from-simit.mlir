@@ -5,6 +5,10 @@
 // RUN: simit-opt %s --simit-inline-functions --simit-linalg-to-index-expr \
 // RUN:   --convert-simit-to-loops --simit-gpu-pipeline \
 // RUN:   | sed -e 's/\\0A/\n/g' -e 's/\\09/ /g' | FileCheck %s --check-prefix=PTX
+// RUN: simit-opt %s --simit-gpu-pipeline=lower-simit=true \
+// RUN:   | sed -e 's/\\0A/\n/g' -e 's/\\09/ /g' | FileCheck %s --check-prefix=PTX
+// RUN: simit-opt %s --simit-gpu-pipeline=lower-simit=true \
+// RUN:   | FileCheck %s --check-prefix=FREED
 
 // The GPU path on what the CPU lowering makes of a Simit program: spring
 // forces and stiffness assembled over the springs (scatters into the points
@@ -57,6 +61,12 @@ func.func private @springForce(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -
 // LAUNCH:           gpu.terminator
 // LAUNCH-NOT:     scf.parallel
 // LAUNCH:         return
+
+// With lower-simit the temporaries are freed, on the host and the device:
+// every device allocation has its free.
+// FREED-LABEL: llvm.func @step(
+// FREED:       llvm.call @free
+// FREED-LABEL: llvm.func @_mlir_ciface_step(
 
 // PTX: .visible .entry step_kernel(
 // PTX: atom.global.add.f64

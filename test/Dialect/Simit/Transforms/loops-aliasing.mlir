@@ -6,14 +6,20 @@
 !Points = !simit.set<"points", !Point>
 simit.extern @points : !Points
 
-// x = x + v reads the field arrays in place: nothing is copied.
+// x = x + v reads the field arrays in place and, reading x only at the
+// position it writes, computes straight into x: no temporary, no copy.
 // CHECK-LABEL: func.func @in_place(
 // CHECK-SAME: %[[N:[^:]*]]: index, %[[V:[^:]*]]: memref<?x3xf64>, %[[X:[^:]*]]: memref<?x3xf64>)
-// CHECK-NOT: memref.copy %[[X]]
-// CHECK: %[[Y:.*]] = memref.alloc(%[[N]])
-// CHECK: memref.load %[[X]]
-// CHECK: memref.load %[[V]]
-// CHECK: memref.copy %[[Y]], %[[X]]
+// CHECK-NOT: memref.alloc
+// CHECK-NOT: memref.copy
+// CHECK: scf.parallel (%[[P:.*]]) =
+// CHECK:   scf.for %[[C:.*]] =
+// CHECK:     %[[X0:.*]] = memref.load %[[X]][%[[P]], %[[C]]]
+// CHECK:     %[[V0:.*]] = memref.load %[[V]][%[[P]], %[[C]]]
+// CHECK:     %[[S:.*]] = arith.addf %[[X0]], %[[V0]]
+// CHECK:     memref.store %[[S]], %[[X]][%[[P]], %[[C]]]
+// CHECK-NOT: memref.copy
+// CHECK: return
 func.func @in_place() attributes {simit.export} {
   %points = simit.get_set @points : !Points
   %x = simit.field_read %points["x"] : !Points -> !F
@@ -47,7 +53,7 @@ func.func @old_value() attributes {simit.export} {
 // CHECK: memref.copy %[[X]], %[[OLD]]
 // CHECK: scf.for
 // CHECK: memref.load %[[OLD]]
-// CHECK: memref.copy %{{.*}}, %[[X]]
+// CHECK: memref.store %{{.*}}, %[[X]]
 func.func @loop() attributes {simit.export} {
   %points = simit.get_set @points : !Points
   %x = simit.field_read %points["x"] : !Points -> !F

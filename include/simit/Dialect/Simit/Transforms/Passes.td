@@ -29,10 +29,11 @@ def SimitInlineFunctions : Pass<"simit-inline-functions", "::mlir::ModuleOp"> {
     Simit has no recursion, so every `func.call` of a function defined in the
     module is inlined (bottom-up through nested calls), after which system
     matrices flow from their assembly to their uses inside one function.
-    Private functions that no operation references any more are erased;
-    element functions referenced by `simit.map` / `simit.assemble` stay (the
-    loop lowering inlines them into the set loops). The pass registers the
-    dialect's inliner interface (registerSimitInlinerInterface).
+    Functions on simit values that are not exported (`simit.export`) and
+    that no operation references any more are erased; element functions
+    referenced by `simit.map` / `simit.assemble` stay (the loop lowering
+    inlines them into the set loops). The pass registers the dialect's
+    inliner interface (registerSimitInlinerInterface).
   }];
   let dependentDialects = ["::mlir::simit::SimitDialect",
                            "::mlir::func::FuncDialect"];
@@ -71,10 +72,14 @@ def ConvertSimitToLoops : Pass<"convert-simit-to-loops", "::mlir::ModuleOp"> {
     memref<?x block x T> field-shaped arrays, matrices assembled from an edge
     set become BCSR value arrays over the set's pattern (rowptr, colidx and a
     per-edge location table bound by the host), matrices assembled from a
-    vertex set become diagonal block arrays. Maps and assemblies become
-    scf.parallel loops over the set with the element function inlined.
-    Exported (public) functions take the data they touch as arguments,
-    described by their `simit.bindings` attribute (docs/lowering.md).
+    vertex set become diagonal block arrays; local tensors become flat
+    vectors. Maps and assemblies become scf.parallel loops over the set with
+    the element function inlined; index expressions become loop nests that
+    follow the matrices' sparsity. Exported functions (`simit.export`) take
+    their parameters and then the data they touch, in a canonical order,
+    described by their `simit.bindings` attribute (docs/lowering.md); the
+    element functions and externs are erased. Unsupported input is reported
+    on the operation.
   }];
   let dependentDialects = ["::mlir::func::FuncDialect",
                            "::mlir::scf::SCFDialect",
@@ -103,9 +108,11 @@ def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
   let summary = "Runs every Simit lowering down to the LLVM dialect";
   let description = [{
     Inlines functions, rewrites linear algebra as index expressions, fuses
-    them, lowers to loops and then to the LLVM dialect (scf to cf, vector,
-    arith, math, memref, func and cf to LLVM, reconcile casts). The pipeline
-    is buildSimitCpuPipeline(), which the JIT runs as well.
+    them, lowers to loops, moves the stack slots out of the (sequential)
+    parallel loops, frees temporaries, and lowers to the LLVM dialect (vector
+    to scf, scf to cf, vector, math, arith, index, memref, func and cf to
+    LLVM, reconcile casts). The pipeline is buildSimitCpuPipeline(), which
+    the JIT runs as well.
   }];
 }
 

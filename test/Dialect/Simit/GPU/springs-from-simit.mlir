@@ -62,9 +62,12 @@ func.func private @springForce(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -
 // LAUNCH-NOT:     scf.parallel
 // LAUNCH:         return
 
-// With lower-simit the temporaries are freed, on the host and the device:
-// every device allocation has its free.
+// With lower-simit the temporaries are freed (convert-simit-to-loops alone
+// leaves that to the buffer-deallocation pipeline), on the host and on the
+// device.
 // FREED-LABEL: llvm.func @step(
+// FREED:       llvm.call @malloc
+// FREED:       llvm.call @mgpuMemFree
 // FREED:       llvm.call @free
 // FREED-LABEL: llvm.func @_mlir_ciface_step(
 

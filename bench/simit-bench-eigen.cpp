@@ -55,6 +55,11 @@ static cl::opt<std::string> errorOf(
     cl::desc("Report the error of the positions in this file (x,y,z per "
              "vertex) measured against this run's final positions"));
 
+static cl::opt<double> maxError(
+    "max-error", cl::cat(benchCategory), cl::init(-1.0),
+    cl::desc("With --error-of: exit with status 1 when the error exceeds "
+             "this (for tests)"));
+
 using Positions = Eigen::VectorXd;
 
 static double median(std::vector<double> values) {
@@ -223,8 +228,13 @@ template <typename Scalar> static int run(const SceneOptions &options) {
                    << "\n";
       return 1;
     }
+    double error = relativeError(*other, x, x0);
     std::printf("error      of %s against this run: %.6e\n", errorOf.c_str(),
-                relativeError(*other, x, x0));
+                error);
+    if (maxError >= 0 && !(error <= maxError)) {
+      std::printf("error      exceeds --max-error %.3e\n", maxError.getValue());
+      return 1;
+    }
   }
   if (!outPath.empty() && !writePositions(outPath, x)) {
     llvm::errs() << "simit-bench-eigen: " << outPath << ": cannot write\n";

@@ -22,7 +22,7 @@ llvm_config.with_system_environment(["HOME", "INCLUDE", "LIB", "TMP", "TEMP"])
 llvm_config.use_default_substitutions()
 
 tool_dirs = [config.simit_tools_dir, config.llvm_tools_dir]
-tools = ["simit-opt", "simit-translate", "simit-run", "mlir-opt", "mlir-runner"]
+tools = ["simit-opt", "simit-translate", "simit-run", "simit-bench-eigen", "mlir-opt", "mlir-runner"]
 llvm_config.add_tool_substitutions(tools, tool_dirs)
 llvm_config.with_environment("PATH", config.llvm_tools_dir, append_path=True)
 llvm_config.with_environment("PATH", config.simit_tools_dir, append_path=True)

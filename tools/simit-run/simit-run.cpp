@@ -22,39 +22,41 @@ using namespace simit;
 
 namespace cl = llvm::cl;
 
-static cl::opt<std::string> programPath(cl::Positional,
+static cl::OptionCategory runCategory("simit-run options");
+
+static cl::opt<std::string> programPath(cl::cat(runCategory), cl::Positional,
                                         cl::desc("<program .sim or .mlir>"),
                                         cl::init(""));
-static cl::opt<std::string> scenePath("scene", cl::desc("Run on a scene file"),
+static cl::opt<std::string> scenePath(cl::cat(runCategory), "scene", cl::desc("Run on a scene file"),
                                       cl::value_desc("scene.json"));
 static cl::opt<std::string>
-    outputDirectory("output-dir", cl::desc("Where scene outputs are written"),
+    outputDirectory(cl::cat(runCategory), "output-dir", cl::desc("Where scene outputs are written"),
                     cl::init("."));
-static cl::opt<int> frames("frames",
+static cl::opt<int> frames(cl::cat(runCategory), "frames",
                            cl::desc("Override the scene's frame count"),
                            cl::init(-1));
-static cl::opt<bool> testMode("test",
+static cl::opt<bool> testMode(cl::cat(runCategory), "test",
                               cl::desc("Run the file's %! assertions"));
-static cl::opt<std::string> evalCall("eval",
+static cl::opt<std::string> evalCall(cl::cat(runCategory), "eval",
                                      cl::desc("Call one function with literal "
                                               "arguments and print the results"),
                                      cl::value_desc("f(args)"));
-static cl::opt<Stage> emitStage(
+static cl::opt<Stage> emitStage(cl::cat(runCategory), 
     "emit", cl::desc("Print the IR at a stage instead of running"),
     cl::values(clEnumValN(Stage::Simit, "simit", "the simit dialect"),
                clEnumValN(Stage::Loops, "loops",
                           "loops over sets (after convert-simit-to-loops)"),
                clEnumValN(Stage::LLVM, "llvm", "the LLVM dialect")));
-static cl::opt<bool> printTimes("time",
+static cl::opt<bool> printTimes(cl::cat(runCategory), "time",
                                 cl::desc("Print compile, bind/init and "
                                          "per-frame times"));
-static cl::opt<bool> checkNumerics(
+static cl::opt<bool> checkNumerics(cl::cat(runCategory), 
     "check-numerics",
     cl::desc("Stop at the first NaN or infinity a function leaves in a bound "
              "field or extern"));
-static cl::opt<bool> float32("float32",
+static cl::opt<bool> float32(cl::cat(runCategory), "float32",
                              cl::desc("Compile `float` as single precision"));
-static cl::opt<bool> noProgress("no-progress",
+static cl::opt<bool> noProgress(cl::cat(runCategory), "no-progress",
                                 cl::desc("No progress lines on long runs"));
 
 static int fail(llvm::Error err) {
@@ -64,6 +66,7 @@ static int fail(llvm::Error err) {
 
 int main(int argc, char **argv) {
   llvm::InitLLVM init(argc, argv);
+  cl::HideUnrelatedOptions(runCategory);
   cl::ParseCommandLineOptions(argc, argv, "Simit JIT runner\n");
   FloatPrecision precision =
       float32 ? FloatPrecision::Single : FloatPrecision::Double;

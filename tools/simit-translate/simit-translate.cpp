@@ -20,12 +20,14 @@
 
 using namespace simit::frontend;
 
-static llvm::cl::opt<std::string> inputFilename(llvm::cl::Positional,
+static llvm::cl::OptionCategory translateCategory("simit-translate options");
+
+static llvm::cl::opt<std::string> inputFilename(llvm::cl::cat(translateCategory), llvm::cl::Positional,
                                                 llvm::cl::desc("<input .sim>"),
                                                 llvm::cl::init("-"));
 
 enum class Action { ImportSim, DumpAST };
-static llvm::cl::opt<Action> action(
+static llvm::cl::opt<Action> action(llvm::cl::cat(translateCategory), 
     llvm::cl::desc("Action:"), llvm::cl::init(Action::ImportSim),
     llvm::cl::values(
         clEnumValN(Action::ImportSim, "import-sim",
@@ -34,17 +36,17 @@ static llvm::cl::opt<Action> action(
                    "Parse and check Simit source, print the checked AST")));
 
 static llvm::cl::opt<int>
-    sectionIndex("section",
+    sectionIndex(llvm::cl::cat(translateCategory), "section",
                  llvm::cl::desc("Process only the %%% section with this "
                                 "0-based index"),
                  llvm::cl::init(-1));
 
 static llvm::cl::opt<bool>
-    singlePrecision("single-precision",
+    singlePrecision(llvm::cl::cat(translateCategory), "single-precision",
                     llvm::cl::desc("Compile `float` as f32 instead of f64"),
                     llvm::cl::init(false));
 
-static llvm::cl::opt<bool> printDebugLocations(
+static llvm::cl::opt<bool> printDebugLocations(llvm::cl::cat(translateCategory), 
     "print-locations",
     llvm::cl::desc("Print the source locations of the generated operations"),
     llvm::cl::init(false));
@@ -84,6 +86,7 @@ static bool processProgram(llvm::StringRef text, llvm::StringRef bufferName) {
 
 int main(int argc, char **argv) {
   llvm::InitLLVM init(argc, argv);
+  llvm::cl::HideUnrelatedOptions(translateCategory);
   llvm::cl::ParseCommandLineOptions(argc, argv, "Simit translation tool\n");
 
   auto file = llvm::MemoryBuffer::getFileOrSTDIN(inputFilename);

@@ -51,6 +51,8 @@ double HostValue::component(size_t i) const {
   }
   case ScalarKind::Bool:
     return *p ? 1.0 : 0.0;
+  case ScalarKind::String:
+    return 0.0; // the bytes hold a `const char *`
   }
   llvm_unreachable("unknown scalar kind");
 }
@@ -301,6 +303,13 @@ llvm::Error Function::Impl::prepareArgument(const ArgumentBinding &arg,
     if (it == buffers.end())
       return error(arg.describe() + " is not bound");
     const HostBuffer &buffer = it->second;
+    // A string parameter is bound to a `const char *` variable; its
+    // component type and shape are not checked.
+    if (type.scalar == ScalarKind::String && !type.isMemRef &&
+        !type.isVector) {
+      args.push_back(buffer.data);
+      return llvm::Error::success();
+    }
     ComponentType expected;
     if (!componentTypeFor(type.scalar, expected))
       return error(arg.describe() + " has host type " + type.str() +

@@ -3,6 +3,7 @@
 #include "simit/Engine/HostABI.h"
 
 #include "mlir/Dialect/Func/IR/FuncOps.h"
+#include "mlir/Dialect/LLVMIR/LLVMTypes.h"
 #include "mlir/IR/BuiltinAttributes.h"
 #include "mlir/IR/BuiltinTypes.h"
 
@@ -16,6 +17,7 @@ size_t simit::scalarSize(ScalarKind kind) {
   case ScalarKind::Float64:
   case ScalarKind::Int64:
   case ScalarKind::Index:
+  case ScalarKind::String:
     return 8;
   case ScalarKind::Float32:
   case ScalarKind::Int32:
@@ -40,6 +42,8 @@ llvm::StringRef simit::scalarKindName(ScalarKind kind) {
     return "index";
   case ScalarKind::Bool:
     return "i1";
+  case ScalarKind::String:
+    return "string";
   }
   llvm_unreachable("unknown scalar kind");
 }
@@ -60,6 +64,7 @@ bool simit::componentTypeFor(ScalarKind kind, ComponentType &type) {
     return true;
   case ScalarKind::Int64:
   case ScalarKind::Index:
+  case ScalarKind::String:
     return false;
   }
   llvm_unreachable("unknown scalar kind");
@@ -127,6 +132,10 @@ llvm::Expected<ValueType> simit::toValueType(mlir::Type type) {
       return typeError(type, "only fixed vectors of numbers are supported");
     result.isVector = true;
     result.shape.assign(vector.getShape().begin(), vector.getShape().end());
+    return result;
+  }
+  if (llvm::isa<mlir::LLVM::LLVMPointerType>(type)) {
+    result.scalar = ScalarKind::String;
     return result;
   }
   if (!toScalarKind(type, result.scalar))

@@ -5,6 +5,12 @@
 #include "RuntimeSymbols.h"
 
 #include "llvm/Support/ErrorHandling.h"
+#include "llvm/Support/Format.h"
+#include "llvm/Support/raw_ostream.h"
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
 
 #include <vector>
 
@@ -92,6 +98,55 @@ extern "C" int32_t _mlir_ciface_simit_rt_cg_solve_bcsr(
   return iteration;
 }
 
+// print/println: through llvm::outs() so the output interleaves with the
+// tools' own output in order. Floats like C %g, integers and bools as
+// integers, strings as they are.
+extern "C" void simit_rt_print_f64(double value) {
+  llvm::outs() << llvm::format("%g", value);
+}
+
+extern "C" void simit_rt_print_i64(int64_t value) { llvm::outs() << value; }
+
+extern "C" void simit_rt_print_str(const char *text) {
+  llvm::outs() << (text ? text : "");
+}
+
+// Strings are NUL-terminated C strings; a concatenation allocates a new one
+// that lives as long as the process.
+extern "C" char *simit_rt_string_concat(const char *lhs, const char *rhs) {
+  if (!lhs)
+    lhs = "";
+  if (!rhs)
+    rhs = "";
+  size_t n = std::strlen(lhs), m = std::strlen(rhs);
+  char *result = static_cast<char *>(std::malloc(n + m + 1));
+  std::memcpy(result, lhs, n);
+  std::memcpy(result + n, rhs, m + 1);
+  return result;
+}
+
+extern "C" int32_t simit_rt_string_compare(const char *lhs, const char *rhs) {
+  int order = std::strcmp(lhs ? lhs : "", rhs ? rhs : "");
+  return order < 0 ? -1 : order > 0 ? 1 : 0;
+}
+
+// clock(): a monotonic timestamp in microseconds. storeTime(slot, value)
+// records a value in a host slot (slots 0..63); its result is 0.
+extern "C" double simit_rt_clock() {
+  using namespace std::chrono;
+  return static_cast<double>(
+      duration_cast<microseconds>(steady_clock::now().time_since_epoch())
+          .count());
+}
+
+static double storedTimes[64];
+
+extern "C" double simit_rt_storeTime(int32_t slot, double value) {
+  if (slot >= 0 && slot < 64)
+    storedTimes[slot] = value;
+  return 0.0;
+}
+
 llvm::orc::SymbolMap
 simit::runtimeSymbolMap(llvm::orc::MangleAndInterner interner) {
   llvm::orc::SymbolMap symbols;
@@ -101,5 +156,14 @@ simit::runtimeSymbolMap(llvm::orc::MangleAndInterner interner) {
   };
   add("_mlir_ciface_simit_rt_cg_solve_bcsr",
       reinterpret_cast<void *>(&_mlir_ciface_simit_rt_cg_solve_bcsr));
+  add("simit_rt_print_f64", reinterpret_cast<void *>(&simit_rt_print_f64));
+  add("simit_rt_print_i64", reinterpret_cast<void *>(&simit_rt_print_i64));
+  add("simit_rt_print_str", reinterpret_cast<void *>(&simit_rt_print_str));
+  add("simit_rt_string_concat",
+      reinterpret_cast<void *>(&simit_rt_string_concat));
+  add("simit_rt_string_compare",
+      reinterpret_cast<void *>(&simit_rt_string_compare));
+  add("simit_rt_clock", reinterpret_cast<void *>(&simit_rt_clock));
+  add("simit_rt_storeTime", reinterpret_cast<void *>(&simit_rt_storeTime));
   return symbols;
 }

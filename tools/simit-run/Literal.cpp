@@ -343,8 +343,9 @@ static bool kindMatches(Literal::Kind kind, ScalarKind scalar) {
     return scalar == ScalarKind::Float64 || scalar == ScalarKind::Float32;
   case Literal::Kind::Bool:
     return scalar == ScalarKind::Bool;
-  case Literal::Kind::Complex:
   case Literal::Kind::String:
+    return scalar == ScalarKind::String;
+  case Literal::Kind::Complex:
     return false;
   }
   llvm_unreachable("unknown literal kind");
@@ -354,6 +355,16 @@ llvm::Error simit::toHostBuffer(const Literal &literal, const ValueType &type,
                                 std::vector<uint64_t> &storage,
                                 std::vector<int> &shape,
                                 ComponentType &component) {
+  // A string is passed as a pointer to its text, which the literal keeps.
+  if (literal.kind == Literal::Kind::String &&
+      type.scalar == ScalarKind::String && !type.isMemRef && !type.isVector) {
+    const char *text = literal.text.c_str();
+    storage.assign(1, 0);
+    std::memcpy(storage.data(), &text, sizeof text);
+    shape.clear();
+    component = ComponentType::Float64; // not checked for strings
+    return llvm::Error::success();
+  }
   if (!kindMatches(literal.kind, type.scalar) ||
       !componentTypeFor(type.scalar, component))
     return llvm::createStringError(kindName(literal.kind) +
@@ -395,10 +406,19 @@ llvm::Error simit::toHostBuffer(const Literal &literal, const ValueType &type,
       break;
     case ScalarKind::Int64:
     case ScalarKind::Index:
+    case ScalarKind::String:
       llvm_unreachable("no component type");
     }
   }
   return llvm::Error::success();
+}
+
+/// The text of a string result (its bytes hold a `const char *`).
+static std::string stringOf(const HostValue &value) {
+  const char *text = nullptr;
+  if (value.bytes.size() >= sizeof text)
+    std::memcpy(&text, value.bytes.data(), sizeof text);
+  return text ? text : "";
 }
 
 std::string simit::compareResult(const HostValue &actual,
@@ -406,6 +426,13 @@ std::string simit::compareResult(const HostValue &actual,
   if (!kindMatches(expected.kind, actual.scalar))
     return "the result is " + scalarKindName(actual.scalar).str() +
            ", the expected value " + kindName(expected.kind).str();
+  if (expected.kind == Literal::Kind::String) {
+    std::string text = stringOf(actual);
+    if (text == expected.text)
+      return "";
+    return "the result is \"" + text + "\", expected \"" + expected.text +
+           "\"";
+  }
   if (actual.numComponents() != expected.numComponents())
     return "the result has shape [" + llvm::join(llvm::map_range(actual.shape, [](int64_t d) { return std::to_string(d); }), ", ") +
            "], the expected value [" +
@@ -486,6 +513,8 @@ std::string simit::formatValue(const HostValue &value) {
     case ScalarKind::Int64:
     case ScalarKind::Index:
       return std::to_string(static_cast<int64_t>(v));
+    case ScalarKind::String:
+      return "\"" + stringOf(value) + "\"";
     }
     llvm_unreachable("unknown scalar kind");
   };

@@ -31,7 +31,16 @@ class FuncOp;
 namespace simit {
 
 /// The scalar types that cross the host boundary.
-enum class ScalarKind : uint8_t { Float64, Float32, Int32, Int64, Index, Bool };
+/// String: a C string (`!llvm.ptr`, a `const char *`), scalars only.
+enum class ScalarKind : uint8_t {
+  Float64,
+  Float32,
+  Int32,
+  Int64,
+  Index,
+  Bool,
+  String
+};
 
 /// Bytes per value in memory (Bool: one byte).
 size_t scalarSize(ScalarKind kind);

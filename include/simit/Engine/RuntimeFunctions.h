@@ -30,6 +30,18 @@ int32_t _mlir_ciface_simit_rt_cg_solve_bcsr(
     StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *b,
     StridedMemRefType<double, 2> *x, double tolerance, int32_t maxIterations);
 
+/// print/println of scalars and strings (lowered simit.print).
+void simit_rt_print_f64(double value);
+void simit_rt_print_i64(int64_t value);
+void simit_rt_print_str(const char *text);
+/// String concatenation (a fresh malloc'd string) and comparison (-1, 0, 1).
+char *simit_rt_string_concat(const char *lhs, const char *rhs);
+int32_t simit_rt_string_compare(const char *lhs, const char *rhs);
+
+/// clock() in microseconds (monotonic) and storeTime(slot, value).
+double simit_rt_clock();
+double simit_rt_storeTime(int32_t slot, double value);
+
 } // extern "C"
 
 #endif // SIMIT_ENGINE_RUNTIMEFUNCTIONS_H

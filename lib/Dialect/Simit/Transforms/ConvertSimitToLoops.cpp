@@ -12,6 +12,8 @@
 #include "LoopsLowering.h"
 
 #include "mlir/IR/IRMapping.h"
+#include "llvm/ADT/StringExtras.h"
+#include "llvm/Support/xxhash.h"
 #include "llvm/ADT/DenseSet.h"
 
 #include <numeric>
@@ -92,6 +94,8 @@ static bool isSystem(Type type) { return hasSetDimension(type); }
 Type FunctionLowering::convertType(Type type) {
   if (isa<FloatType, IntegerType, IndexType>(type))
     return type;
+  if (isa<StringType>(type))
+    return LLVM::LLVMPointerType::get(type.getContext());
   if (isa<SetType, ElementType>(type))
     return IndexType::get(type.getContext());
   if (auto system = dyn_cast<SystemTensorType>(type)) {
@@ -128,6 +132,8 @@ Type FunctionLowering::convertType(Type type) {
       return convertType(value);
     if (isa<FloatType, IntegerType, IndexType>(value))
       return MemRefType::get({}, value);
+    if (isa<StringType>(value))
+      return MemRefType::get({}, LLVM::LLVMPointerType::get(type.getContext()));
     if (isa<RankedTensorType, SystemTensorType>(value))
       return MemRefType::get({numComponents(value)},
                              getComponentType(value));
@@ -252,6 +258,9 @@ Value FunctionLowering::indexConstant(int64_t value) {
 }
 
 Value FunctionLowering::zeroOf(Type scalarType) {
+  // A string variable starts empty.
+  if (isa<LLVM::LLVMPointerType>(scalarType))
+    return stringConstant(function.getLoc(), "");
   return arith::ConstantOp::create(b, function.getLoc(),
                                    b.getZeroAttr(scalarType));
 }
@@ -832,7 +841,25 @@ LogicalResult FunctionLowering::lowerFunctionReturn(func::ReturnOp op) {
   return success();
 }
 
+/// Whether `type` is or holds complex numbers (not lowered yet).
+static bool holdsComplex(Type type) {
+  if (isa<ComplexType>(type))
+    return true;
+  if (auto shaped = dyn_cast<ShapedType>(type))
+    return holdsComplex(shaped.getElementType());
+  if (auto system = dyn_cast<SystemTensorType>(type))
+    return holdsComplex(system.getComponentType());
+  if (auto ref = dyn_cast<RefType>(type))
+    return holdsComplex(ref.getValueType());
+  return false;
+}
+
 LogicalResult FunctionLowering::lowerOp(Operation *op) {
+  auto complexValue = [](Value v) { return holdsComplex(v.getType()); };
+  if (llvm::any_of(op->getResults(), complexValue) ||
+      llvm::any_of(op->getOperands(), complexValue))
+    return op->emitError("complex values are not supported by the loop "
+                         "lowering yet");
   if (auto loop = dyn_cast<scf::ForOp>(op))
     return lowerFor(loop);
   if (auto branch = dyn_cast<scf::IfOp>(op))
@@ -843,6 +870,26 @@ LogicalResult FunctionLowering::lowerOp(Operation *op) {
     return element ? success() : lowerFunctionReturn(ret);
   if (auto call = dyn_cast<func::CallOp>(op)) {
     auto callee = module.lookupSymbol<func::FuncOp>(call.getCalleeAttr());
+    // Runtime functions on scalars only (lib/Engine/RuntimeFunctions.cpp)
+    // stay calls of their private declarations.
+    auto isScalar = [](Type t) { return isa<FloatType, IntegerType>(t); };
+    if (callee && callee.isExternal() &&
+        callee->hasAttr("simit.runtime_function") &&
+        llvm::is_contained({StringRef("simit_rt_clock"),
+                            StringRef("simit_rt_storeTime")},
+                           call.getCallee()) &&
+        llvm::all_of(call.getOperandTypes(), isScalar) &&
+        llvm::all_of(call.getResultTypes(), isScalar)) {
+      SmallVector<Value> args;
+      for (Value operand : call.getOperands())
+        args.push_back(lookup(operand));
+      auto lowered = func::CallOp::create(b, op->getLoc(), call.getCallee(),
+                                          call.getResultTypes(), args);
+      for (auto [from, to] :
+           llvm::zip_equal(call.getResults(), lowered.getResults()))
+        map(from, to);
+      return success();
+    }
     if (callee && callee.isExternal())
       return op->emitError("'@")
              << call.getCallee()
@@ -917,8 +964,7 @@ LogicalResult FunctionLowering::lowerOp(Operation *op) {
     return op->emitError("grid stencils are not supported by the loop "
                          "lowering yet");
   if (isa<PrintOp, StringConstantOp, StringConcatOp, StringCmpOp>(op))
-    return op->emitError("printing and strings are not supported by the loop "
-                         "lowering yet");
+    return lowerPrintOrString(op);
 
   if (failed(lowerSystemOp(op, handled)))
     return failure();
@@ -929,6 +975,148 @@ LogicalResult FunctionLowering::lowerOp(Operation *op) {
   if (!handled)
     return op->emitError("'") << op->getName()
                               << "' is not supported by the loop lowering";
+  return success();
+}
+
+//===----------------------------------------------------------------------===//
+// Printing and strings
+//===----------------------------------------------------------------------===//
+
+Value FunctionLowering::callRuntime(Location loc, StringRef name,
+                                    TypeRange results, ValueRange args) {
+  auto type = FunctionType::get(b.getContext(), args.getTypes(), results);
+  if (!module.lookupSymbol<func::FuncOp>(name)) {
+    OpBuilder::InsertionGuard guard(b);
+    b.setInsertionPointToStart(module.getBody());
+    auto decl = func::FuncOp::create(b, loc, name, type);
+    decl.setPrivate();
+  }
+  auto call = func::CallOp::create(b, loc, name, results, args);
+  return call.getNumResults() ? call.getResult(0) : Value();
+}
+
+Value FunctionLowering::stringConstant(Location loc, StringRef text) {
+  // One internal constant global per distinct text: simit_str_<hash>.
+  MLIRContext *ctx = b.getContext();
+  std::string name = "simit_str_" + llvm::utohexstr(llvm::xxh3_64bits(text));
+  auto global = module.lookupSymbol<LLVM::GlobalOp>(name);
+  if (!global) {
+    OpBuilder::InsertionGuard guard(b);
+    b.setInsertionPointToStart(module.getBody());
+    std::string data = text.str();
+    data.push_back('\0');
+    auto arrayType =
+        LLVM::LLVMArrayType::get(IntegerType::get(ctx, 8), data.size());
+    global = LLVM::GlobalOp::create(b, loc, arrayType, /*isConstant=*/true,
+                                    LLVM::Linkage::Internal, name,
+                                    b.getStringAttr(data));
+  }
+  return LLVM::AddressOfOp::create(b, loc, LLVM::LLVMPointerType::get(ctx),
+                                   global.getSymName());
+}
+
+LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {
+  Location loc = op->getLoc();
+  MLIRContext *ctx = op->getContext();
+  auto ptrType = LLVM::LLVMPointerType::get(ctx);
+  auto stringConstant = [&](StringRef text) {
+    return this->stringConstant(loc, text);
+  };
+
+  if (auto constant = dyn_cast<StringConstantOp>(op)) {
+    map(constant, stringConstant(constant.getValue()));
+    return success();
+  }
+  if (auto concat = dyn_cast<StringConcatOp>(op)) {
+    map(concat, callRuntime(loc, "simit_rt_string_concat", {ptrType},
+                            {lookup(concat.getLhs()), lookup(concat.getRhs())}));
+    return success();
+  }
+  if (auto cmp = dyn_cast<StringCmpOp>(op)) {
+    Value order =
+        callRuntime(loc, "simit_rt_string_compare", {b.getI32Type()},
+                    {lookup(cmp.getLhs()), lookup(cmp.getRhs())});
+    arith::CmpIPredicate predicate;
+    switch (cmp.getPredicate()) {
+    case StringPredicate::eq: predicate = arith::CmpIPredicate::eq; break;
+    case StringPredicate::ne: predicate = arith::CmpIPredicate::ne; break;
+    case StringPredicate::lt: predicate = arith::CmpIPredicate::slt; break;
+    case StringPredicate::le: predicate = arith::CmpIPredicate::sle; break;
+    case StringPredicate::gt: predicate = arith::CmpIPredicate::sgt; break;
+    case StringPredicate::ge: predicate = arith::CmpIPredicate::sge; break;
+    }
+    Value zero = arith::ConstantIntOp::create(b, loc, b.getI32Type(), 0);
+    map(cmp, arith::CmpIOp::create(b, loc, predicate, order, zero));
+    return success();
+  }
+
+  auto print = cast<PrintOp>(op);
+  auto printScalar = [&](Value scalar) -> LogicalResult {
+    Type type = scalar.getType();
+    if (isa<LLVM::LLVMPointerType>(type)) {
+      callRuntime(loc, "simit_rt_print_str", {}, {scalar});
+      return success();
+    }
+    if (auto floatType = dyn_cast<FloatType>(type)) {
+      if (floatType.getWidth() < 64)
+        scalar = arith::ExtFOp::create(b, loc, b.getF64Type(), scalar);
+      else if (floatType.getWidth() > 64)
+        return op->emitError("cannot print floats wider than 64 bits");
+      callRuntime(loc, "simit_rt_print_f64", {}, {scalar});
+      return success();
+    }
+    if (isa<IndexType>(type)) {
+      scalar = arith::IndexCastOp::create(b, loc, b.getI64Type(), scalar);
+      type = scalar.getType();
+    }
+    if (auto intType = dyn_cast<IntegerType>(type)) {
+      if (intType.getWidth() == 1)
+        scalar = arith::ExtUIOp::create(b, loc, b.getI64Type(), scalar);
+      else if (intType.getWidth() < 64)
+        scalar = arith::ExtSIOp::create(b, loc, b.getI64Type(), scalar);
+      else if (intType.getWidth() > 64)
+        return op->emitError("cannot print integers wider than 64 bits");
+      callRuntime(loc, "simit_rt_print_i64", {}, {scalar});
+      return success();
+    }
+    return op->emitError("printing values of type ")
+           << type << " is not supported by the loop lowering";
+  };
+  for (Value value : print.getValues()) {
+    Type type = value.getType();
+    if (isa<ComplexType>(type))
+      return op->emitError("printing complex values is not supported by the "
+                           "loop lowering yet");
+    if (auto tensor = dyn_cast<RankedTensorType>(type)) {
+      if (isa<ComplexType>(tensor.getElementType()))
+        return op->emitError("printing complex values is not supported by "
+                             "the loop lowering yet");
+      Value lowered = lookup(value);
+      if (!lowered)
+        return op->emitError("print operand was not lowered");
+      // Components separated by spaces; the rows of a matrix by newlines.
+      int64_t n = tensor.getNumElements();
+      int64_t columns = tensor.getRank() >= 2 ? tensor.getShape().back() : n;
+      for (int64_t i = 0; i < n; ++i) {
+        if (i > 0)
+          callRuntime(loc, "simit_rt_print_str", {},
+                      {stringConstant(i % columns == 0 ? "\n" : " ")});
+        if (failed(printScalar(component(lowered, i))))
+          return failure();
+      }
+      continue;
+    }
+    if (isa<SystemTensorType>(type))
+      return op->emitError("printing system tensors is not supported by the "
+                           "loop lowering yet");
+    Value lowered = lookup(value);
+    if (!lowered)
+      return op->emitError("print operand was not lowered");
+    if (failed(printScalar(lowered)))
+      return failure();
+  }
+  if (print.getNewline())
+    callRuntime(loc, "simit_rt_print_str", {}, {stringConstant("\n")});
   return success();
 }
 
@@ -945,6 +1133,11 @@ LogicalResult FunctionLowering::run(func::FuncOp original) {
   allocaBlock = entry;
   SmallVector<Attribute> bindingAttrs;
   for (auto [i, arg] : llvm::enumerate(original.getArguments())) {
+    if (holdsComplex(arg.getType()))
+      return original.emitError("exported function parameter ")
+             << i << " of type " << arg.getType()
+             << " cannot be lowered: complex values are not supported by the "
+                "loop lowering yet";
     Type type = convertType(arg.getType());
     if (!type || isa<SetType, ElementType>(arg.getType()))
       return original.emitError("exported function parameter ")
@@ -964,7 +1157,7 @@ LogicalResult FunctionLowering::run(func::FuncOp original) {
                              b.getI64IntegerAttr(i))}));
   }
   for (Type type : original.getResultTypes()) {
-    Type lowered = convertType(type);
+    Type lowered = holdsComplex(type) ? Type() : convertType(type);
     if (!lowered)
       return original.emitError("exported function result of type ")
              << type << " cannot be lowered";

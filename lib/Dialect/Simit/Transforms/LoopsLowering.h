@@ -180,6 +180,14 @@ private:
   LogicalResult lowerFunctionReturn(func::ReturnOp op);
   /// Solves with a pattern matrix call the runtime's CG solver.
   LogicalResult lowerSolve(SolveOp op);
+  /// simit.print and strings (C strings as !llvm.ptr) through runtime
+  /// functions (simit_rt_print_*, simit_rt_string_*).
+  LogicalResult lowerPrintOrString(Operation *op);
+  /// The address of a global NUL-terminated copy of `text` (!llvm.ptr).
+  Value stringConstant(Location loc, StringRef text);
+  /// A call to the runtime function `name`, declared on first use.
+  Value callRuntime(Location loc, StringRef name, TypeRange results,
+                    ValueRange args);
   LogicalResult lowerFor(scf::ForOp op);
   LogicalResult lowerIf(scf::IfOp op);
   LogicalResult lowerWhile(scf::WhileOp op);

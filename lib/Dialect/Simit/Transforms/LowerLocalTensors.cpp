@@ -202,7 +202,10 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
 
   // Variables.
   if (auto alloc = dyn_cast<AllocOp>(op)) {
-    auto type = cast<MemRefType>(convertType(alloc.getType()));
+    auto type = dyn_cast_or_null<MemRefType>(convertType(alloc.getType()));
+    if (!type)
+      return op->emitError("variables of type ")
+             << alloc.getType() << " are not supported by the loop lowering";
     Value slot;
     {
       OpBuilder::InsertionGuard guard(b);

@@ -141,3 +141,20 @@ func.func @clock() -> f64 attributes {simit.export} {
   %t = func.call @simit_rt_clock() : () -> f64
   return %t : f64
 }
+
+// -----
+
+// expected-error @below {{exported function parameter 0 of type 'complex<f64>' cannot be lowered: complex values are not supported by the loop lowering yet}}
+func.func @complex_param(%z : complex<f64>) -> f64 attributes {simit.export} {
+  %r = arith.constant 0.0 : f64
+  return %r : f64
+}
+
+// -----
+
+func.func @complex_local() -> f64 attributes {simit.export} {
+  // expected-error @below {{complex values are not supported by the loop lowering yet}}
+  %z = complex.constant [1.0, 2.0] : complex<f64>
+  %r = complex.re %z : complex<f64>
+  return %r : f64
+}

@@ -8,6 +8,10 @@
 #include "llvm/Support/Format.h"
 #include "llvm/Support/raw_ostream.h"
 
+#include <Eigen/Cholesky>
+#include <Eigen/Dense>
+#include <Eigen/LU>
+
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -147,6 +151,113 @@ extern "C" double simit_rt_storeTime(int32_t slot, double value) {
   return 0.0;
 }
 
+namespace {
+using RowMatrix =
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// A memref<?xf64> as an Eigen vector (any stride).
+Eigen::Map<Eigen::VectorXd, 0, Eigen::InnerStride<>>
+asVector(StridedMemRefType<double, 1> *m) {
+  return {m->data + m->offset, m->sizes[0],
+          Eigen::InnerStride<>(m->strides[0])};
+}
+
+/// A row-major rows x cols matrix held in a memref<?xf64>.
+RowMatrix asMatrix(StridedMemRefType<double, 1> *m, int64_t rows,
+                   int64_t cols, const char *who) {
+  if (rows < 0 || cols < 0 || m->sizes[0] != rows * cols)
+    llvm::report_fatal_error(llvm::Twine(who) +
+                             ": operand size does not match its shape");
+  RowMatrix result(rows, cols);
+  auto flat = asVector(m);
+  for (int64_t i = 0; i < rows; ++i)
+    for (int64_t j = 0; j < cols; ++j)
+      result(i, j) = flat[i * cols + j];
+  return result;
+}
+
+void storeMatrix(const RowMatrix &value, StridedMemRefType<double, 1> *m,
+                 const char *who) {
+  if (m->sizes[0] != value.size())
+    llvm::report_fatal_error(llvm::Twine(who) +
+                             ": result size does not match");
+  auto flat = asVector(m);
+  for (int64_t i = 0; i < value.rows(); ++i)
+    for (int64_t j = 0; j < value.cols(); ++j)
+      flat[i * value.cols() + j] = value(i, j);
+}
+
+using LU = Eigen::PartialPivLU<Eigen::MatrixXd>;
+using LLT = Eigen::LLT<Eigen::MatrixXd>;
+
+} // namespace
+
+extern "C" void *_mlir_ciface_simit_rt_lu(StridedMemRefType<double, 1> *a,
+                                          int64_t n) {
+  return new LU(Eigen::MatrixXd(asMatrix(a, n, n, "lu")));
+}
+
+extern "C" void *_mlir_ciface_simit_rt_chol(StridedMemRefType<double, 1> *a,
+                                            int64_t n) {
+  return new LLT(Eigen::MatrixXd(asMatrix(a, n, n, "chol")));
+}
+
+extern "C" void _mlir_ciface_simit_rt_lusolve(void *handle,
+                                              StridedMemRefType<double, 1> *b,
+                                              StridedMemRefType<double, 1> *x) {
+  if (!handle)
+    llvm::report_fatal_error("lusolve: null factorisation");
+  auto &lu = *static_cast<LU *>(handle);
+  RowMatrix rhs = asMatrix(b, lu.rows(), 1, "lusolve");
+  storeMatrix(RowMatrix(lu.solve(Eigen::MatrixXd(rhs))), x, "lusolve");
+}
+
+extern "C" void _mlir_ciface_simit_rt_lltsolve(void *handle,
+                                               StridedMemRefType<double, 1> *b,
+                                               StridedMemRefType<double, 1> *x) {
+  if (!handle)
+    llvm::report_fatal_error("lltsolve: null factorisation");
+  auto &llt = *static_cast<LLT *>(handle);
+  RowMatrix rhs = asMatrix(b, llt.rows(), 1, "lltsolve");
+  storeMatrix(RowMatrix(llt.solve(Eigen::MatrixXd(rhs))), x, "lltsolve");
+}
+
+extern "C" void _mlir_ciface_simit_rt_lumatsolve(
+    void *handle, StridedMemRefType<double, 1> *b,
+    StridedMemRefType<double, 1> *x, int64_t cols) {
+  if (!handle)
+    llvm::report_fatal_error("lumatsolve: null factorisation");
+  auto &lu = *static_cast<LU *>(handle);
+  RowMatrix rhs = asMatrix(b, lu.rows(), cols, "lumatsolve");
+  storeMatrix(RowMatrix(lu.solve(Eigen::MatrixXd(rhs))), x, "lumatsolve");
+}
+
+extern "C" void _mlir_ciface_simit_rt_lltmatsolve(
+    void *handle, StridedMemRefType<double, 1> *b,
+    StridedMemRefType<double, 1> *x, int64_t cols) {
+  if (!handle)
+    llvm::report_fatal_error("lltmatsolve: null factorisation");
+  auto &llt = *static_cast<LLT *>(handle);
+  RowMatrix rhs = asMatrix(b, llt.rows(), cols, "lltmatsolve");
+  storeMatrix(RowMatrix(llt.solve(Eigen::MatrixXd(rhs))), x, "lltmatsolve");
+}
+
+extern "C" void simit_rt_lufree(void *handle) { delete static_cast<LU *>(handle); }
+
+extern "C" void simit_rt_cholfree(void *handle) {
+  delete static_cast<LLT *>(handle);
+}
+
+extern "C" void _mlir_ciface_simit_rt_triangularSolve(
+    StridedMemRefType<double, 1> *a, StridedMemRefType<double, 1> *b,
+    StridedMemRefType<double, 1> *x, int64_t n) {
+  RowMatrix matrix = asMatrix(a, n, n, "triangularSolve");
+  RowMatrix rhs = asMatrix(b, n, 1, "triangularSolve");
+  RowMatrix solution =
+      matrix.triangularView<Eigen::Lower>().solve(rhs);
+  storeMatrix(solution, x, "triangularSolve");
+}
+
 llvm::orc::SymbolMap
 simit::runtimeSymbolMap(llvm::orc::MangleAndInterner interner) {
   llvm::orc::SymbolMap symbols;
@@ -165,5 +276,21 @@ simit::runtimeSymbolMap(llvm::orc::MangleAndInterner interner) {
       reinterpret_cast<void *>(&simit_rt_string_compare));
   add("simit_rt_clock", reinterpret_cast<void *>(&simit_rt_clock));
   add("simit_rt_storeTime", reinterpret_cast<void *>(&simit_rt_storeTime));
+  add("_mlir_ciface_simit_rt_lu",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_lu));
+  add("_mlir_ciface_simit_rt_chol",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_chol));
+  add("_mlir_ciface_simit_rt_lusolve",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_lusolve));
+  add("_mlir_ciface_simit_rt_lltsolve",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_lltsolve));
+  add("_mlir_ciface_simit_rt_lumatsolve",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_lumatsolve));
+  add("_mlir_ciface_simit_rt_lltmatsolve",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_lltmatsolve));
+  add("simit_rt_lufree", reinterpret_cast<void *>(&simit_rt_lufree));
+  add("simit_rt_cholfree", reinterpret_cast<void *>(&simit_rt_cholfree));
+  add("_mlir_ciface_simit_rt_triangularSolve",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_triangularSolve));
   return symbols;
 }

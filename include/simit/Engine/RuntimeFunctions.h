@@ -42,6 +42,41 @@ int32_t simit_rt_string_compare(const char *lhs, const char *rhs);
 double simit_rt_clock();
 double simit_rt_storeTime(int32_t slot, double value);
 
+/// Dense solvers of small local f64 matrices (Eigen). Matrices and vectors
+/// are row-major memref<?xf64>; a factorisation is an opaque heap handle
+/// (!llvm.ptr) that lufree/cholfree delete.
+/// MLIR (each attributes {llvm.emit_c_interface} except the frees):
+///   @simit_rt_lu(memref<?xf64> A, i64 n) -> !llvm.ptr   (PartialPivLU)
+///   @simit_rt_chol(memref<?xf64> A, i64 n) -> !llvm.ptr (LLT)
+///   @simit_rt_lusolve(!llvm.ptr, memref<?xf64> b, memref<?xf64> x)
+///   @simit_rt_lltsolve(!llvm.ptr, memref<?xf64> b, memref<?xf64> x)
+///   @simit_rt_lumatsolve(!llvm.ptr, memref<?xf64> B, memref<?xf64> X, i64 k)
+///   @simit_rt_lltmatsolve(!llvm.ptr, memref<?xf64> B, memref<?xf64> X, i64 k)
+///   @simit_rt_lufree(!llvm.ptr), @simit_rt_cholfree(!llvm.ptr)
+///   @simit_rt_triangularSolve(memref<?xf64> A, memref<?xf64> b,
+///       memref<?xf64> x, i64 n)   (A's lower triangle, forward substitution)
+void *_mlir_ciface_simit_rt_lu(StridedMemRefType<double, 1> *a, int64_t n);
+void *_mlir_ciface_simit_rt_chol(StridedMemRefType<double, 1> *a, int64_t n);
+void _mlir_ciface_simit_rt_lusolve(void *handle, StridedMemRefType<double, 1> *b,
+                                   StridedMemRefType<double, 1> *x);
+void _mlir_ciface_simit_rt_lltsolve(void *handle,
+                                    StridedMemRefType<double, 1> *b,
+                                    StridedMemRefType<double, 1> *x);
+void _mlir_ciface_simit_rt_lumatsolve(void *handle,
+                                      StridedMemRefType<double, 1> *b,
+                                      StridedMemRefType<double, 1> *x,
+                                      int64_t cols);
+void _mlir_ciface_simit_rt_lltmatsolve(void *handle,
+                                       StridedMemRefType<double, 1> *b,
+                                       StridedMemRefType<double, 1> *x,
+                                       int64_t cols);
+void simit_rt_lufree(void *handle);
+void simit_rt_cholfree(void *handle);
+void _mlir_ciface_simit_rt_triangularSolve(StridedMemRefType<double, 1> *a,
+                                           StridedMemRefType<double, 1> *b,
+                                           StridedMemRefType<double, 1> *x,
+                                           int64_t n);
+
 } // extern "C"
 
 #endif // SIMIT_ENGINE_RUNTIMEFUNCTIONS_H

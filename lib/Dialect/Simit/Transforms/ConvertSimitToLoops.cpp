@@ -94,7 +94,7 @@ static bool isSystem(Type type) { return hasSetDimension(type); }
 Type FunctionLowering::convertType(Type type) {
   if (isa<FloatType, IntegerType, IndexType>(type))
     return type;
-  if (isa<StringType>(type))
+  if (isa<StringType, OpaqueType>(type))
     return LLVM::LLVMPointerType::get(type.getContext());
   if (isa<SetType, ElementType>(type))
     return IndexType::get(type.getContext());
@@ -826,6 +826,134 @@ LogicalResult FunctionLowering::lowerSolve(SolveOp op) {
   return success();
 }
 
+/// The dense solver runtime functions, with the i64 size arguments their
+/// lowered form appends (see lowerSolverCall).
+static bool isSolverFunction(StringRef name) {
+  return llvm::is_contained(
+      {StringRef("simit_rt_lu"), StringRef("simit_rt_chol"),
+       StringRef("simit_rt_lusolve"), StringRef("simit_rt_lltsolve"),
+       StringRef("simit_rt_lumatsolve"), StringRef("simit_rt_lltmatsolve"),
+       StringRef("simit_rt_lufree"), StringRef("simit_rt_cholfree"),
+       StringRef("simit_rt_triangularSolve")},
+      name);
+}
+
+LogicalResult FunctionLowering::lowerSolverCall(func::CallOp call,
+                                                func::FuncOp callee) {
+  Location loc = call.getLoc();
+  MLIRContext *ctx = b.getContext();
+  StringRef name = call.getCallee();
+  Type f64 = b.getF64Type();
+  Type ptr = LLVM::LLVMPointerType::get(ctx);
+  Type flat = MemRefType::get({ShapedType::kDynamic}, f64);
+  bool factorise = name == "simit_rt_lu" || name == "simit_rt_chol";
+  bool free = name == "simit_rt_lufree" || name == "simit_rt_cholfree";
+  bool matSolve =
+      name == "simit_rt_lumatsolve" || name == "simit_rt_lltmatsolve";
+  bool triangular = name == "simit_rt_triangularSolve";
+
+  // Expected shapes: (handle | matrix)..., tensors of f64.
+  auto tensorOf = [&](Type t, unsigned rank) -> RankedTensorType {
+    auto tensor = dyn_cast<RankedTensorType>(t);
+    if (!tensor || !tensor.getElementType().isF64() ||
+        tensor.getRank() != rank || !tensor.hasStaticShape())
+      return nullptr;
+    return tensor;
+  };
+  auto isHandle = [](Type t) { return isa<OpaqueType>(t); };
+  auto isSquare = [&](Type t) {
+    auto m = tensorOf(t, 2);
+    return m && m.getDimSize(0) == m.getDimSize(1);
+  };
+  TypeRange in = call.getOperandTypes(), out = call.getResultTypes();
+  bool valid = false;
+  if (factorise)
+    valid = in.size() == 1 && isSquare(in[0]) && out.size() == 1 &&
+            isHandle(out[0]);
+  else if (free)
+    valid = in.size() == 1 && isHandle(in[0]) && out.empty();
+  else if (triangular)
+    valid = in.size() == 2 && isSquare(in[0]) && tensorOf(in[1], 1) &&
+            out.size() == 1 && out[0] == in[1] &&
+            tensorOf(in[1], 1).getDimSize(0) ==
+                cast<RankedTensorType>(in[0]).getDimSize(0);
+  else
+    valid = in.size() == 2 && isHandle(in[0]) &&
+            tensorOf(in[1], matSolve ? 2 : 1) && out.size() == 1 &&
+            out[0] == in[1];
+  if (!valid)
+    return call.emitError("'@")
+           << name
+           << "' is supported by the loop lowering on dense local f64 "
+              "matrices and vectors (and opaque handles) only";
+
+  // Local tensors (vectors) are stored to a stack buffer passed as
+  // memref<?xf64>; tensor results come back through one.
+  auto buffer = [&](int64_t size) {
+    OpBuilder::InsertionGuard guard(b);
+    b.setInsertionPointToStart(allocaBlock);
+    return memref::AllocaOp::create(b, loc, MemRefType::get({size}, f64))
+        .getResult();
+  };
+  Value zero = free ? Value() : indexConstant(0);
+  SmallVector<Value> args;
+  SmallVector<Type> argTypes;
+  for (Value operand : call.getOperands()) {
+    Value value = lookup(operand);
+    if (isHandle(operand.getType())) {
+      args.push_back(value);
+      argTypes.push_back(ptr);
+      continue;
+    }
+    int64_t size = cast<RankedTensorType>(operand.getType()).getNumElements();
+    Value slot = buffer(size);
+    vector::StoreOp::create(b, loc, value, slot, ValueRange{zero});
+    args.push_back(memref::CastOp::create(b, loc, flat, slot));
+    argTypes.push_back(flat);
+  }
+  Value resultSlot;
+  SmallVector<Type> resultTypes;
+  if (factorise) {
+    resultTypes.push_back(ptr);
+  } else if (!free) {
+    auto resultType = cast<RankedTensorType>(out[0]);
+    resultSlot = buffer(resultType.getNumElements());
+    args.push_back(memref::CastOp::create(b, loc, flat, resultSlot));
+    argTypes.push_back(flat);
+  }
+  // Sizes: n of a factorised or triangular matrix, the columns of a
+  // matrix right-hand side.
+  auto sizeArg = [&](int64_t size) {
+    args.push_back(arith::ConstantOp::create(b, loc, b.getI64IntegerAttr(size)));
+    argTypes.push_back(b.getI64Type());
+  };
+  if (factorise || triangular)
+    sizeArg(cast<RankedTensorType>(in[0]).getDimSize(0));
+  else if (matSolve)
+    sizeArg(cast<RankedTensorType>(in[1]).getDimSize(1));
+
+  // The declaration takes the lowered signature (the JIT binds the
+  // C interface, _mlir_ciface_<name>, of those with memrefs).
+  auto type = FunctionType::get(ctx, argTypes, resultTypes);
+  if (callee.getFunctionType() != type) {
+    if (llvm::any_of(callee.getFunctionType().getInputs(),
+                     [](Type t) { return isa<MemRefType, LLVM::LLVMPointerType>(t); }))
+      return call.emitError("'@") << name
+                                  << "' is called with different shapes";
+    callee.setFunctionType(type);
+  }
+  if (!free)
+    callee->setAttr("llvm.emit_c_interface", UnitAttr::get(ctx));
+  auto lowered = func::CallOp::create(b, loc, name, resultTypes, args);
+  if (factorise)
+    map(call.getResult(0), lowered.getResult(0));
+  else if (!free)
+    map(call.getResult(0),
+        vector::LoadOp::create(b, loc, cast<VectorType>(convertType(out[0])),
+                               resultSlot, ValueRange{zero}));
+  return success();
+}
+
 //===----------------------------------------------------------------------===//
 // Operations
 //===----------------------------------------------------------------------===//
@@ -890,6 +1018,10 @@ LogicalResult FunctionLowering::lowerOp(Operation *op) {
         map(from, to);
       return success();
     }
+    if (callee && callee.isExternal() &&
+        callee->hasAttr("simit.runtime_function") &&
+        isSolverFunction(call.getCallee()))
+      return lowerSolverCall(call, callee);
     if (callee && callee.isExternal())
       return op->emitError("'@")
              << call.getCallee()

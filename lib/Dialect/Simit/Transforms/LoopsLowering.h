@@ -180,6 +180,9 @@ private:
   LogicalResult lowerFunctionReturn(func::ReturnOp op);
   /// Solves with a pattern matrix call the runtime's CG solver.
   LogicalResult lowerSolve(SolveOp op);
+  /// Calls of the dense solver runtime functions (lu, chol, lusolve, ...):
+  /// local tensors go through memref<?xf64>, handles are !llvm.ptr.
+  LogicalResult lowerSolverCall(func::CallOp call, func::FuncOp callee);
   /// simit.print and strings (C strings as !llvm.ptr) through runtime
   /// functions (simit_rt_print_*, simit_rt_string_*).
   LogicalResult lowerPrintOrString(Operation *op);

@@ -154,6 +154,122 @@ static Value blockOffset(FunctionLowering &l, Location loc, Type type,
   return offset;
 }
 
+/// The shapes of the levels of a local tensor, outermost first: a builtin
+/// ranked tensor has one level; a `!simit.tensor` of integer dimensions has
+/// its dimensions followed by its block's levels. Scalars have none.
+static SmallVector<SmallVector<int64_t>> levelShapes(Type type) {
+  SmallVector<SmallVector<int64_t>> levels;
+  while (true) {
+    if (auto tensor = dyn_cast<RankedTensorType>(type)) {
+      levels.emplace_back(tensor.getShape());
+      return levels;
+    }
+    auto system = dyn_cast<SystemTensorType>(type);
+    if (!system)
+      return levels;
+    SmallVector<int64_t> shape;
+    for (Attribute dim : system.getDims())
+      shape.push_back(cast<IntegerAttr>(dim).getInt());
+    levels.push_back(shape);
+    type = system.getBlockType();
+  }
+}
+
+/// The flat position of a component of a blocked tensor whose levels are
+/// (rows_l x cols_l) (a vector level has cols_l = 1), given its row and
+/// column digits per level (blocks contiguous, row-major within a level).
+static int64_t hierarchicalOffset(ArrayRef<int64_t> rows,
+                                  ArrayRef<int64_t> cols,
+                                  ArrayRef<int64_t> row,
+                                  ArrayRef<int64_t> col) {
+  int64_t offset = 0;
+  for (size_t l = 0; l < rows.size(); ++l)
+    offset = offset * rows[l] * cols[l] + row[l] * cols[l] + col[l];
+  return offset;
+}
+
+/// The digits of `flat` in the mixed radix `radices` (most significant
+/// first).
+static SmallVector<int64_t> digits(int64_t flat, ArrayRef<int64_t> radices) {
+  SmallVector<int64_t> result(radices.size());
+  for (int64_t l = radices.size() - 1; l >= 0; --l) {
+    result[l] = flat % radices[l];
+    flat /= radices[l];
+  }
+  return result;
+}
+
+/// Unrolls matvec, matmul and transpose on blocked local tensors: their
+/// dimensions are hierarchies (outer x block), so a row index of a blocked
+/// matrix is one digit per level. Every level of every operand must have the
+/// rank of the leaf level (all matrices, or all vectors).
+static LogicalResult lowerBlockedLinalg(FunctionLowering &l, Arith &a,
+                                        Operation *op,
+                                        SmallVector<Value> &result) {
+  auto fail = [&]() {
+    return op->emitError("'")
+           << op->getName()
+           << "' on blocked local tensors of mixed block ranks is not "
+              "supported";
+  };
+  auto levelsOf = [&](Value v, unsigned rank, SmallVector<int64_t> &rows,
+                      SmallVector<int64_t> &cols) -> bool {
+    for (ArrayRef<int64_t> shape : levelShapes(v.getType())) {
+      if (shape.size() != rank)
+        return false;
+      rows.push_back(shape[0]);
+      cols.push_back(rank == 2 ? shape[1] : 1);
+    }
+    return !rows.empty();
+  };
+  SmallVector<int64_t> ar, ac;
+  if (!levelsOf(op->getOperand(0), 2, ar, ac))
+    return fail();
+  if (isa<TransposeOp>(op)) {
+    SmallVector<Value> x = allComponents(l, l.lookup(op->getOperand(0)));
+    int64_t m = 1, n = 1;
+    for (size_t k = 0; k < ar.size(); ++k) {
+      m *= ar[k];
+      n *= ac[k];
+    }
+    result.resize(m * n);
+    for (int64_t i = 0; i < m; ++i)
+      for (int64_t j = 0; j < n; ++j) {
+        SmallVector<int64_t> id = digits(i, ar), jd = digits(j, ac);
+        result[hierarchicalOffset(ac, ar, jd, id)] =
+            x[hierarchicalOffset(ar, ac, id, jd)];
+      }
+    return success();
+  }
+  bool isMatVec = isa<MatVecOp>(op);
+  SmallVector<int64_t> br, bc;
+  if (!levelsOf(op->getOperand(1), isMatVec ? 1 : 2, br, bc) ||
+      br.size() != ar.size() || br != ac)
+    return fail();
+  SmallVector<Value> x = allComponents(l, l.lookup(op->getOperand(0))),
+                     y = allComponents(l, l.lookup(op->getOperand(1)));
+  int64_t m = 1, k = 1, n = 1;
+  for (size_t d = 0; d < ar.size(); ++d) {
+    m *= ar[d];
+    k *= ac[d];
+    n *= bc[d];
+  }
+  result.resize(m * n);
+  for (int64_t i = 0; i < m; ++i)
+    for (int64_t j = 0; j < n; ++j) {
+      SmallVector<int64_t> id = digits(i, ar), jd = digits(j, bc);
+      Value sum;
+      for (int64_t p = 0; p < k; ++p) {
+        SmallVector<int64_t> pd = digits(p, ac);
+        Value t = a.mul(x[hierarchicalOffset(ar, ac, id, pd)],
+                        y[hierarchicalOffset(br, bc, pd, jd)]);
+        sum = sum ? a.add(sum, t) : t;
+      }
+      result[hierarchicalOffset(ar, bc, id, jd)] = sum;
+    }
+  return success();
+}
+
 LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
   handled = true;
   Location loc = op->getLoc();
@@ -357,8 +473,18 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
                << "' on blocked local tensors is not supported";
     return success();
   };
-  if (isa<MatVecOp, MatMulOp, TransposeOp, DotOp, OuterOp, NormOp, DetOp,
-          InvOp, CrossOp, SolveOp>(op) &&
+  // Dot and norm only pair up components in storage order, which is the
+  // same for equally blocked operands.
+  if (isa<MatVecOp, MatMulOp, TransposeOp>(op) &&
+      llvm::any_of(op->getOperandTypes(),
+                   [](Type t) { return isa<SystemTensorType>(t); })) {
+    SmallVector<Value> r;
+    if (failed(lowerBlockedLinalg(*this, a, op, r)))
+      return failure();
+    map(op->getResult(0), fromComponents(resultType(), r));
+    return success();
+  }
+  if (isa<OuterOp, DetOp, InvOp, CrossOp, SolveOp>(op) &&
       failed(needsBuiltin()))
     return failure();
 

@@ -227,9 +227,33 @@ private:
 
 //===--- Typed field handles ----------------------------------------------===//
 
+/// The array of a field of a set, looked up again only after a structural
+/// change of the set. The typed field references share it.
+template <typename T> class FieldArray {
+public:
+  llvm::StringRef name() const { return fieldName; }
+
+protected:
+  FieldArray() = default;
+  FieldArray(Set *set, llvm::StringRef name) : set_(set), fieldName(name) {}
+  T *base() const {
+    if (cachedVersion != set_->version()) {
+      cachedBase = static_cast<T *>(set_->fieldData(fieldName));
+      cachedVersion = set_->version();
+    }
+    return cachedBase;
+  }
+
+private:
+  Set *set_ = nullptr;
+  std::string fieldName;
+  mutable T *cachedBase = nullptr;
+  mutable uint64_t cachedVersion = UINT64_MAX;
+};
+
 /// A field of statically known type and shape. get/set copy one block;
 /// `ptr(e)` points at it in place.
-template <typename T, int... Dims> class FieldRef {
+template <typename T, int... Dims> class FieldRef : public FieldArray<T> {
 public:
   static constexpr size_t kBlockSize = (size_t(1) * ... * size_t(Dims));
   using Block =
@@ -256,27 +280,15 @@ public:
   }
   /// The element's block, in place; valid until the set changes structure.
   T *ptr(int e) const { return base() + static_cast<size_t>(e) * kBlockSize; }
-  llvm::StringRef name() const { return fieldName; }
 
 private:
   friend class Set;
-  FieldRef(Set *set, llvm::StringRef name) : set_(set), fieldName(name) {}
-  /// The field array, looked up again only after a structural change.
-  T *base() const {
-    if (cachedVersion != set_->version()) {
-      cachedBase = static_cast<T *>(set_->fieldData(fieldName));
-      cachedVersion = set_->version();
-    }
-    return cachedBase;
-  }
-  Set *set_ = nullptr;
-  std::string fieldName;
-  mutable T *cachedBase = nullptr;
-  mutable uint64_t cachedVersion = UINT64_MAX;
+  using FieldArray<T>::base;
+  FieldRef(Set *set, llvm::StringRef name) : FieldArray<T>(set, name) {}
 };
 
 /// A field whose shape is known only at run time.
-template <typename T> class DynamicFieldRef {
+template <typename T> class DynamicFieldRef : public FieldArray<T> {
 public:
   DynamicFieldRef() = default;
 
@@ -295,19 +307,9 @@ public:
 private:
   friend class Set;
   DynamicFieldRef(Set *set, llvm::StringRef name, size_t blockSize)
-      : set_(set), fieldName(name), blockElements(blockSize) {}
-  T *base() const {
-    if (cachedVersion != set_->version()) {
-      cachedBase = static_cast<T *>(set_->fieldData(fieldName));
-      cachedVersion = set_->version();
-    }
-    return cachedBase;
-  }
-  Set *set_ = nullptr;
-  std::string fieldName;
+      : FieldArray<T>(set, name), blockElements(blockSize) {}
+  using FieldArray<T>::base;
   size_t blockElements = 0;
-  mutable T *cachedBase = nullptr;
-  mutable uint64_t cachedVersion = UINT64_MAX;
 };
 
 template <typename T>

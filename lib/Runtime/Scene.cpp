@@ -16,6 +16,8 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <functional>
+#include <map>
 
 using namespace simit;
 using Json = nlohmann::ordered_json;
@@ -72,10 +74,26 @@ private:
                            ComponentType type, std::vector<int> &shape,
                            bool inferShape, std::vector<double> &values);
 
+  /// Reads an array of constant blocks, one per element, appending their
+  /// components to `values`; the first block gives the shape when inferred.
+  llvm::Error readBlocks(const Json &value, const std::string &path,
+                         ComponentType type, std::vector<int> &shape,
+                         bool inferShape, std::vector<double> &values);
+
   llvm::Error parseMeshes(const Json &value, SceneDescription &scene);
   llvm::Error parseSets(const Json &value, SceneDescription &scene);
   llvm::Error parseSet(const Json &value, const std::string &path,
                        SetSpec &set, const SceneDescription &scene);
+  /// Reads the endpoint index lists of a Listed set.
+  llvm::Error parseListedElements(const Json &value, const std::string &path,
+                                  SetSpec &set);
+  /// Repeats a single endpoint set name to the elements' arity, or checks
+  /// that one name is given per endpoint.
+  llvm::Error matchListedArity(SetSpec &set, const std::string &path,
+                               bool oneSetForAll);
+  /// Checks that endpoint sets exist and that no set is, through its
+  /// endpoints, its own endpoint.
+  llvm::Error checkEndpointSets(const SceneDescription &scene);
   llvm::Error parseField(const Json &value, const std::string &path,
                          const SetSpec &set, FieldSpec &field);
   llvm::Error parseExterns(const Json &value, SceneDescription &scene);
@@ -336,6 +354,25 @@ llvm::Error SceneParser::parseMeshes(const Json &value,
   return llvm::Error::success();
 }
 
+llvm::Error SceneParser::readBlocks(const Json &value, const std::string &path,
+                                    ComponentType type,
+                                    std::vector<int> &shape, bool inferShape,
+                                    std::vector<double> &values) {
+  if (!value.is_array())
+    return error(path, llvm::Twine("expected an array with one value per "
+                                   "element, found ") +
+                           jsonKind(value));
+  values.clear();
+  std::vector<double> block;
+  for (size_t i = 0; i < value.size(); ++i) {
+    if (auto err = readConstant(value[i], element(path, i), type, shape,
+                                inferShape && i == 0, block))
+      return err;
+    values.insert(values.end(), block.begin(), block.end());
+  }
+  return llvm::Error::success();
+}
+
 llvm::Error SceneParser::parseField(const Json &value, const std::string &path,
                                     const SetSpec &set, FieldSpec &field) {
   field.jsonPath = path;
@@ -350,8 +387,8 @@ llvm::Error SceneParser::parseField(const Json &value, const std::string &path,
                         init.values);
   }
   if (auto err = checkKeys(value, path,
-                           {"type", "shape", "value", "coordinates", "file",
-                            "expr", "if", "then", "else", "space"}))
+                           {"type", "shape", "value", "values", "coordinates",
+                            "file", "expr", "if", "then", "else", "space"}))
     return err;
   if (value.contains("type")) {
     auto text = getString(value["type"], child(path, "type"));
@@ -372,14 +409,15 @@ llvm::Error SceneParser::parseField(const Json &value, const std::string &path,
     field.shape = std::move(*shape);
   }
 
-  const char *kinds[] = {"value", "coordinates", "file", "expr", "if"};
+  const char *kinds[] = {"value", "values", "coordinates", "file", "expr",
+                         "if"};
   std::vector<std::string> present;
   for (const char *kind : kinds)
     if (value.contains(kind))
       present.push_back(kind);
   if (present.size() > 1)
-    return error(path, "expected one of value, coordinates, file, expr or "
-                       "if, found both \"" +
+    return error(path, "expected one of value, values, coordinates, file, "
+                       "expr or if, found both \"" +
                            present[0] + "\" and \"" + present[1] + "\"");
   llvm::StringRef kind = present.empty() ? "" : llvm::StringRef(present[0]);
   if (kind != "if" && (value.contains("then") || value.contains("else")))
@@ -414,6 +452,10 @@ llvm::Error SceneParser::parseField(const Json &value, const std::string &path,
     init.kind = FieldInit::Constant;
     return readConstant(value["value"], child(path, "value"), field.type,
                         field.shape, !explicitShape, init.values);
+  } else if (kind == "values") {
+    init.kind = FieldInit::PerElement;
+    return readBlocks(value["values"], child(path, "values"), field.type,
+                      field.shape, !explicitShape, init.values);
   } else if (kind == "coordinates") {
     init.kind = FieldInit::Coordinates;
     auto space = getString(value["coordinates"], child(path, "coordinates"));
@@ -475,6 +517,55 @@ llvm::Error SceneParser::parseField(const Json &value, const std::string &path,
   return llvm::Error::success();
 }
 
+llvm::Error SceneParser::parseListedElements(const Json &value,
+                                             const std::string &path,
+                                             SetSpec &set) {
+  for (size_t i = 0; i < value.size(); ++i) {
+    const Json &entry = value[i];
+    std::string entryPath = element(path, i);
+    if (!entry.is_array() || entry.empty())
+      return error(entryPath, llvm::Twine("expected an array of endpoint "
+                                          "indices, found ") +
+                                  jsonKind(entry));
+    std::vector<int> ends;
+    for (size_t j = 0; j < entry.size(); ++j) {
+      auto index = getInt(entry[j], element(entryPath, j), 0);
+      if (!index)
+        return index.takeError();
+      ends.push_back(*index);
+    }
+    if (i > 0 && ends.size() != set.listed[0].size())
+      return error(entryPath, "expected " +
+                                  llvm::Twine(set.listed[0].size()) +
+                                  " endpoints, as in element 0, found " +
+                                  llvm::Twine(ends.size()));
+    set.listed.push_back(std::move(ends));
+  }
+  return llvm::Error::success();
+}
+
+llvm::Error SceneParser::matchListedArity(SetSpec &set,
+                                          const std::string &path,
+                                          bool oneSetForAll) {
+  if (set.listed.empty()) {
+    if (oneSetForAll)
+      return error(path, "expected an array naming the set of each endpoint "
+                         "(the \"elements\" array is empty, so it does not "
+                         "give the number of endpoints)");
+    return llvm::Error::success();
+  }
+  size_t arity = set.listed[0].size();
+  if (oneSetForAll)
+    set.endpoints.assign(arity, set.endpoints[0]);
+  if (set.endpoints.size() != arity)
+    return error(path, "expected " + llvm::Twine(arity) +
+                           " set names, one per endpoint of an element, "
+                           "found " +
+                           llvm::Twine(set.endpoints.size()));
+  return llvm::Error::success();
+}
+
+
 llvm::Error SceneParser::parseSet(const Json &value, const std::string &path,
                                   SetSpec &set, const SceneDescription &scene) {
   if (auto err = expectObject(value, path))
@@ -484,10 +575,11 @@ llvm::Error SceneParser::parseSet(const Json &value, const std::string &path,
                             "fields"}))
     return err;
   bool hasMesh = value.contains("mesh"), hasSize = value.contains("size"),
-       hasGrid = value.contains("grid");
-  if (hasMesh + hasSize + hasGrid != 1)
-    return error(path, "expected exactly one of \"mesh\", \"size\" or "
-                       "\"grid\"");
+       hasGrid = value.contains("grid"),
+       hasList = value.contains("elements") && value["elements"].is_array();
+  if (hasMesh + hasSize + hasGrid + hasList != 1)
+    return error(path, "expected exactly one of \"mesh\", \"size\", "
+                       "\"grid\" or an \"elements\" array");
   if (hasMesh) {
     auto mesh = getString(value["mesh"], child(path, "mesh"));
     if (!mesh)
@@ -506,7 +598,7 @@ llvm::Error SceneParser::parseSet(const Json &value, const std::string &path,
     if (!size)
       return size.takeError();
     set.size = *size;
-  } else {
+  } else if (hasGrid) {
     set.kind = SetSpec::Grid;
     auto dims = getShape(value["grid"], child(path, "grid"));
     if (!dims)
@@ -514,12 +606,19 @@ llvm::Error SceneParser::parseSet(const Json &value, const std::string &path,
     if (dims->empty())
       return error(child(path, "grid"), "expected at least one dimension");
     set.dims = std::move(*dims);
+  } else {
+    set.kind = SetSpec::Listed;
+    if (auto err = parseListedElements(value["elements"],
+                                       child(path, "elements"), set))
+      return err;
   }
 
-  if (value.contains("elements")) {
-    if (set.kind != SetSpec::Elements)
-      return error(child(path, "elements"),
-                   "expected \"elements\" only with \"mesh\"");
+  if (value.contains("elements") && set.kind != SetSpec::Elements &&
+      set.kind != SetSpec::Listed)
+    return error(child(path, "elements"),
+                 "expected \"elements\" only with \"mesh\", or as an "
+                 "array of endpoint index lists");
+  if (set.kind == SetSpec::Elements) {
     auto elements = getString(value["elements"], child(path, "elements"));
     if (!elements)
       return elements.takeError();
@@ -530,8 +629,9 @@ llvm::Error SceneParser::parseSet(const Json &value, const std::string &path,
                        *elements + "\"");
     set.elements = *elements;
   }
-  bool needsEndpoints =
-      set.kind == SetSpec::Elements || set.kind == SetSpec::Grid;
+  bool needsEndpoints = set.kind == SetSpec::Elements ||
+                        set.kind == SetSpec::Grid ||
+                        set.kind == SetSpec::Listed;
   if (needsEndpoints != value.contains("endpoints"))
     return error(path, needsEndpoints
                            ? "expected \"endpoints\": the name of the point "
@@ -539,10 +639,23 @@ llvm::Error SceneParser::parseSet(const Json &value, const std::string &path,
                            : "expected \"endpoints\" only with "
                              "\"elements\" or \"grid\"");
   if (needsEndpoints) {
-    auto endpoints = getString(value["endpoints"], child(path, "endpoints"));
-    if (!endpoints)
-      return endpoints.takeError();
-    set.endpoints = *endpoints;
+    std::string endpointsPath = child(path, "endpoints");
+    const Json &endpoints = value["endpoints"];
+    bool oneSetForAll = !endpoints.is_array();
+    if (set.kind == SetSpec::Listed && !oneSetForAll) {
+      auto names = getNames(endpoints, endpointsPath);
+      if (!names)
+        return names.takeError();
+      set.endpoints = std::move(*names);
+    } else {
+      auto endpoint = getString(endpoints, endpointsPath);
+      if (!endpoint)
+        return endpoint.takeError();
+      set.endpoints = {*endpoint};
+    }
+    if (set.kind == SetSpec::Listed)
+      if (auto err = matchListedArity(set, endpointsPath, oneSetForAll))
+        return err;
   }
 
   if (value.contains("fields")) {
@@ -573,23 +686,57 @@ llvm::Error SceneParser::parseSets(const Json &value,
       return err;
     scene.sets.push_back(std::move(set));
   }
-  // Endpoints name vertex sets; mesh elements index their own mesh's points.
+  return checkEndpointSets(scene);
+}
+
+llvm::Error SceneParser::checkEndpointSets(const SceneDescription &scene) {
+  // Mesh elements and grids join the points of their own mesh or grid;
+  // listed elements may join any sets, edge sets included.
   for (const SetSpec &set : scene.sets) {
-    if (set.endpoints.empty())
-      continue;
     std::string path = child(child("sets", set.name), "endpoints");
-    const SetSpec *target = scene.findSet(set.endpoints);
-    if (!target)
-      return error(path, "expected the name of a set in \"sets\", found \"" +
-                             set.endpoints + "\"");
-    if (target->kind == SetSpec::Elements || target->kind == SetSpec::Grid)
-      return error(path, "expected a vertex set, found the edge set \"" +
-                             set.endpoints + "\"");
-    if (set.kind == SetSpec::Elements &&
-        (target->kind != SetSpec::Points || target->mesh != set.mesh))
-      return error(path, "expected a set of the points of mesh \"" +
-                             set.mesh + "\"");
+    for (size_t i = 0; i < set.endpoints.size(); ++i) {
+      const std::string &endpoint = set.endpoints[i];
+      std::string endpointPath =
+          set.kind == SetSpec::Listed && set.endpoints.size() > 1
+              ? element(path, i)
+              : path;
+      const SetSpec *target = scene.findSet(endpoint);
+      if (!target)
+        return error(endpointPath,
+                     "expected the name of a set in \"sets\", found \"" +
+                         endpoint + "\"");
+      bool targetIsEdgeSet = !target->endpoints.empty();
+      if (set.kind != SetSpec::Listed && targetIsEdgeSet)
+        return error(endpointPath, "expected a vertex set, found the edge "
+                                   "set \"" +
+                                       endpoint + "\"");
+      if (set.kind == SetSpec::Elements &&
+          (target->kind != SetSpec::Points || target->mesh != set.mesh))
+        return error(endpointPath, "expected a set of the points of mesh \"" +
+                                       set.mesh + "\"");
+    }
   }
+  // Sets are built after their endpoint sets, so endpoints may not cycle.
+  std::map<std::string, int> state; // 1: on the current path, 2: done
+  std::function<llvm::Error(const SetSpec &)> visit =
+      [&](const SetSpec &set) -> llvm::Error {
+    int &mark = state[set.name];
+    if (mark == 2)
+      return llvm::Error::success();
+    if (mark == 1)
+      return error(child(child("sets", set.name), "endpoints"),
+                   "expected endpoint sets that do not lead back to \"" +
+                       set.name + "\"");
+    mark = 1;
+    for (const std::string &endpoint : set.endpoints)
+      if (auto err = visit(*scene.findSet(endpoint)))
+        return err;
+    state[set.name] = 2;
+    return llvm::Error::success();
+  };
+  for (const SetSpec &set : scene.sets)
+    if (auto err = visit(set))
+      return err;
   return llvm::Error::success();
 }
 
@@ -690,7 +837,10 @@ llvm::Error SceneParser::parseOutput(const Json &value,
     output.cells = std::move(*cells);
     for (size_t i = 0; i < output.cells.size(); ++i) {
       const SetSpec *cellSet = scene.findSet(output.cells[i]);
-      if (!cellSet || cellSet->endpoints != output.set)
+      if (!cellSet || cellSet->endpoints.empty() ||
+          llvm::any_of(cellSet->endpoints, [&](const std::string &name) {
+            return name != output.set;
+          }))
         return error(element(child(path, "cells"), i),
                      "expected an edge set over \"" + output.set +
                          "\", found \"" + output.cells[i] + "\"");

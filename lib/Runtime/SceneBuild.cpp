@@ -184,7 +184,7 @@ llvm::Error SetBuilder::createSet(const SetSpec &spec) {
     break;
   case SetSpec::Elements: {
     const Mesh &mesh = *meshes[spec.mesh];
-    Set *points = registry.find(spec.endpoints);
+    Set *points = registry.find(spec.endpoints[0]);
     int c = spec.elements == "edges" ? 2 : spec.elements == "triangles" ? 3
                                                                         : 4;
     size_t count = c == 2 ? mesh.edges.size()
@@ -202,11 +202,25 @@ llvm::Error SetBuilder::createSet(const SetSpec &spec) {
     break;
   }
   case SetSpec::Grid: {
-    auto grid = Set::makeGrid(*registry.find(spec.endpoints), spec.dims,
+    auto grid = Set::makeGrid(*registry.find(spec.endpoints[0]), spec.dims,
                               spec.name);
     if (!grid)
       return error(path, llvm::toString(grid.takeError()));
     set = std::move(*grid);
+    break;
+  }
+  case SetSpec::Listed: {
+    std::vector<Set *> ends;
+    for (const std::string &endpoint : spec.endpoints)
+      ends.push_back(registry.find(endpoint));
+    set = std::make_unique<Set>(spec.name, ends);
+    set->reserve(static_cast<int>(spec.listed.size()));
+    for (size_t e = 0; e < spec.listed.size(); ++e) {
+      if (llvm::Error err = set->checkEndpoints(spec.listed[e]))
+        return error(path + ".elements[" + std::to_string(e) + "]",
+                     llvm::toString(std::move(err)));
+      set->add(spec.listed[e]);
+    }
     break;
   }
   }
@@ -329,6 +343,19 @@ llvm::Error SetBuilder::fillField(const SetSpec &spec, Set &set,
     for (int e = 0; e < n; ++e)
       storeBlock(base, field, e, init.values);
     return llvm::Error::success();
+  case FieldInit::PerElement: {
+    size_t blocks = init.values.size() / std::max<size_t>(blockSize, 1);
+    if (blocks != static_cast<size_t>(n))
+      return error(field.jsonPath + ".values",
+                   "expected " + llvm::Twine(n) +
+                       " values, one per element of the set, found " +
+                       llvm::Twine(blocks));
+    for (int e = 0; e < n; ++e)
+      storeBlock(base, field, e,
+                 llvm::ArrayRef<double>(init.values)
+                     .slice(e * blockSize, blockSize));
+    return llvm::Error::success();
+  }
   case FieldInit::Coordinates:
     for (int e = 0; e < n; ++e)
       storeBlock(base, field, e, frameOf(spec, e, init.normalized).position);
@@ -368,15 +395,21 @@ llvm::Error SetBuilder::fillField(const SetSpec &spec, Set &set,
 llvm::Error SetBuilder::build() {
   if (llvm::Error err = loadMeshes())
     return err;
-  // Vertex sets first: edge sets and grids point at them.
-  for (bool vertexPass : {true, false})
-    for (const SetSpec &spec : scene.sets) {
-      bool isVertexSet =
-          spec.kind == SetSpec::Points || spec.kind == SetSpec::Sized;
-      if (isVertexSet == vertexPass)
-        if (llvm::Error err = createSet(spec))
-          return err;
-    }
+  // Every set after its endpoint sets (loadScene rules out cycles).
+  std::vector<const SetSpec *> pending;
+  for (const SetSpec &spec : scene.sets)
+    pending.push_back(&spec);
+  while (!pending.empty()) {
+    auto ready = llvm::find_if(pending, [&](const SetSpec *spec) {
+      return llvm::all_of(spec->endpoints, [&](const std::string &endpoint) {
+        return registry.find(endpoint) != nullptr;
+      });
+    });
+    assert(ready != pending.end() && "cyclic endpoint sets");
+    if (llvm::Error err = createSet(**ready))
+      return err;
+    pending.erase(ready);
+  }
   for (const auto &[name, tensor] : scene.externs)
     registry.externs()[name] = tensor;
   return llvm::Error::success();

@@ -7,6 +7,7 @@
 
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/Path.h"
+#include "llvm/Support/raw_ostream.h"
 
 using namespace simit;
 
@@ -76,6 +77,8 @@ SceneOutputWriter::create(const SceneDescription &scene,
 std::string SceneOutputWriter::pathFor(const OutputSpec &output,
                                        int frame) const {
   std::string path = output.path;
+  if (path == "-") // standard output
+    return path;
   size_t at = path.find("{frame}");
   if (at != std::string::npos)
     path.replace(at, 7, std::to_string(frame));
@@ -89,6 +92,9 @@ std::string SceneOutputWriter::pathFor(const OutputSpec &output,
 llvm::Error SceneOutputWriter::writeOutput(size_t index, int frame) {
   const OutputSpec &output = scene.outputs[index];
   const Set &set = *registry.find(output.set);
+  // The program's print statements go through llvm::outs(); keep the order.
+  if (output.path == "-")
+    llvm::outs().flush();
   if (llvm::raw_fd_ostream *stream = csvStreams[index].get()) {
     if (llvm::Error err = writeCSVRows(*stream, set, output.fields, frame))
       return err;

@@ -117,7 +117,7 @@ TEST_F(SceneTest, ParsesEverySection) {
   ASSERT_EQ(scene->sets.size(), 2u);
   EXPECT_EQ(scene->sets[0].kind, SetSpec::Points);
   EXPECT_EQ(scene->sets[1].kind, SetSpec::Elements);
-  EXPECT_EQ(scene->sets[1].endpoints, "verts");
+  EXPECT_EQ(scene->sets[1].endpoints, std::vector<std::string>{"verts"});
   EXPECT_EQ(scene->sets[0].fields.size(), 10u);
   EXPECT_EQ(scene->init, std::vector<std::string>{"init"});
   EXPECT_EQ(scene->step, (std::vector<std::string>{"step", "post"}));
@@ -239,6 +239,71 @@ TEST_F(SceneTest, RefinedMeshAndSizedAndGridSets) {
   EXPECT_EQ(links->size(), 12);
 }
 
+TEST_F(SceneTest, ListedEdgeSetsAndPerElementValues) {
+  // Heterogeneous links (particles, nodes) and faces over the edges of a
+  // triangle: endpoint sets may be edge sets, listed in any order.
+  auto scene = parse(R"({
+    "sets": {
+      "faces": { "elements": [[0, 1, 2]], "endpoints": "edges" },
+      "edges": { "elements": [[0, 1], [1, 2], [2, 0]], "endpoints": "nodes",
+                 "fields": { "k": { "values": [1.5, 2, 3] } } },
+      "links": { "elements": [[1, 0], [0, 2]],
+                 "endpoints": ["particles", "nodes"] },
+      "particles": { "size": 2, "fields": {
+        "x": { "values": [[1, 2, 3], [4, 5, 6]] },
+        "c": { "type": "int32", "values": [7, -1] } } },
+      "nodes": { "size": 3 }
+    }
+  })");
+  ASSERT_TRUE(bool(scene)) << llvm::toString(scene.takeError());
+  SetRegistry registry;
+  ASSERT_FALSE(bool(buildSets(*scene, registry)));
+  Set *links = registry.find("links");
+  ASSERT_EQ(links->cardinality(), 2);
+  EXPECT_EQ(&links->endpointSet(0), registry.find("particles"));
+  EXPECT_EQ(&links->endpointSet(1), registry.find("nodes"));
+  EXPECT_EQ(std::vector<int32_t>(links->endpointData(),
+                                 links->endpointData() + 4),
+            (std::vector<int32_t>{1, 0, 0, 2}));
+  Set *faces = registry.find("faces");
+  EXPECT_EQ(&faces->endpointSet(2), registry.find("edges"));
+  EXPECT_EQ(registry.find("edges")->field<double>("k").get(0), 1.5);
+  EXPECT_EQ(registry.find("edges")->field<double>("k").get(2), 3.0);
+  auto x = registry.find("particles")->field<double, 3>("x");
+  EXPECT_EQ(x.get(1)[2], 6.0);
+  EXPECT_EQ(registry.find("particles")->field<int32_t>("c").get(1), -1);
+}
+
+TEST_F(SceneTest, ListedEdgeSetErrors) {
+  auto withSets = [&](llvm::StringRef sets) {
+    return buildError(("{\"sets\": {\"p\": {\"size\": 2}, " + sets + "}}")
+                          .str());
+  };
+  EXPECT_THAT(withSets(R"("e": {"elements": [[0, 1], [1]], "endpoints": "p"})"),
+              HasSubstr("sets.e.elements[1]: expected 2 endpoints, as in "
+                        "element 0, found 1"));
+  EXPECT_THAT(withSets(R"("e": {"elements": [[0, -1]], "endpoints": "p"})"),
+              HasSubstr("sets.e.elements[0][1]: expected an integer of at "
+                        "least 0"));
+  EXPECT_THAT(withSets(R"("e": {"elements": [[0, 1]], "endpoints": ["p"]})"),
+              HasSubstr("sets.e.endpoints: expected 2 set names, one per "
+                        "endpoint of an element, found 1"));
+  EXPECT_THAT(withSets(R"("e": {"elements": [], "endpoints": "p"})"),
+              HasSubstr("sets.e.endpoints: expected an array naming the set "
+                        "of each endpoint"));
+  EXPECT_THAT(withSets(R"("e": {"elements": [[0, 1]], "endpoints": ["p", "f"]},
+                          "f": {"elements": [[0, 0]], "endpoints": ["e", "p"]})"),
+              HasSubstr("expected endpoint sets that do not lead back to"));
+  EXPECT_THAT(withSets(R"("e": {"elements": [[0, 2]], "endpoints": "p"})"),
+              HasSubstr("sets.e.elements[0]:"));
+  EXPECT_THAT(withSets(R"("e": {"elements": [[0, 1]], "endpoints": "p",
+                                "fields": {"k": {"values": [1, 2]}}})"),
+              HasSubstr("sets.e.fields.k.values: expected 1 values, one per "
+                        "element of the set, found 2"));
+  EXPECT_THAT(withSets(R"("q": {"size": 2, "fields": {"k": {"values": [1, [2, 3]]}}})"),
+              HasSubstr("sets.q.fields.k.values[1]: expected a single number"));
+}
+
 TEST_F(SceneTest, SpringsBunnyFixedPoints) {
   // The springs-bunny rule of scenes.md: normalised z < 0.1.
   std::string json = R"({
@@ -341,10 +406,11 @@ TEST_F(SceneTest, MeshAndSetErrors) {
                         "in \"meshes\", found \"nope\""));
   EXPECT_THAT(parseError(R"({"sets": {"p": {}}})"),
               HasSubstr("scene.json: sets.p: expected exactly one of \"mesh\", "
-                        "\"size\" or \"grid\""));
+                        "\"size\", \"grid\" or an \"elements\" array"));
   EXPECT_THAT(parseError(R"({"sets": {"p": {"size": 2, "elements": "tets"}}})"),
               HasSubstr("scene.json: sets.p.elements: expected \"elements\" "
-                        "only with \"mesh\""));
+                        "only with \"mesh\", or as an array of endpoint index "
+                        "lists"));
   EXPECT_THAT(parseError(R"({"sets": {"p": {"size": 2, "feilds": {}}}})"),
               HasSubstr("scene.json: sets.p.feilds: unknown key"));
 }
@@ -423,7 +489,7 @@ TEST_F(SceneTest, ConstantFieldErrors) {
 TEST_F(SceneTest, InitialiserErrors) {
   EXPECT_THAT(parseError(fieldScene(R"("x": {"value": 1, "file": "f"})")),
               HasSubstr("scene.json: sets.p.fields.x: expected one of value, "
-                        "coordinates, file, expr or if, found both \"value\" "
+                        "values, coordinates, file, expr or if, found both \"value\" "
                         "and \"file\""));
   EXPECT_THAT(parseError(fieldScene(R"("x": {"coordinates": "raw"})")),
               HasSubstr("scene.json: sets.p.fields.x.coordinates: expected "

@@ -43,9 +43,10 @@ struct FieldInit {
     File,        // whitespace separated numbers, size * blockSize of them
     Expression,  // `expression` evaluated per element
     Select,      // `then` where `condition` holds, else `otherwise`
+    PerElement,  // `values` holds one block per element, element after element
   };
   Kind kind = Zero;
-  std::vector<double> values;
+  std::vector<double> values; // Constant: one block; PerElement: all blocks
   bool normalized = false; // Coordinates / Expression / Select: [0,1] axes
   std::string file;        // File: resolved path
   std::shared_ptr<const SceneExpression> expression; // Expression, Select
@@ -66,14 +67,18 @@ struct SetSpec {
     Elements, // an edge set with one element per mesh edge/triangle/tet
     Sized,    // a vertex set of `size` elements, no mesh
     Grid,     // a grid edge set over `endpoints`
+    Listed,   // an edge set whose elements are listed in the scene
   };
   std::string name;
   Kind kind = Points;
-  std::string mesh;      // Points, Elements
-  std::string elements;  // Elements: "edges", "triangles" or "tets"
-  std::string endpoints; // Elements, Grid: the endpoint (point) set
-  int size = 0;          // Sized
-  std::vector<int> dims; // Grid
+  std::string mesh;     // Points, Elements
+  std::string elements; // Elements: "edges", "triangles" or "tets"
+  /// Elements, Grid: the one endpoint (point) set; Listed: the set of each
+  /// endpoint position (any sets, so edge sets may join edge sets).
+  std::vector<std::string> endpoints;
+  int size = 0;                         // Sized
+  std::vector<int> dims;                // Grid
+  std::vector<std::vector<int>> listed; // Listed: endpoint indices
   std::vector<FieldSpec> fields;
 };
 

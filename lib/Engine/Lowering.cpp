@@ -149,7 +149,8 @@ private:
 };
 } // namespace
 
-llvm::Error simit::lowerToLLVM(mlir::ModuleOp module, LoweringResult &result) {
+llvm::Error simit::lowerToLLVM(mlir::ModuleOp module, LoweringResult &result,
+                               bool timePhases) {
   mlir::MLIRContext *context = module.getContext();
   DiagnosticCollector diagnostics(context);
 
@@ -158,7 +159,9 @@ llvm::Error simit::lowerToLLVM(mlir::ModuleOp module, LoweringResult &result) {
   SignatureRecorder *recorderPtr = recorder.get();
   pm.addInstrumentation(std::move(recorder));
 
-  mlir::simit::buildSimitCpuPipeline(pm);
+  mlir::simit::SimitCpuPipelineOptions pipelineOptions;
+  pipelineOptions.timePhases = timePhases;
+  mlir::simit::buildSimitCpuPipeline(pm, pipelineOptions);
 
   mlir::LogicalResult status = pm.run(module);
   if (llvm::Error err = recorderPtr->takeError())

@@ -35,7 +35,9 @@ struct LoweringResult {
 
 /// Lowers `module` in place to the LLVM dialect. Errors carry the MLIR
 /// diagnostics with their locations.
-llvm::Error lowerToLLVM(mlir::ModuleOp module, LoweringResult &result);
+/// Runs simit-cpu-pipeline; `timePhases` adds simit-time-phases.
+llvm::Error lowerToLLVM(mlir::ModuleOp module, LoweringResult &result,
+                        bool timePhases = false);
 
 /// JIT-compiles a module in the LLVM dialect at -O3 for the host and looks
 /// up the entry point of every function in `signatures`.

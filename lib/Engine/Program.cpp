@@ -62,7 +62,7 @@ struct Program::Impl {
       return err;
     mlir::OwningOpRef<mlir::ModuleOp> clone = module->clone();
     LoweringResult result;
-    if (llvm::Error err = lowerToLLVM(*clone, result))
+    if (llvm::Error err = lowerToLLVM(*clone, result, options.timePhases))
       return err;
     llvmModule = std::move(clone);
     lowering = std::move(result);

@@ -151,6 +151,32 @@ extern "C" double simit_rt_storeTime(int32_t slot, double value) {
   return 0.0;
 }
 
+// The phase timer of simit-time-phases: begin/end pairs never nest, and a
+// program's functions run one at a time.
+static std::chrono::steady_clock::time_point phaseStart[2];
+static double phaseMilliseconds[2];
+
+extern "C" void simit_rt_phase_begin(int32_t phase) {
+  if (phase >= 0 && phase < 2)
+    phaseStart[phase] = std::chrono::steady_clock::now();
+}
+
+extern "C" void simit_rt_phase_end(int32_t phase) {
+  if (phase >= 0 && phase < 2)
+    phaseMilliseconds[phase] +=
+        std::chrono::duration<double, std::milli>(
+            std::chrono::steady_clock::now() - phaseStart[phase])
+            .count();
+}
+
+simit::PhaseTimes simit::readPhaseTimes() {
+  return {phaseMilliseconds[0], phaseMilliseconds[1]};
+}
+
+void simit::resetPhaseTimes() {
+  phaseMilliseconds[0] = phaseMilliseconds[1] = 0.0;
+}
+
 namespace {
 using RowMatrix =
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
@@ -276,6 +302,8 @@ simit::runtimeSymbolMap(llvm::orc::MangleAndInterner interner) {
       reinterpret_cast<void *>(&simit_rt_string_compare));
   add("simit_rt_clock", reinterpret_cast<void *>(&simit_rt_clock));
   add("simit_rt_storeTime", reinterpret_cast<void *>(&simit_rt_storeTime));
+  add("simit_rt_phase_begin", reinterpret_cast<void *>(&simit_rt_phase_begin));
+  add("simit_rt_phase_end", reinterpret_cast<void *>(&simit_rt_phase_end));
   add("_mlir_ciface_simit_rt_lu",
       reinterpret_cast<void *>(&_mlir_ciface_simit_rt_lu));
   add("_mlir_ciface_simit_rt_chol",

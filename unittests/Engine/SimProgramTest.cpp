@@ -7,10 +7,14 @@
 //===----------------------------------------------------------------------===//
 
 #include "simit/Engine/Program.h"
+#include "simit/Engine/RuntimeFunctions.h"
 #include "simit/Runtime/Set.h"
 
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+
+#include <chrono>
+#include <cmath>
 
 using namespace simit;
 using ::testing::HasSubstr;
@@ -145,4 +149,66 @@ TEST(SimProgramTest, UnexportedFunctionsAreNotCompiled) {
   ASSERT_FALSE(!!force);
   EXPECT_EQ(llvm::toString(force.takeError()),
             "unknown function 'force' (exported functions: forces, multiply)");
+}
+
+TEST(SimProgramTest, PhaseTimesSplitAssemblyFromSolve) {
+  const char *kSteps = R"sim(
+element Point
+  x : float;
+  y : float;
+end
+element Spring
+  k : float;
+end
+extern points  : set{Point};
+extern springs : set{Spring}(points, points);
+
+func stiffness(s : Spring, p : (Point*2)) -> (K : tensor[points,points](float))
+  K(p(0), p(0)) = s.k;
+  K(p(1), p(1)) = s.k;
+end
+
+export func step()
+  K = map stiffness to springs reduce +;
+  var r = points.x;
+  var i = 0;
+  while i < 200
+    r = 0.5 * (K * r);
+    i = i + 1;
+  end
+  points.y = r;
+end
+)sim";
+  using Clock = std::chrono::steady_clock;
+  for (bool timed : {true, false}) {
+    ProgramOptions options;
+    options.timePhases = timed;
+    Program program(options);
+    ASSERT_EQ(message(program.loadString(kSteps, "steps.sim")), "success");
+    llvm::Expected<Function> step = program.compile("step");
+    ASSERT_TRUE(bool(step)) << llvm::toString(step.takeError());
+    Chain chain;
+    ASSERT_EQ(message(step->bind("points", chain.points)), "success");
+    ASSERT_EQ(message(step->bind("springs", chain.springs)), "success");
+    ASSERT_EQ(message(step->init()), "success");
+    resetPhaseTimes();
+    Clock::time_point start = Clock::now();
+    ASSERT_EQ(message(step->run()), "success");
+    double wallMs =
+        std::chrono::duration<double, std::milli>(Clock::now() - start)
+            .count();
+    PhaseTimes phases = readPhaseTimes();
+    if (timed) {
+      EXPECT_GT(phases.assemblyMs, 0.0);
+      EXPECT_GT(phases.solveMs, 0.0);
+      EXPECT_LE(phases.assemblyMs + phases.solveMs, wallMs);
+    } else {
+      EXPECT_EQ(phases.assemblyMs, 0.0);
+      EXPECT_EQ(phases.solveMs, 0.0);
+    }
+    // K = diag(2, 5, 3); 200 halvings of K x leave y = (K/2)^200 x:
+    // point 0 (x = 0) stays 0; point 1 is 2.5^200 (x = 1).
+    EXPECT_EQ(chain.y.get(0), 0.0);
+    EXPECT_NEAR(chain.y.get(1) / std::pow(2.5, 200), 1.0, 1e-12);
+  }
 }

@@ -37,6 +37,9 @@ struct ProgramOptions {
   /// Functions of a .sim program to compile with a host ABI although they
   /// are not `export`ed: the functions `%!` assertions and --eval call.
   std::vector<std::string> hostFunctions;
+  /// Bracket assemblies and solves with the phase timer (simit-time-phases;
+  /// simit::readPhaseTimes() in RuntimeFunctions.h reads it).
+  bool timePhases = false;
 };
 
 /// Where --emit stops: the simit dialect as imported, the loops over sets

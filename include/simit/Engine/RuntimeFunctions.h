@@ -42,6 +42,11 @@ int32_t simit_rt_string_compare(const char *lhs, const char *rhs);
 double simit_rt_clock();
 double simit_rt_storeTime(int32_t slot, double value);
 
+/// The phase timer that simit-time-phases brackets assemblies (phase 0) and
+/// solves (phase 1) with; simit::readPhaseTimes() reads it.
+void simit_rt_phase_begin(int32_t phase);
+void simit_rt_phase_end(int32_t phase);
+
 /// Dense solvers of small local f64 matrices (Eigen). Matrices and vectors
 /// are row-major memref<?xf64>; a factorisation is an opaque heap handle
 /// (!llvm.ptr) that lufree/cholfree delete.
@@ -78,5 +83,18 @@ void _mlir_ciface_simit_rt_triangularSolve(StridedMemRefType<double, 1> *a,
                                            int64_t n);
 
 } // extern "C"
+
+namespace simit {
+
+/// Milliseconds spent in the timed phases of programs compiled with
+/// ProgramOptions::timePhases, since the last resetPhaseTimes().
+struct PhaseTimes {
+  double assemblyMs = 0.0; // map, apply and assembly statements
+  double solveMs = 0.0;    // solves, and while loops without assemblies
+};
+PhaseTimes readPhaseTimes();
+void resetPhaseTimes();
+
+} // namespace simit
 
 #endif // SIMIT_ENGINE_RUNTIMEFUNCTIONS_H

@@ -1004,7 +1004,9 @@ LogicalResult FunctionLowering::lowerOp(Operation *op) {
     if (callee && callee.isExternal() &&
         callee->hasAttr("simit.runtime_function") &&
         llvm::is_contained({StringRef("simit_rt_clock"),
-                            StringRef("simit_rt_storeTime")},
+                            StringRef("simit_rt_storeTime"),
+                            StringRef("simit_rt_phase_begin"),
+                            StringRef("simit_rt_phase_end")},
                            call.getCallee()) &&
         llvm::all_of(call.getOperandTypes(), isScalar) &&
         llvm::all_of(call.getResultTypes(), isScalar)) {

@@ -24,8 +24,11 @@ namespace simit {
 using namespace mlir;
 using namespace mlir::simit;
 
-void mlir::simit::buildSimitCpuPipeline(OpPassManager &pm) {
+void mlir::simit::buildSimitCpuPipeline(
+    OpPassManager &pm, const SimitCpuPipelineOptions &options) {
   pm.addPass(createSimitInlineFunctions());
+  if (options.timePhases)
+    pm.addPass(createSimitTimePhases());
   pm.addPass(createSimitLinalgToIndexExpr());
   pm.addPass(createSimitFuseIndexExpr());
   pm.addPass(createConvertSimitToLoops());
@@ -55,15 +58,16 @@ void mlir::simit::buildSimitCpuPipeline(OpPassManager &pm) {
 
 namespace {
 struct CpuPipeline : public simit::impl::SimitCpuPipelineBase<CpuPipeline> {
+  using Base::Base;
   void getDependentDialects(DialectRegistry &registry) const override {
     OpPassManager pm(ModuleOp::getOperationName());
-    buildSimitCpuPipeline(pm);
+    buildSimitCpuPipeline(pm, {timePhases});
     pm.getDependentDialects(registry);
   }
 
   void runOnOperation() override {
     OpPassManager pm(ModuleOp::getOperationName());
-    buildSimitCpuPipeline(pm);
+    buildSimitCpuPipeline(pm, {timePhases});
     if (failed(runPipeline(pm, getOperation())))
       signalPassFailure();
   }

@@ -39,7 +39,8 @@ void registerSimitInlinerInterface(DialectRegistry &registry);
 
 /// Adds the passes from simit IR down to the LLVM dialect for the CPU:
 /// inlining, linear algebra to index expressions, fusion, loops, LLVM.
-void buildSimitCpuPipeline(OpPassManager &pm);
+void buildSimitCpuPipeline(OpPassManager &pm,
+                           const SimitCpuPipelineOptions &options = {});
 
 } // namespace simit
 } // namespace mlir

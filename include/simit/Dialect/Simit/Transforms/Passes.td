@@ -105,6 +105,23 @@ def SimitHoistParallelAllocas : Pass<"simit-hoist-parallel-allocas", "::mlir::fu
   let dependentDialects = ["::mlir::memref::MemRefDialect"];
 }
 
+def SimitTimePhases : Pass<"simit-time-phases", "::mlir::ModuleOp"> {
+  let summary = "Times the assemblies and solves of exported functions";
+  let description = [{
+    Brackets work in exported functions with calls of the runtime's phase
+    timer (`@simit_rt_phase_begin(i32)` / `@simit_rt_phase_end(i32)`), so
+    that a driver can split a time step into assembly and solve:
+    - phase 0, assembly: every `simit.map` and `simit.assemble`;
+    - phase 1, solve: every `simit.solve`, and every `scf.while` at the top
+      level of an exported function that contains no map or assembly (an
+      iterative solver written in Simit, after simit-inline-functions).
+    Work inside a timed op is not timed again. Run it after
+    simit-inline-functions; `simit-cpu-pipeline{time-phases=1}` does.
+  }];
+  let dependentDialects = ["::mlir::arith::ArithDialect",
+                           "::mlir::func::FuncDialect"];
+}
+
 def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
   let summary = "Runs every Simit lowering down to the LLVM dialect";
   let description = [{
@@ -115,6 +132,10 @@ def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
     LLVM, reconcile casts). The pipeline is buildSimitCpuPipeline(), which
     the JIT runs as well.
   }];
+  let options = [
+    Option<"timePhases", "time-phases", "bool", /*default=*/"false",
+           "Time assemblies and solves with simit-time-phases">,
+  ];
 }
 
 //===----------------------------------------------------------------------===//

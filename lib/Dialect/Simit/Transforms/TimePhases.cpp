@@ -1,0 +1,90 @@
+//===- TimePhases.cpp - Timer calls around assemblies and solves ----------===//
+//
+// A time step is mostly assembly (maps) and linear solves; the driver wants
+// both figures without the user splitting the step into functions. The
+// runtime's phase timer accumulates the time between matching begin/end
+// calls (lib/Engine/RuntimeFunctions.cpp).
+//
+//===----------------------------------------------------------------------===//
+
+#include "simit/Dialect/Simit/Transforms/Passes.h"
+
+namespace mlir {
+namespace simit {
+#define GEN_PASS_DEF_SIMITTIMEPHASES
+#include "simit/Dialect/Simit/Transforms/Passes.h.inc"
+} // namespace simit
+} // namespace mlir
+
+using namespace mlir;
+using namespace mlir::simit;
+
+namespace {
+enum Phase : int32_t { Assembly = 0, Solve = 1 };
+
+constexpr StringLiteral kBegin = "simit_rt_phase_begin";
+constexpr StringLiteral kEnd = "simit_rt_phase_end";
+
+bool isAssembly(Operation *op) { return isa<MapOp, AssembleOp>(op); }
+
+/// The phase `op` is timed as, if any. `topLevel`: `op` is directly in the
+/// body of an exported function.
+std::optional<Phase> phaseOf(Operation *op, bool topLevel) {
+  if (isAssembly(op))
+    return Assembly;
+  if (isa<SolveOp>(op))
+    return Solve;
+  if (topLevel && isa<scf::WhileOp>(op)) {
+    bool assembles = op->walk([](Operation *nested) {
+                         return isAssembly(nested) ? WalkResult::interrupt()
+                                                   : WalkResult::advance();
+                       }).wasInterrupted();
+    if (!assembles)
+      return Solve;
+  }
+  return std::nullopt;
+}
+
+/// Declares `name(i32)` as a runtime function unless the module has it.
+void declareTimer(ModuleOp module, StringRef name) {
+  if (module.lookupSymbol(name))
+    return;
+  OpBuilder b = OpBuilder::atBlockEnd(module.getBody());
+  auto type = b.getFunctionType({b.getI32Type()}, {});
+  auto decl = func::FuncOp::create(b, module.getLoc(), name, type);
+  decl.setPrivate();
+  decl->setAttr("simit.runtime_function", b.getUnitAttr());
+}
+
+struct TimePhases : public simit::impl::SimitTimePhasesBase<TimePhases> {
+  void runOnOperation() override {
+    ModuleOp module = getOperation();
+    SmallVector<std::pair<Operation *, Phase>> timed;
+    for (auto function : module.getOps<func::FuncOp>()) {
+      if (!isExportedFunction(function) || function.isExternal())
+        continue;
+      Block *body = &function.getBody().front();
+      function.walk<WalkOrder::PreOrder>([&](Operation *op) {
+        if (std::optional<Phase> phase =
+                phaseOf(op, op->getBlock() == body)) {
+          timed.emplace_back(op, *phase);
+          return WalkResult::skip();
+        }
+        return WalkResult::advance();
+      });
+    }
+    if (timed.empty())
+      return;
+    declareTimer(module, kBegin);
+    declareTimer(module, kEnd);
+    for (auto [op, phase] : timed) {
+      OpBuilder b(op);
+      Value id = arith::ConstantIntOp::create(b, op->getLoc(), b.getI32Type(),
+                                               phase);
+      func::CallOp::create(b, op->getLoc(), kBegin, TypeRange(), id);
+      b.setInsertionPointAfter(op);
+      func::CallOp::create(b, op->getLoc(), kEnd, TypeRange(), id);
+    }
+  }
+};
+} // namespace

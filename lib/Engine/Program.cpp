@@ -6,6 +6,7 @@
 #include "Lowering.h"
 #include "SimImport.h"
 
+#include "simit/Dialect/Simit/IR/Simit.h"
 #include "simit/Frontend/IRGen.h"
 
 #include "mlir/IR/BuiltinOps.h"
@@ -157,6 +158,22 @@ llvm::Expected<std::vector<std::string>> Program::exportedFunctions() {
     names.push_back(entry.getKey().str());
   llvm::sort(names);
   return names;
+}
+
+llvm::Expected<std::map<std::string, std::vector<std::string>>>
+Program::externSetFields() {
+  if (llvm::Error err = impl->requireModule())
+    return std::move(err);
+  std::map<std::string, std::vector<std::string>> fields;
+  for (auto global : impl->module->getOps<mlir::simit::ExternOp>()) {
+    auto set = llvm::dyn_cast<mlir::simit::SetType>(global.getType());
+    if (!set)
+      continue;
+    std::vector<std::string> &names = fields[set.getName().str()];
+    for (mlir::StringAttr name : set.getElement().getFieldNames())
+      names.push_back(name.str());
+  }
+  return fields;
 }
 
 llvm::Expected<Function> Program::compile(llvm::StringRef name) {

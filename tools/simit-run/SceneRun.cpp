@@ -7,6 +7,7 @@
 #include "simit/Runtime/SceneOutput.h"
 
 #include "llvm/ADT/STLExtras.h"
+#include "llvm/ADT/StringExtras.h"
 #include "llvm/Support/Format.h"
 #include "llvm/Support/raw_ostream.h"
 
@@ -70,6 +71,30 @@ llvm::Error provideFields(const SceneDescription &scene, SetRegistry &registry,
       std::copy(narrow.begin(), narrow.end(),
                 static_cast<float *>(set->fieldData(arg.field)));
     }
+  }
+  return llvm::Error::success();
+}
+
+/// A scene field that the program's element type does not declare is a
+/// typo or a leftover: either way the program would silently not see it.
+llvm::Error checkSceneFields(const SceneDescription &scene, Program &program,
+                             llvm::StringRef programPath) {
+  auto declared = program.externSetFields();
+  if (!declared)
+    return declared.takeError();
+  for (const SetSpec &set : scene.sets) {
+    auto it = declared->find(set.name);
+    if (it == declared->end())
+      continue;
+    for (const FieldSpec &field : set.fields)
+      if (!llvm::is_contained(it->second, field.name))
+        return llvm::createStringError(
+            scene.path + ": " + field.jsonPath + ": the elements of set '" +
+            set.name + "' in " + programPath + " have no field '" +
+            field.name + "' (they have: " +
+            (it->second.empty() ? std::string("none")
+                                : llvm::join(it->second, ", ")) +
+            ")");
   }
   return llvm::Error::success();
 }
@@ -156,6 +181,8 @@ llvm::Error simit::runScene(const SceneRunOptions &options) {
   programOptions.timePhases = options.printTimes;
   Program program(programOptions);
   if (llvm::Error err = program.loadFile(programPath))
+    return err;
+  if (llvm::Error err = checkSceneFields(*scene, program, programPath))
     return err;
   std::vector<NamedFunction> init, step;
   for (auto [names, group] : {std::pair(&scene->init, &init),

@@ -22,6 +22,7 @@
 #include "llvm/ADT/StringRef.h"
 #include "llvm/Support/Error.h"
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -71,6 +72,11 @@ public:
 
   /// The exported functions of the compiled module, sorted by name.
   llvm::Expected<std::vector<std::string>> exportedFunctions();
+
+  /// The fields the element type of each extern set declares, by set name
+  /// (empty when the loaded IR has no simit.extern sets, e.g. loops IR).
+  llvm::Expected<std::map<std::string, std::vector<std::string>>>
+  externSetFields();
 
 private:
   struct Impl;

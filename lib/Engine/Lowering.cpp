@@ -161,6 +161,7 @@ llvm::Error simit::lowerToLLVM(mlir::ModuleOp module, LoweringResult &result,
 
   mlir::simit::SimitCpuPipelineOptions pipelineOptions;
   pipelineOptions.timePhases = timePhases;
+  pipelineOptions.runtimeAllocator = true;
   mlir::simit::buildSimitCpuPipeline(pm, pipelineOptions);
 
   mlir::LogicalResult status = pm.run(module);

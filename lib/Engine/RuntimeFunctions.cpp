@@ -302,6 +302,10 @@ simit::runtimeSymbolMap(llvm::orc::MangleAndInterner interner) {
       reinterpret_cast<void *>(&simit_rt_string_compare));
   add("simit_rt_clock", reinterpret_cast<void *>(&simit_rt_clock));
   add("simit_rt_storeTime", reinterpret_cast<void *>(&simit_rt_storeTime));
+  add("_mlir_memref_to_llvm_alloc",
+      reinterpret_cast<void *>(&_mlir_memref_to_llvm_alloc));
+  add("_mlir_memref_to_llvm_free",
+      reinterpret_cast<void *>(&_mlir_memref_to_llvm_free));
   add("simit_rt_phase_begin", reinterpret_cast<void *>(&simit_rt_phase_begin));
   add("simit_rt_phase_end", reinterpret_cast<void *>(&simit_rt_phase_end));
   add("_mlir_ciface_simit_rt_lu",

@@ -92,3 +92,29 @@ TEST(RuntimeFunctionsTest, CGStopsAtTheIterationCap) {
   EXPECT_NEAR(x[0], 1.0, 1e-12);
   EXPECT_NEAR(x[1], 0.5, 1e-12);
 }
+
+TEST(RuntimeFunctionsTest, LargeFreedBlocksAreReusedBySize) {
+  constexpr size_t kLarge = 1 << 20;
+  auto *first = static_cast<char *>(_mlir_memref_to_llvm_alloc(kLarge));
+  ASSERT_NE(first, nullptr);
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(first) % 16, 0u);
+  first[0] = 1;
+  first[kLarge - 1] = 2; // the whole payload is usable
+  _mlir_memref_to_llvm_free(first);
+  // The same size gets the kept block back; another size does not.
+  void *again = _mlir_memref_to_llvm_alloc(kLarge);
+  EXPECT_EQ(again, first);
+  void *other = _mlir_memref_to_llvm_alloc(kLarge + 16);
+  EXPECT_NE(other, first);
+  // Two live blocks of one size are distinct.
+  void *second = _mlir_memref_to_llvm_alloc(kLarge);
+  EXPECT_NE(second, again);
+  for (void *block : {again, other, second})
+    _mlir_memref_to_llvm_free(block);
+  // Small blocks go straight to malloc and free.
+  void *small = _mlir_memref_to_llvm_alloc(24);
+  ASSERT_NE(small, nullptr);
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(small) % 16, 0u);
+  _mlir_memref_to_llvm_free(small);
+  _mlir_memref_to_llvm_free(nullptr);
+}

@@ -12,6 +12,7 @@
 
 #include "mlir/ExecutionEngine/CRunnerUtils.h"
 
+#include <cstddef>
 #include <cstdint>
 
 extern "C" {
@@ -41,6 +42,12 @@ int32_t simit_rt_string_compare(const char *lhs, const char *rhs);
 /// clock() in microseconds (monotonic) and storeTime(slot, value).
 double simit_rt_clock();
 double simit_rt_storeTime(int32_t slot, double value);
+
+/// Heap memory of lowered code (memref.alloc/dealloc with the pipeline's
+/// runtime-allocator option): freed blocks of 64 KiB and more are kept for
+/// reuse by size, so per-frame temporaries are not page-faulted in anew.
+void *_mlir_memref_to_llvm_alloc(size_t size);
+void _mlir_memref_to_llvm_free(void *pointer);
 
 /// The phase timer that simit-time-phases brackets assemblies (phase 0) and
 /// solves (phase 1) with; simit::readPhaseTimes() reads it.

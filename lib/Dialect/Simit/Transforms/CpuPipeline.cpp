@@ -49,7 +49,9 @@ void mlir::simit::buildSimitCpuPipeline(
   pm.addPass(createConvertMathToLibmPass());
   pm.addPass(createArithToLLVMConversionPass());
   pm.addPass(createConvertIndexToLLVMPass());
-  pm.addPass(createFinalizeMemRefToLLVMConversionPass());
+  FinalizeMemRefToLLVMConversionPassOptions memrefOptions;
+  memrefOptions.useGenericFunctions = options.runtimeAllocator;
+  pm.addPass(createFinalizeMemRefToLLVMConversionPass(memrefOptions));
   pm.addPass(createConvertFuncToLLVMPass());
   pm.addPass(createConvertControlFlowToLLVMPass());
   pm.addPass(createReconcileUnrealizedCastsPass());
@@ -61,13 +63,13 @@ struct CpuPipeline : public simit::impl::SimitCpuPipelineBase<CpuPipeline> {
   using Base::Base;
   void getDependentDialects(DialectRegistry &registry) const override {
     OpPassManager pm(ModuleOp::getOperationName());
-    buildSimitCpuPipeline(pm, {timePhases});
+    buildSimitCpuPipeline(pm, {timePhases, runtimeAllocator});
     pm.getDependentDialects(registry);
   }
 
   void runOnOperation() override {
     OpPassManager pm(ModuleOp::getOperationName());
-    buildSimitCpuPipeline(pm, {timePhases});
+    buildSimitCpuPipeline(pm, {timePhases, runtimeAllocator});
     if (failed(runPipeline(pm, getOperation())))
       signalPassFailure();
   }

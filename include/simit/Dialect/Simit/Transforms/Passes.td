@@ -135,6 +135,11 @@ def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
   let options = [
     Option<"timePhases", "time-phases", "bool", /*default=*/"false",
            "Time assemblies and solves with simit-time-phases">,
+    Option<"runtimeAllocator", "runtime-allocator", "bool",
+           /*default=*/"false",
+           "Allocate heap memory through the Simit runtime's "
+           "_mlir_memref_to_llvm_alloc/free (the JIT's block cache) instead "
+           "of malloc/free">,
   ];
 }
 

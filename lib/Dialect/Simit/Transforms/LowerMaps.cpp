@@ -6,7 +6,8 @@
 // stores of field arrays. The element function's results are never built:
 // every simit.insert into a value that flows to result r scatters into the
 // output array of r, at the location the sparsity gives (the element itself,
-// a diagonal block, or the block an edge's location table names).
+// a diagonal block, the block an edge's location table names, or a grid
+// point's block for a stencil offset, LowerGridStencils.cpp).
 //
 //===----------------------------------------------------------------------===//
 
@@ -158,6 +159,14 @@ static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
     scatters = true;
     break;
   }
+  case Storage::Kind::Stencil: {
+    // Each point writes its own row: no location is shared.
+    FailureOr<Value> block = l.stencilWriteBlock(insert, storage);
+    if (failed(block))
+      return failure();
+    prefix.push_back(*block);
+    break;
+  }
   }
   Value value = l.lookup(insert.getValue());
   auto type = cast<MemRefType>(output.getType());
@@ -249,11 +258,12 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
   auto assembleOp = dyn_cast<AssembleOp>(op);
   Value setValue = mapOp ? mapOp.getSet() : assembleOp.getSet();
   ValueRange extras = mapOp ? mapOp.getExtras() : assembleOp.getExtras();
-  bool hasGrid = mapOp ? bool(mapOp.getGrid()) : bool(assembleOp.getGrid());
+  Value grid = mapOp ? mapOp.getGrid() : assembleOp.getGrid();
   auto set = cast<SetType>(setValue.getType());
-  if (hasGrid || set.isGrid())
-    return op->emitError("grid stencils are not supported by the loop "
-                         "lowering yet");
+  if (set.isGrid())
+    return op->emitError("maps over the edges of a grid are not supported "
+                         "by the loop lowering; map over its points "
+                         "'through' it");
   if (element)
     return op->emitError("maps inside element functions are not supported");
 
@@ -262,6 +272,9 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
   ctx.accumulate = bool(assembleOp);
   if (assembleOp)
     ctx.reduction = assembleOp.getReduction();
+
+  if (failed(collectSinks(callee, ctx.sinks)))
+    return failure();
 
   // Outputs, zero-filled, stored as the sparsity analysis says.
   for (Value result : op->getResults()) {
@@ -279,7 +292,16 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
           return op->emitError("a matrix assembled from vertex set '")
                  << set.getName().getValue()
                  << "' must be over that set (its diagonal)";
-        storage = Storage::diagonal(rows);
+        if (grid) {
+          FailureOr<Storage> stencil =
+              stencilStorage(op, callee, cast<SetType>(grid.getType()),
+                             ctx.outputs.size(), ctx.sinks);
+          if (failed(stencil))
+            return failure();
+          storage = *stencil;
+        } else {
+          storage = Storage::diagonal(rows);
+        }
       } else {
         if (!llvm::is_contained(set.getEndpoints(), rows) ||
             !llvm::is_contained(set.getEndpoints(), cols))
@@ -298,8 +320,6 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
     storages[result] = storage;
     map(result, output);
   }
-  if (failed(collectSinks(callee, ctx.sinks)))
-    return failure();
 
   // The loop over the set, the element function inlined in it.
   Value size = getSetSize(set.getName());
@@ -329,7 +349,9 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
   Value elementArg = entry.getArgument(extras.size());
   map(elementArg, ctx.element);
   elementSets[elementArg] = set.getName();
-  if (entry.getNumArguments() > extras.size() + 1)
+  // The parameter after the element is the endpoint tuple, or the grid
+  // (grid_point and grid_edge use only its type).
+  if (entry.getNumArguments() > extras.size() + 1 && !grid)
     tuples[entry.getArgument(extras.size() + 1)] = {set, ctx.element};
 
   Block *savedAllocaBlock = allocaBlock;

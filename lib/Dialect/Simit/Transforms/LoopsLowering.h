@@ -97,6 +97,10 @@ struct ElementContext {
   /// (the result position): they are not materialised; every insert into
   /// one scatters into the output.
   DenseMap<Value, unsigned> sinks;
+  /// The element function's variables (simit.alloc) holding a scalar
+  /// result, by result position: they are the output itself, so a store
+  /// combines into it and a load reads the accumulated value.
+  DenseMap<Value, unsigned> scalarSlots;
   /// Whether some write goes to a location shared with other elements.
   bool scatters = false;
 };

@@ -187,3 +187,21 @@ func.func @complex_local() -> f64 attributes {simit.export} {
   %r = complex.re %z : complex<f64>
   return %r : f64
 }
+
+// -----
+
+!Point = !simit.element<"Point", {m : f64}>
+!Points = !simit.set<"points", !Point>
+simit.extern @points : !Points
+
+func.func @direct(%p : !Point) -> f64 {
+  %m = simit.elem_read %p["m"] : !Point -> f64
+  // expected-error @below {{scalar result 0 of element function 'direct' must be the value of a variable}}
+  return %m : f64
+}
+
+func.func @scalar_not_a_variable() -> f64 attributes {simit.export} {
+  %points = simit.get_set @points : !Points
+  %t = simit.assemble @direct() to %points reduce <add> : (!Points) -> f64
+  return %t : f64
+}

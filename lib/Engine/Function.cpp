@@ -252,6 +252,22 @@ llvm::Error Function::Impl::prepareArgument(const ArgumentBinding &arg,
     pushMemRef(word, (*set)->fieldData(arg.field), sizes);
     return llvm::Error::success();
   }
+  case Kind::GridDims: {
+    llvm::Expected<Set *> set = boundSet(arg.set);
+    if (!set)
+      return set.takeError();
+    llvm::ArrayRef<int> dims = (*set)->gridDimensions();
+    if (static_cast<int64_t>(dims.size()) != type.shape[0]) {
+      std::string actual =
+          dims.empty() ? "not a grid"
+                       : "a grid of rank " + std::to_string(dims.size());
+      return error("set '" + arg.set + "' is " + actual +
+                   ", but the program expects a grid of rank " +
+                   llvm::Twine(type.shape[0]));
+    }
+    pushMemRef(word, dims.data(), {type.shape[0]});
+    return llvm::Error::success();
+  }
   case Kind::Endpoints: {
     llvm::Expected<Set *> set = boundSet(arg.set);
     if (!set)

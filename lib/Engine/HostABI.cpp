@@ -147,6 +147,8 @@ std::string ArgumentBinding::describe() const {
   switch (kind) {
   case Kind::SetSize:
     return "size of set '" + set + "'";
+  case Kind::GridDims:
+    return "extents of grid '" + set + "'";
   case Kind::Field:
     return "field '" + set + "." + field + "'";
   case Kind::Endpoints:
@@ -197,6 +199,7 @@ public:
     using Kind = ArgumentBinding::Kind;
     auto parsed = llvm::StringSwitch<std::optional<Kind>>(kind)
                       .Case("set_size", Kind::SetSize)
+                      .Case("grid_dims", Kind::GridDims)
                       .Case("field", Kind::Field)
                       .Case("endpoints", Kind::Endpoints)
                       .Case("pattern_rowptr", Kind::PatternRowPtr)
@@ -210,6 +213,7 @@ public:
     binding.kind = *parsed;
     switch (binding.kind) {
     case Kind::SetSize:
+    case Kind::GridDims:
     case Kind::Endpoints:
       return get("set", binding.set);
     case Kind::Field:
@@ -270,6 +274,11 @@ static llvm::Error checkKindType(const HostSignature &signature,
   case Kind::PatternLocations:
     if (!type.isMemRef || type.rank() != 2 || type.scalar != ScalarKind::Int32)
       return fail("memref<?xNxi32>");
+    return llvm::Error::success();
+  case Kind::GridDims:
+    if (!type.isMemRef || type.rank() != 1 || type.scalar != ScalarKind::Int32 ||
+        type.shape[0] == ValueType::kDynamic)
+      return fail("memref<Nxi32>");
     return llvm::Error::success();
   case Kind::PatternRowPtr:
   case Kind::PatternColIdx:

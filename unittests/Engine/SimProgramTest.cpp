@@ -212,3 +212,59 @@ end
     EXPECT_NEAR(chain.y.get(1) / std::pow(2.5, 200), 1.0, 1e-12);
   }
 }
+   EXPECT_EQ(llvm::toString(force.takeError()),
+             "unknown function 'force' (exported functions: forces, multiply)");
+ }
+
+namespace {
+constexpr const char *kEnergy = R"sim(
+element Point
+  x : float;
+end
+element Spring
+  k : float;
+end
+extern points  : set{Point};
+extern springs : set{Spring}(points, points);
+extern total   : float;
+
+func energy(s : Spring, p : (Point*2)) -> (E : float)
+  E = s.k * (p(1).x - p(0).x);
+end
+
+export func sum()
+  total = map energy to springs reduce +;
+end
+
+export func last()
+  total = map energy to springs;
+end
+)sim";
+
+/// Runs `name` of kEnergy on the chain and returns `total`.
+double runEnergy(llvm::StringRef name) {
+  Program program;
+  EXPECT_EQ(message(program.loadString(kEnergy, "energy.sim")), "success");
+  llvm::Expected<Function> function = program.compile(name);
+  EXPECT_TRUE(!!function) << llvm::toString(function.takeError());
+  if (!function)
+    return 0.0;
+  Chain chain;
+  double total = -1.0;
+  EXPECT_EQ(message(function->bind("points", chain.points)), "success");
+  EXPECT_EQ(message(function->bind("springs", chain.springs)), "success");
+  EXPECT_EQ(message(function->bind("total", &total)), "success");
+  EXPECT_EQ(message(function->run()), "success");
+  return total;
+}
+} // namespace
+
+TEST(SimProgramTest, ReducesAScalarResult) {
+  // k (x1 - x0) per spring: 2 (1 - 0) + 3 (3 - 1) = 8.
+  EXPECT_DOUBLE_EQ(runEnergy("sum"), 8.0);
+}
+
+TEST(SimProgramTest, AScalarResultWithoutReductionKeepsTheLastWrite) {
+  // The last spring in set order writes 3 (3 - 1) = 6.
+  EXPECT_DOUBLE_EQ(runEnergy("last"), 6.0);
+}

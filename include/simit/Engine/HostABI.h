@@ -77,6 +77,7 @@ llvm::Expected<ValueType> toValueType(mlir::Type type);
 struct ArgumentBinding {
   enum class Kind {
     SetSize,          // index: the number of elements of `set`
+    GridDims,         // memref<d x i32>: the extents of grid `set`
     Field,            // memref<?x b...>: field `field` of `set`
     Endpoints,        // memref<?xc x i32>: the endpoints of edge set `set`
     PatternRowPtr,    // memref<?xi32>: BCSR row pointers of (set; rows, cols)

@@ -37,9 +37,10 @@ using namespace mlir::simit::loops;
 bool Storage::contains(const Storage &o) const {
   if (*this == o)
     return true;
-  // An edge pattern over (V, V) holds every diagonal block of V.
-  return kind == Kind::Pattern && o.kind == Kind::Diagonal && rows == cols &&
-         rows == o.rows;
+  // An edge pattern over (V, V) holds every diagonal block of V, and so does
+  // a stencil (it always stores offset 0).
+  return (kind == Kind::Pattern || kind == Kind::Stencil) &&
+         o.kind == Kind::Diagonal && rows == cols && rows == o.rows;
 }
 
 std::string Storage::describe() const {
@@ -51,6 +52,10 @@ std::string Storage::describe() const {
   case Kind::Pattern:
     return ("pattern of '" + edges.getValue() + "' over ('" +
             rows.getValue() + "', '" + cols.getValue() + "')")
+        .str();
+  case Kind::Stencil:
+    return ("stencil of grid '" + edges.getValue() + "' with " +
+            Twine(offsets.size()) + " offsets")
         .str();
   }
   llvm_unreachable("storage kind");
@@ -155,6 +160,8 @@ static StringRef bindingKindName(BindingKind kind) {
   switch (kind) {
   case BindingKind::SetSize:
     return "set_size";
+  case BindingKind::GridDims:
+    return "grid_dims";
   case BindingKind::Field:
     return "field";
   case BindingKind::Endpoints:
@@ -280,6 +287,9 @@ Value FunctionLowering::numBlocks(const Storage &storage,
                                         ValueRange{getSetSize(storage.rows)});
     return arith::IndexCastOp::create(b, loc, b.getIndexType(), last);
   }
+  case Storage::Kind::Stencil:
+    return arith::MulIOp::create(b, loc, getSetSize(storage.rows),
+                                 indexConstant(storage.offsets.size()));
   }
   llvm_unreachable("storage kind");
 }
@@ -1095,8 +1105,7 @@ LogicalResult FunctionLowering::lowerOp(Operation *op) {
   if (isa<MapOp, AssembleOp>(op))
     return lowerMapLike(op);
   if (isa<GridPointOp, GridEdgeOp>(op))
-    return op->emitError("grid stencils are not supported by the loop "
-                         "lowering yet");
+    return lowerGridAccess(op);
   if (isa<PrintOp, StringConstantOp, StringConcatOp, StringCmpOp>(op))
     return lowerPrintOrString(op);
 
@@ -1307,8 +1316,9 @@ LogicalResult FunctionLowering::run(func::FuncOp original) {
   auto sortKey = [&](unsigned i) {
     DictionaryAttr dict = bindings[i].first;
     static const char *const kinds[] = {
-        "set_size",       "endpoints",         "field",  "pattern_rowptr",
-        "pattern_colidx", "pattern_locations", "extern"};
+        "set_size",       "grid_dims",      "endpoints",
+        "field",          "pattern_rowptr", "pattern_colidx",
+        "pattern_locations", "extern"};
     StringRef kind = dict.getAs<StringAttr>("kind").getValue();
     unsigned rank = llvm::find(kinds, kind) - std::begin(kinds);
     auto text = [&](StringRef key) {
@@ -1316,7 +1326,7 @@ LogicalResult FunctionLowering::run(func::FuncOp original) {
       return value ? value.getValue().str() : std::string();
     };
     bool isPattern = kind.starts_with("pattern_");
-    return std::make_tuple(isPattern ? 3u : rank,
+    return std::make_tuple(isPattern ? 4u : rank,
                            text("set") + text("name"), text("field"),
                            text("rows"), text("cols"), rank);
   };

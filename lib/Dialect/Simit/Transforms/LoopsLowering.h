@@ -32,12 +32,19 @@ struct Storage {
     /// A matrix over (set, set) with only diagonal blocks: block r is (r, r).
     Diagonal,
     /// A BCSR matrix over (rows, cols) on the pattern of an edge set.
-    Pattern
+    Pattern,
+    /// A matrix over (points, points) assembled through a grid: one dense
+    /// array of blocks per stencil offset, block k * |points| + r is
+    /// (r, r + offsets[k]) with periodic wrap-around; no index arrays.
+    Stencil
   };
   Kind kind = Kind::Dense;
   /// Diagonal: rows == cols == the set. Pattern: the edge set and the two
-  /// endpoint sets.
+  /// endpoint sets. Stencil: the grid and its point set (rows == cols).
   StringAttr edges, rows, cols;
+  /// Stencil: the point offsets (one DenseI64ArrayAttr of grid-rank
+  /// entries each), sorted and unique.
+  ArrayAttr offsets;
 
   static Storage dense() { return Storage(); }
   static Storage diagonal(StringAttr set) {
@@ -46,10 +53,14 @@ struct Storage {
   static Storage pattern(StringAttr edges, StringAttr rows, StringAttr cols) {
     return Storage{Kind::Pattern, edges, rows, cols};
   }
+  static Storage stencil(StringAttr grid, StringAttr points,
+                         ArrayAttr offsets) {
+    return Storage{Kind::Stencil, grid, points, points, offsets};
+  }
   bool isMatrix() const { return kind != Kind::Dense; }
   bool operator==(const Storage &o) const {
     return kind == o.kind && edges == o.edges && rows == o.rows &&
-           cols == o.cols;
+           cols == o.cols && offsets == o.offsets;
   }
   bool operator!=(const Storage &o) const { return !(*this == o); }
   /// Whether every block of `o` is a block of this storage (an edge pattern
@@ -61,6 +72,7 @@ struct Storage {
 /// The kinds of function arguments of a lowered exported function.
 enum class BindingKind {
   SetSize,
+  GridDims,
   Field,
   Endpoints,
   PatternRowPtr,
@@ -85,6 +97,10 @@ struct ElementContext {
   /// (the result position): they are not materialised; every insert into
   /// one scatters into the output.
   DenseMap<Value, unsigned> sinks;
+  /// The element function's variables (simit.alloc) holding a scalar
+  /// result, by result position: they are the output itself, so a store
+  /// combines into it and a load reads the accumulated value.
+  DenseMap<Value, unsigned> scalarSlots;
   /// Whether some write goes to a location shared with other elements.
   bool scatters = false;
 };
@@ -125,6 +141,8 @@ public:
   Value getPatternArray(BindingKind kind, StringAttr edges, StringAttr rows,
                         StringAttr cols, int64_t cardinality = 0);
   Value getExtern(ExternOp global);
+  /// The extents of grid `grid` (memref<rank x i32>).
+  Value getGridDims(StringAttr grid, unsigned rank);
 
   //===--- Helpers shared by the parts ----------------------------------===//
 
@@ -153,6 +171,22 @@ public:
   LogicalResult lowerMapLike(Operation *op);
   /// elem_read, elem_write and inserts into result slots.
   LogicalResult lowerElementAccess(Operation *op, bool &handled);
+
+  // Grid stencils (LowerGridStencils.cpp).
+  /// grid_point and grid_edge.
+  LogicalResult lowerGridAccess(Operation *op);
+  /// The stencil storage of a matrix that `callee` (mapped through `grid`)
+  /// writes as result `r`: the point offsets of its column indices.
+  FailureOr<Storage> stencilStorage(Operation *map, func::FuncOp callee,
+                                    SetType grid, unsigned r,
+                                    const DenseMap<Value, unsigned> &sinks);
+  /// The block of a stencil matrix that the write `insert` of the element
+  /// function goes to (the first offset naming the same point).
+  FailureOr<Value> stencilWriteBlock(InsertOp insert, const Storage &storage);
+  /// Row `row`'s block for offset number `k` of a stencil matrix and the
+  /// column it stands for.
+  Value stencilBlock(const Storage &storage, Value row, Value k);
+  Value stencilColumn(const Storage &storage, Value row, Value k);
 
   // Index expressions (LowerIndexExpr.cpp).
   LogicalResult lowerIndexExpr(IndexExprOp op);

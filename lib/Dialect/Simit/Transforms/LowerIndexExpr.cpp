@@ -223,10 +223,10 @@ IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
   if (!bound.count(v))
     bound[v].assign(numLevels(v), Value());
   Value lb = l.indexConstant(0), ub = extent(v, choice.levelIndex);
-  Value rowPtr, colIdx;
+  Value rowPtr, colIdx, row;
   if (choice.coupledBy >= 0) {
     Storage storage = storageOf(choice.coupledBy);
-    Value row = bound[choice.partner][0];
+    row = bound[choice.partner][0];
     if (storage.kind == Storage::Kind::Diagonal) {
       // v = u: no loop, the diagonal block is the row's.
       bound[v][0] = row;
@@ -239,17 +239,22 @@ IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
       unbind(choice);
       return results;
     }
-    rowPtr = l.getPatternArray(BindingKind::PatternRowPtr, storage.edges,
-                               storage.rows, storage.cols);
-    colIdx = l.getPatternArray(BindingKind::PatternColIdx, storage.edges,
-                               storage.rows, storage.cols);
-    Value next = arith::AddIOp::create(b, loc, row, l.indexConstant(1));
-    lb = arith::IndexCastOp::create(
-        b, loc, b.getIndexType(),
-        memref::LoadOp::create(b, loc, rowPtr, ValueRange{row}));
-    ub = arith::IndexCastOp::create(
-        b, loc, b.getIndexType(),
-        memref::LoadOp::create(b, loc, rowPtr, ValueRange{next}));
+    if (storage.kind == Storage::Kind::Stencil) {
+      // One block per stencil offset; the column follows from the row.
+      ub = l.indexConstant(storage.offsets.size());
+    } else {
+      rowPtr = l.getPatternArray(BindingKind::PatternRowPtr, storage.edges,
+                                 storage.rows, storage.cols);
+      colIdx = l.getPatternArray(BindingKind::PatternColIdx, storage.edges,
+                                 storage.rows, storage.cols);
+      Value next = arith::AddIOp::create(b, loc, row, l.indexConstant(1));
+      lb = arith::IndexCastOp::create(
+          b, loc, b.getIndexType(),
+          memref::LoadOp::create(b, loc, rowPtr, ValueRange{row}));
+      ub = arith::IndexCastOp::create(
+          b, loc, b.getIndexType(),
+          memref::LoadOp::create(b, loc, rowPtr, ValueRange{next}));
+    }
   }
   auto bindAt = [&](OpBuilder &nb, Value iv) {
     OpBuilder::InsertionGuard guard(b);
@@ -259,14 +264,18 @@ IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
     }
     b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
     Storage storage = storageOf(choice.coupledBy);
-    bound[v][0] = arith::IndexCastOp::create(
-        b, loc, b.getIndexType(),
-        memref::LoadOp::create(b, loc, colIdx, ValueRange{iv}));
+    bool stencil = storage.kind == Storage::Kind::Stencil;
+    bound[v][0] = stencil ? l.stencilColumn(storage, row, iv)
+                          : arith::IndexCastOp::create(
+                                b, loc, b.getIndexType(),
+                                memref::LoadOp::create(b, loc, colIdx,
+                                                       ValueRange{iv}));
+    Value position = stencil ? l.stencilBlock(storage, row, iv) : iv;
     nb.setInsertionPoint(b.getInsertionBlock(), b.getInsertionPoint());
     for (unsigned o = 0; o < numMatrixOperands(); ++o)
       if (indexList(o).size() == 2 && indexList(o)[1] == v &&
           storageOf(o) == storage)
-        positions[o] = iv;
+        positions[o] = position;
   };
   Value step = l.indexConstant(1);
   if (parallel) {

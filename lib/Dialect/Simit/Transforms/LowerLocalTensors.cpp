@@ -199,6 +199,40 @@ static SmallVector<int64_t> digits(int64_t flat, ArrayRef<int64_t> radices) {
   return result;
 }
 
+/// The storage positions of a local tensor's components in the row-major
+/// order of its unblocked shape, which goes to `shape`: levels of (r_l x c_l)
+/// make a (prod r_l) x (prod c_l) matrix, vector levels a vector; a scalar
+/// is its one component. None when the levels mix ranks.
+static std::optional<SmallVector<int64_t>>
+unblockedOrder(Type type, SmallVector<int64_t> &shape) {
+  SmallVector<SmallVector<int64_t>> levels = levelShapes(type);
+  shape.clear();
+  if (levels.empty())
+    return SmallVector<int64_t>{0};
+  size_t rank = levels[0].size();
+  SmallVector<int64_t> rows, cols;
+  for (ArrayRef<int64_t> level : levels) {
+    if (level.size() != rank || rank > 2)
+      return std::nullopt;
+    rows.push_back(level[0]);
+    cols.push_back(rank == 2 ? level[1] : 1);
+  }
+  int64_t m = 1, n = 1;
+  for (auto [r, c] : llvm::zip(rows, cols)) {
+    m *= r;
+    n *= c;
+  }
+  shape.push_back(m);
+  if (rank == 2)
+    shape.push_back(n);
+  SmallVector<int64_t> order;
+  for (int64_t i = 0; i < m; ++i)
+    for (int64_t j = 0; j < n; ++j)
+      order.push_back(
+          hierarchicalOffset(rows, cols, digits(i, rows), digits(j, cols)));
+  return order;
+}
+
 /// Unrolls matvec, matmul and transpose on blocked local tensors: their
 /// dimensions are hierarchies (outer x block), so a row index of a blocked
 /// matrix is one digit per level. Every level of every operand must have the
@@ -465,13 +499,38 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
       return SmallVector<int64_t>(t.getShape());
     return {};
   };
-  auto needsBuiltin = [&]() -> LogicalResult {
-    for (Value v : op->getOperands())
-      if (!isa<RankedTensorType, FloatType, IntegerType>(v.getType()))
+  // outer, det, inv, cross and solve read blocked operands unblocked (a
+  // blocked matrix is the matrix of its components) and write the result
+  // back into its blocked order.
+  SmallVector<SmallVector<int64_t>> shapes(op->getNumOperands());
+  SmallVector<SmallVector<Value>> unblocked(op->getNumOperands());
+  auto readUnblocked = [&]() -> LogicalResult {
+    for (auto [i, v] : llvm::enumerate(op->getOperands())) {
+      std::optional<SmallVector<int64_t>> order =
+          unblockedOrder(v.getType(), shapes[i]);
+      if (!order)
         return op->emitError("'")
                << op->getName()
-               << "' on blocked local tensors is not supported";
+               << "' on blocked local tensors of mixed block ranks is not "
+                  "supported";
+      SmallVector<Value> x = allComponents(*this, operand(i));
+      for (int64_t position : *order)
+        unblocked[i].push_back(x[position]);
+    }
     return success();
+  };
+  auto mapUnblocked = [&](ArrayRef<Value> components) {
+    Type type = op->getResult(0).getType();
+    SmallVector<int64_t> shape;
+    std::optional<SmallVector<int64_t>> order = unblockedOrder(type, shape);
+    if (shape.empty()) {
+      map(op->getResult(0), components[0]);
+      return;
+    }
+    SmallVector<Value> r(components.size());
+    for (auto [k, position] : llvm::enumerate(*order))
+      r[position] = components[k];
+    map(op->getResult(0), fromComponents(resultType(), r));
   };
   // Dot and norm only pair up components in storage order, which is the
   // same for equally blocked operands.
@@ -485,7 +544,7 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
     return success();
   }
   if (isa<OuterOp, DetOp, InvOp, CrossOp, SolveOp>(op) &&
-      failed(needsBuiltin()))
+      failed(readUnblocked()))
     return failure();
 
   if (isa<MatVecOp, MatMulOp>(op)) {
@@ -535,43 +594,48 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
     return success();
   }
   if (isa<OuterOp>(op)) {
-    SmallVector<Value> x = allComponents(*this, operand(0)),
-                       y = allComponents(*this, operand(1)), r;
-    for (Value xi : x)
-      for (Value yj : y)
+    SmallVector<Value> r;
+    for (Value xi : unblocked[0])
+      for (Value yj : unblocked[1])
         r.push_back(a.mul(xi, yj));
-    map(op->getResult(0), fromComponents(resultType(), r));
+    mapUnblocked(r);
     return success();
   }
   if (isa<DetOp, InvOp>(op)) {
-    int64_t n = shapeOf(op->getOperand(0))[0];
-    SmallVector<Value> m = allComponents(*this, operand(0));
+    SmallVector<int64_t> s = shapes[0];
+    if (s.size() != 2 || s[0] != s[1] || s[0] > 4)
+      return op->emitError("'")
+             << op->getName()
+             << "' is supported for square matrices of at most 4 x 4";
+    ArrayRef<Value> m = unblocked[0];
     if (isa<DetOp>(op))
-      map(op->getResult(0), determinant(a, m, n));
+      mapUnblocked(determinant(a, m, s[0]));
     else
-      map(op->getResult(0), fromComponents(resultType(), inverse(a, m, n)));
+      mapUnblocked(inverse(a, m, s[0]));
     return success();
   }
   if (isa<CrossOp>(op)) {
-    SmallVector<Value> x = allComponents(*this, operand(0)),
-                       y = allComponents(*this, operand(1));
+    if (shapes[0] != ArrayRef<int64_t>{3} || shapes[1] != shapes[0])
+      return op->emitError("cross products need two vectors of 3 components");
+    ArrayRef<Value> x = unblocked[0], y = unblocked[1];
     SmallVector<Value> r = {
         a.sub(a.mul(x[1], y[2]), a.mul(x[2], y[1])),
         a.sub(a.mul(x[2], y[0]), a.mul(x[0], y[2])),
         a.sub(a.mul(x[0], y[1]), a.mul(x[1], y[0]))};
-    map(op->getResult(0), fromComponents(resultType(), r));
+    mapUnblocked(r);
     return success();
   }
   if (isa<SolveOp>(op)) {
     // Small dense systems: x = inv(A) b (A is at most 4 x 4).
-    SmallVector<int64_t> s = shapeOf(op->getOperand(0));
-    if (s.size() != 2 || s[0] != s[1] || s[0] > 4)
+    SmallVector<int64_t> s = shapes[0];
+    if (s.size() != 2 || s[0] != s[1] || s[0] > 4 ||
+        shapes[1] != ArrayRef<int64_t>{s[0]})
       return op->emitError("local solves are supported for square matrices "
-                           "of at most 4 x 4");
+                           "of at most 4 x 4 and a vector");
     int64_t n = s[0];
-    SmallVector<Value> inv =
-        inverse(a, allComponents(*this, operand(0)), n);
-    SmallVector<Value> rhs = allComponents(*this, operand(1)), r;
+    SmallVector<Value> inv = inverse(a, unblocked[0], n);
+    ArrayRef<Value> rhs = unblocked[1];
+    SmallVector<Value> r;
     for (int64_t i = 0; i < n; ++i) {
       Value sum;
       for (int64_t j = 0; j < n; ++j) {
@@ -580,7 +644,7 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
       }
       r.push_back(sum);
     }
-    map(op->getResult(0), fromComponents(resultType(), r));
+    mapUnblocked(r);
     return success();
   }
   if (auto indexExpr = dyn_cast<IndexExprOp>(op))

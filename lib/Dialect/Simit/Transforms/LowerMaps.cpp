@@ -6,7 +6,8 @@
 // stores of field arrays. The element function's results are never built:
 // every simit.insert into a value that flows to result r scatters into the
 // output array of r, at the location the sparsity gives (the element itself,
-// a diagonal block, or the block an edge's location table names).
+// a diagonal block, the block an edge's location table names, or a grid
+// point's block for a stencil offset, LowerGridStencils.cpp).
 //
 //===----------------------------------------------------------------------===//
 
@@ -16,15 +17,32 @@ using namespace mlir;
 using namespace mlir::simit;
 using namespace mlir::simit::loops;
 
+/// Whether a map result of `type` is a scalar (accumulated in one slot).
+static bool isScalarResult(Type type) {
+  return isa<FloatType, IntegerType>(type);
+}
+
 /// Finds the values of `callee` that stand for its results: everything a
 /// returned value is built from by inserts, loop-carried values, branches
-/// and variables.
+/// and variables; a scalar result must be the value of a variable (the
+/// frontend's result variable), which goes to `scalarSlots`.
 static LogicalResult collectSinks(func::FuncOp callee,
-                                  DenseMap<Value, unsigned> &sinks) {
+                                  DenseMap<Value, unsigned> &sinks,
+                                  DenseMap<Value, unsigned> &scalarSlots) {
   auto ret = cast<func::ReturnOp>(callee.front().getTerminator());
   SmallVector<std::pair<Value, unsigned>> work;
-  for (auto [i, v] : llvm::enumerate(ret.getOperands()))
-    work.push_back({v, i});
+  for (auto [i, v] : llvm::enumerate(ret.getOperands())) {
+    if (!isScalarResult(v.getType())) {
+      work.push_back({v, i});
+      continue;
+    }
+    auto load = v.getDefiningOp<LoadOp>();
+    if (!load || !load.getRef().getDefiningOp<AllocOp>())
+      return ret.emitError("scalar result ")
+             << i << " of element function '" << callee.getSymName()
+             << "' must be the value of a variable";
+    scalarSlots[load.getRef()] = i;
+  }
   while (!work.empty()) {
     auto [v, r] = work.pop_back_val();
     auto [it, inserted] = sinks.try_emplace(v, r);
@@ -158,6 +176,14 @@ static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
     scatters = true;
     break;
   }
+  case Storage::Kind::Stencil: {
+    // Each point writes its own row: no location is shared.
+    FailureOr<Value> block = l.stencilWriteBlock(insert, storage);
+    if (failed(block))
+      return failure();
+    prefix.push_back(*block);
+    break;
+  }
   }
   Value value = l.lookup(insert.getValue());
   auto type = cast<MemRefType>(output.getType());
@@ -178,6 +204,25 @@ LogicalResult FunctionLowering::lowerElementAccess(Operation *op,
                                                    bool &handled) {
   handled = true;
   Location loc = op->getLoc();
+  // A scalar result's variable is the output; loads read it as it is.
+  if (auto alloc = dyn_cast<AllocOp>(op);
+      alloc && element && element->scalarSlots.count(alloc)) {
+    map(alloc, element->outputs[element->scalarSlots.lookup(alloc)]);
+    return success();
+  }
+  if (auto store = dyn_cast<StoreOp>(op);
+      store && element && element->scalarSlots.count(store.getRef())) {
+    Value output = lookup(store.getRef());
+    Value value = lookup(store.getValue());
+    if (element->accumulate)
+      value = combine(b, loc, element->reduction,
+                      memref::LoadOp::create(b, loc, output, ValueRange{}),
+                      value);
+    memref::StoreOp::create(b, loc, value, output, ValueRange{});
+    // Every element writes the one location.
+    element->scatters = true;
+    return success();
+  }
   if (auto insert = dyn_cast<InsertOp>(op); insert && isSink(insert)) {
     bool scatters = false;
     if (failed(scatter(*this, insert, element->sinks.lookup(insert),
@@ -249,11 +294,12 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
   auto assembleOp = dyn_cast<AssembleOp>(op);
   Value setValue = mapOp ? mapOp.getSet() : assembleOp.getSet();
   ValueRange extras = mapOp ? mapOp.getExtras() : assembleOp.getExtras();
-  bool hasGrid = mapOp ? bool(mapOp.getGrid()) : bool(assembleOp.getGrid());
+  Value grid = mapOp ? mapOp.getGrid() : assembleOp.getGrid();
   auto set = cast<SetType>(setValue.getType());
-  if (hasGrid || set.isGrid())
-    return op->emitError("grid stencils are not supported by the loop "
-                         "lowering yet");
+  if (set.isGrid())
+    return op->emitError("maps over the edges of a grid are not supported "
+                         "by the loop lowering; map over its points "
+                         "'through' it");
   if (element)
     return op->emitError("maps inside element functions are not supported");
 
@@ -263,12 +309,34 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
   if (assembleOp)
     ctx.reduction = assembleOp.getReduction();
 
+  if (failed(collectSinks(callee, ctx.sinks, ctx.scalarSlots)))
+    return failure();
+
   // Outputs, zero-filled, stored as the sparsity analysis says.
+  SmallVector<std::pair<Value, Value>> scalarResults;
   for (Value result : op->getResults()) {
+    if (isScalarResult(result.getType())) {
+      // Each write combines into (or, for a map, stores to) one slot that
+      // starts at zero.
+      Value slot;
+      {
+        OpBuilder::InsertionGuard guard(b);
+        b.setInsertionPointToStart(allocaBlock);
+        slot = memref::AllocaOp::create(
+            b, loc, MemRefType::get({}, result.getType()));
+      }
+      memref::StoreOp::create(b, loc, zeroOf(result.getType()), slot,
+                              ValueRange{});
+      ctx.outputs.push_back(slot);
+      ctx.outputStorages.push_back(Storage::dense());
+      scalarResults.push_back({result, slot});
+      continue;
+    }
     auto type = dyn_cast<SystemTensorType>(result.getType());
     if (!type || !type.isSystem())
-      return op->emitError("map results that are not system tensors are not "
-                           "supported by the loop lowering");
+      return op->emitError("map results that are neither system tensors "
+                           "nor scalars are not supported by the loop "
+                           "lowering");
     Storage storage;
     if (type.getOrder() == 2 && isa<StringAttr>(type.getDims()[0]) &&
         isa<StringAttr>(type.getDims()[1])) {
@@ -279,7 +347,16 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
           return op->emitError("a matrix assembled from vertex set '")
                  << set.getName().getValue()
                  << "' must be over that set (its diagonal)";
-        storage = Storage::diagonal(rows);
+        if (grid) {
+          FailureOr<Storage> stencil =
+              stencilStorage(op, callee, cast<SetType>(grid.getType()),
+                             ctx.outputs.size(), ctx.sinks);
+          if (failed(stencil))
+            return failure();
+          storage = *stencil;
+        } else {
+          storage = Storage::diagonal(rows);
+        }
       } else {
         if (!llvm::is_contained(set.getEndpoints(), rows) ||
             !llvm::is_contained(set.getEndpoints(), cols))
@@ -298,8 +375,6 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
     storages[result] = storage;
     map(result, output);
   }
-  if (failed(collectSinks(callee, ctx.sinks)))
-    return failure();
 
   // The loop over the set, the element function inlined in it.
   Value size = getSetSize(set.getName());
@@ -329,7 +404,9 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
   Value elementArg = entry.getArgument(extras.size());
   map(elementArg, ctx.element);
   elementSets[elementArg] = set.getName();
-  if (entry.getNumArguments() > extras.size() + 1)
+  // The parameter after the element is the endpoint tuple, or the grid
+  // (grid_point and grid_edge use only its type).
+  if (entry.getNumArguments() > extras.size() + 1 && !grid)
     tuples[entry.getArgument(extras.size() + 1)] = {set, ctx.element};
 
   Block *savedAllocaBlock = allocaBlock;
@@ -340,9 +417,13 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
   allocaBlock = savedAllocaBlock;
   if (failed(lowered))
     return failure();
-  // Iterations write shared locations (endpoints, matrix blocks): a
-  // parallel backend must make these updates atomic or colour the set.
+  // Iterations write shared locations (endpoints, matrix blocks, scalar
+  // results): a parallel backend must make these updates atomic or colour
+  // the set.
   if (ctx.scatters)
     loop->setAttr("simit.scatter", b.getUnitAttr());
+  b.setInsertionPointAfter(loop);
+  for (auto [result, slot] : scalarResults)
+    map(result, memref::LoadOp::create(b, loc, slot, ValueRange{}));
   return success();
 }

@@ -120,16 +120,45 @@ func.func @call() -> !F attributes {simit.export} {
 simit.extern @points : !Points
 simit.extern @cells : !Cells
 
-func.func @stencil(%p : !Point, %g : !Cells) {
+func.func @cell(%c : !Cell) {
   return
 }
 
-func.func @grid() attributes {simit.export} {
+func.func @grid_edges() attributes {simit.export} {
+  %cells = simit.get_set @cells : !Cells
+  // expected-error @below {{maps over the edges of a grid are not supported by the loop lowering; map over its points 'through' it}}
+  simit.map @cell() to %cells : (!Cells) -> ()
+  return
+}
+
+// -----
+
+!Point = !simit.element<"Point", {x : f64}>
+!Cell = !simit.element<"Cell", {c : f64}>
+!Points = !simit.set<"points", !Point>
+!Cells = !simit.set<"cells", !Cell, grid 2 over "points">
+!A = !simit.tensor<["points", "points"] x f64>
+simit.extern @points : !Points
+simit.extern @cells : !Cells
+
+// A stencil row belongs to its point: (P[1, 0], p) is another point's row.
+func.func @transposed(%p : !Point, %g : !Cells) -> !A {
+  %one = arith.constant 1.0 : f64
+  %right = simit.grid_point %g, %p [1, 0] : !Cells, !Point
+  %A0 = simit.zeros : !A
+  // expected-error @below {{a matrix assembled through a grid can only be written at (p, p) and (p, P[offset]) of the mapped point p}}
+  %A1 = simit.insert %one into %A0[%right, %p] : f64 into !A, (!Point, !Point)
+  return %A1 : !A
+}
+
+func.func @grid() -> !simit.tensor<["points"] x f64> attributes {simit.export} {
   %points = simit.get_set @points : !Points
   %cells = simit.get_set @cells : !Cells
-  // expected-error @below {{grid stencils are not supported by the loop lowering yet}}
-  simit.map @stencil() to %points through %cells : (!Points, !Cells) -> ()
-  return
+  // expected-error @below {{cannot store this map's result 0 as a grid stencil}}
+  %A = simit.map @transposed() to %points through %cells : (!Points, !Cells) -> !A
+  %x = simit.field_read %points["x"] : !Points -> !simit.tensor<["points"] x f64>
+  %y = simit.matvec %A, %x : !A, !simit.tensor<["points"] x f64> -> !simit.tensor<["points"] x f64>
+  return %y : !simit.tensor<["points"] x f64>
 }
 
 // -----
@@ -157,4 +186,22 @@ func.func @complex_local() -> f64 attributes {simit.export} {
   %z = complex.constant [1.0, 2.0] : complex<f64>
   %r = complex.re %z : complex<f64>
   return %r : f64
+}
+
+// -----
+
+!Point = !simit.element<"Point", {m : f64}>
+!Points = !simit.set<"points", !Point>
+simit.extern @points : !Points
+
+func.func @direct(%p : !Point) -> f64 {
+  %m = simit.elem_read %p["m"] : !Point -> f64
+  // expected-error @below {{scalar result 0 of element function 'direct' must be the value of a variable}}
+  return %m : f64
+}
+
+func.func @scalar_not_a_variable() -> f64 attributes {simit.export} {
+  %points = simit.get_set @points : !Points
+  %t = simit.assemble @direct() to %points reduce <add> : (!Points) -> f64
+  return %t : f64
 }

@@ -212,9 +212,6 @@ end
     EXPECT_NEAR(chain.y.get(1) / std::pow(2.5, 200), 1.0, 1e-12);
   }
 }
-   EXPECT_EQ(llvm::toString(force.takeError()),
-             "unknown function 'force' (exported functions: forces, multiply)");
- }
 
 namespace {
 constexpr const char *kEnergy = R"sim(

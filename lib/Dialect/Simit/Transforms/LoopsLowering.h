@@ -20,6 +20,7 @@
 #include "llvm/ADT/StringMap.h"
 
 #include <functional>
+#include <tuple>
 
 namespace mlir {
 namespace simit {
@@ -173,6 +174,8 @@ public:
   // Blocks of system matrices outside maps (LowerMatrixBlocks.cpp):
   // simit.extract / simit.insert at (row, col).
   LogicalResult lowerMatrixBlockAccess(Operation *op);
+  /// The positions of blocks (row, col) of pattern matrices found so far.
+  SmallVector<std::tuple<Storage, Value, Value, Value>> blockPositions;
 
   // Index expressions (LowerIndexExpr.cpp).
   LogicalResult lowerIndexExpr(IndexExprOp op);

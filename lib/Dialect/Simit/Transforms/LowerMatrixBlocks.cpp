@@ -16,10 +16,27 @@ using namespace mlir;
 using namespace mlir::simit;
 using namespace mlir::simit::loops;
 
+/// Whether `value` is defined in the builder's insertion block or one
+/// enclosing it (so it can be used at the insertion point).
+static bool isVisible(OpBuilder &b, Value value) {
+  Block *defining = value.getParentBlock();
+  for (Block *block = b.getInsertionBlock(); block;
+       block = block->getParentOp() ? block->getParentOp()->getBlock()
+                                    : nullptr)
+    if (block == defining)
+      return true;
+  return false;
+}
+
 /// The position of block (row, col) in a matrix stored as `storage`, or -1.
 static Value findBlock(FunctionLowering &l, Location loc,
                        const Storage &storage, Value row, Value col) {
   OpBuilder &b = l.b;
+  // Patterns do not change while the function runs: a scan done earlier
+  // (the read of `A(q,q) = 1 + A(q,q)`) serves the write too.
+  for (auto &[s, r, c, position] : l.blockPositions)
+    if (s == storage && r == row && c == col && isVisible(b, position))
+      return position;
   Value none = l.indexConstant(-1);
   if (storage.kind == Storage::Kind::Diagonal) {
     Value onDiagonal =
@@ -49,6 +66,7 @@ static Value findBlock(FunctionLowering &l, Location loc,
             b, loc,
             ValueRange{arith::SelectOp::create(b, loc, match, k, found[0])});
       });
+  l.blockPositions.emplace_back(storage, row, col, scan.getResult(0));
   return scan.getResult(0);
 }
 

@@ -14,6 +14,9 @@
 
 #include "gtest/gtest.h"
 
+#include <cstdio>
+#include <unistd.h>
+
 using namespace simit;
 
 namespace {
@@ -268,4 +271,53 @@ TEST(SystemProgramsTest, LU) {
             "success");
   EXPECT_NEAR(x.get(0), 1.0, 1e-12);
   EXPECT_NEAR(x.get(1), 1.0, 1e-12);
+}
+
+// Block (0, 2) of a chain's matrix is not in its pattern (no edge joins
+// points 0 and 2): writing it stops the program with the lowering's
+// cf.assert instead of writing elsewhere.
+TEST(SystemProgramsTest, WritingABlockOutsideThePatternFails) {
+  constexpr const char *kSource = R"sim(
+element Point
+  x : float;
+end
+element Spring
+  k : float;
+end
+extern points  : set{Point};
+extern springs : set{Spring}(points, points);
+func laplace(s : Spring, p : (Point*2)) -> (L : matrix[points,points](float))
+  L(p(0),p(1)) = -s.k;
+end
+export func main()
+  var A = map laplace to springs reduce +;
+  for q in points
+    for r in points
+      A(q,r) = 1.0;
+    end
+  end
+end
+)sim";
+  Program program;
+  ASSERT_EQ(message(program.loadString(kSource, "outside.sim")), "success");
+  llvm::Expected<Function> compiled = program.compile("main");
+  ASSERT_TRUE(!!compiled) << llvm::toString(compiled.takeError());
+  Set points("points");
+  Set springs("springs", {&points, &points});
+  points.addField<double>("x");
+  auto k = springs.addField<double>("k");
+  for (int i = 0; i < 3; ++i)
+    points.add();
+  k.set(springs.add(0, 1), 1.0);
+  k.set(springs.add(1, 2), 1.0);
+  // The assertion's message goes to stdout (puts) before abort: route it
+  // to stderr, unbuffered, where the death test looks.
+  EXPECT_DEATH(
+      {
+        dup2(STDERR_FILENO, STDOUT_FILENO);
+        setvbuf(stdout, nullptr, _IONBF, 0);
+        bindAndRun(*compiled, {{"points", &points}, {"springs", &springs}});
+      },
+      "writing a block that is not in the sparsity of pattern of "
+               "'springs' over \\('points', 'points'\\)");
 }

@@ -11,6 +11,9 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Dense>
 #include <Eigen/LU>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
 
 #include <chrono>
 #include <cstdlib>
@@ -213,27 +216,140 @@ void storeMatrix(const RowMatrix &value, StridedMemRefType<double, 1> *m,
       flat[i * value.cols() + j] = value(i, j);
 }
 
+/// A factorisation handle: lufree/cholfree delete dense and sparse ones
+/// alike through the virtual destructor, and the solves check that a
+/// handle is of their kind.
+struct Factorisation {
+  virtual ~Factorisation() = default;
+};
+template <typename Solver> struct Factor : Factorisation {
+  Solver solver;
+};
 using LU = Eigen::PartialPivLU<Eigen::MatrixXd>;
 using LLT = Eigen::LLT<Eigen::MatrixXd>;
+using SparseMatrix = Eigen::SparseMatrix<double>;
+using SparseLU = Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>>;
+using SparseLLT = Eigen::SimplicialLLT<SparseMatrix>;
+
+template <typename Solver>
+Solver &solverOf(void *handle, const char *who, const char *kind) {
+  if (!handle)
+    llvm::report_fatal_error(llvm::Twine(who) + ": null factorisation");
+  auto *factor = dynamic_cast<Factor<Solver> *>(
+      static_cast<Factorisation *>(handle));
+  if (!factor)
+    llvm::report_fatal_error(llvm::Twine(who) + ": the handle is not " + kind);
+  return factor->solver;
+}
+
+/// The matrix of BCSR arrays with square blocks of b x b (b =
+/// values->sizes[1]) as an Eigen sparse matrix.
+SparseMatrix asSparse(StridedMemRefType<int32_t, 1> *rowptr,
+                      StridedMemRefType<int32_t, 1> *colidx,
+                      StridedMemRefType<double, 3> *values, const char *who) {
+  int64_t rows = rowptr->sizes[0] - 1, b = values->sizes[1];
+  if (!isContiguous(*rowptr) || !isContiguous(*colidx) ||
+      !isContiguous(*values) || values->sizes[2] != b ||
+      colidx->sizes[0] < values->sizes[0])
+    llvm::report_fatal_error(llvm::Twine(who) +
+                             ": malformed BCSR arrays of a square matrix");
+  const int32_t *ptr = rowptr->data + rowptr->offset;
+  const int32_t *cols = colidx->data + colidx->offset;
+  const double *vals = values->data + values->offset;
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(static_cast<size_t>(ptr[rows]) * b * b);
+  for (int64_t r = 0; r < rows; ++r)
+    for (int32_t k = ptr[r]; k < ptr[r + 1]; ++k)
+      for (int64_t i = 0; i < b; ++i)
+        for (int64_t j = 0; j < b; ++j)
+          entries.emplace_back(r * b + i, cols[k] * b + j,
+                               vals[(static_cast<int64_t>(k) * b + i) * b + j]);
+  SparseMatrix matrix(rows * b, rows * b);
+  matrix.setFromTriplets(entries.begin(), entries.end());
+  return matrix;
+}
+
+/// x = solve(b) for system vectors memref<?xBxf64>.
+template <typename Solver>
+void solveSystem(const Solver &solver, StridedMemRefType<double, 2> *b,
+                 StridedMemRefType<double, 2> *x, const char *who) {
+  int64_t n = solver.rows();
+  if (!isContiguous(*b) || !isContiguous(*x) ||
+      b->sizes[0] * b->sizes[1] != n || x->sizes[0] * x->sizes[1] != n)
+    llvm::report_fatal_error(llvm::Twine(who) +
+                             ": vector size does not match the matrix");
+  Eigen::Map<const Eigen::VectorXd> rhs(b->data + b->offset, n);
+  Eigen::VectorXd solution = solver.solve(rhs);
+  Eigen::Map<Eigen::VectorXd>(x->data + x->offset, n) = solution;
+}
 
 } // namespace
 
 extern "C" void *_mlir_ciface_simit_rt_lu(StridedMemRefType<double, 1> *a,
                                           int64_t n) {
-  return new LU(Eigen::MatrixXd(asMatrix(a, n, n, "lu")));
+  auto *factor = new Factor<LU>;
+  factor->solver.compute(Eigen::MatrixXd(asMatrix(a, n, n, "lu")));
+  return static_cast<Factorisation *>(factor);
 }
 
 extern "C" void *_mlir_ciface_simit_rt_chol(StridedMemRefType<double, 1> *a,
                                             int64_t n) {
-  return new LLT(Eigen::MatrixXd(asMatrix(a, n, n, "chol")));
+  auto *factor = new Factor<LLT>;
+  factor->solver.compute(Eigen::MatrixXd(asMatrix(a, n, n, "chol")));
+  return static_cast<Factorisation *>(factor);
+}
+
+extern "C" void *_mlir_ciface_simit_rt_lu_bcsr(
+    StridedMemRefType<int32_t, 1> *rowptr,
+    StridedMemRefType<int32_t, 1> *colidx,
+    StridedMemRefType<double, 3> *values) {
+  SparseMatrix matrix = asSparse(rowptr, colidx, values, "lu");
+  auto *factor = new Factor<SparseLU>;
+  factor->solver.analyzePattern(matrix);
+  factor->solver.factorize(matrix);
+  if (factor->solver.info() != Eigen::Success)
+    llvm::report_fatal_error("lu: the system matrix is singular");
+  return static_cast<Factorisation *>(factor);
+}
+
+extern "C" void *_mlir_ciface_simit_rt_chol_bcsr(
+    StridedMemRefType<int32_t, 1> *rowptr,
+    StridedMemRefType<int32_t, 1> *colidx,
+    StridedMemRefType<double, 3> *values) {
+  SparseMatrix matrix = asSparse(rowptr, colidx, values, "chol");
+  // SimplicialLLT reads one triangle only: a non-symmetric matrix must not
+  // pass as the symmetric matrix of its lower triangle.
+  SparseMatrix transposed = matrix.transpose();
+  if ((matrix - transposed).norm() > 1e-12 * matrix.norm())
+    llvm::report_fatal_error("chol: the system matrix is not symmetric");
+  auto *factor = new Factor<SparseLLT>;
+  factor->solver.compute(matrix);
+  if (factor->solver.info() != Eigen::Success)
+    llvm::report_fatal_error(
+        "chol: the system matrix is not positive definite");
+  return static_cast<Factorisation *>(factor);
+}
+
+extern "C" void _mlir_ciface_simit_rt_lusolve_bcsr(
+    void *handle, StridedMemRefType<double, 2> *b,
+    StridedMemRefType<double, 2> *x) {
+  solveSystem(solverOf<SparseLU>(handle, "lusolve",
+                                 "a sparse LU factorisation"),
+              b, x, "lusolve");
+}
+
+extern "C" void _mlir_ciface_simit_rt_lltsolve_bcsr(
+    void *handle, StridedMemRefType<double, 2> *b,
+    StridedMemRefType<double, 2> *x) {
+  solveSystem(solverOf<SparseLLT>(handle, "lltsolve",
+                                  "a sparse Cholesky factorisation"),
+              b, x, "lltsolve");
 }
 
 extern "C" void _mlir_ciface_simit_rt_lusolve(void *handle,
                                               StridedMemRefType<double, 1> *b,
                                               StridedMemRefType<double, 1> *x) {
-  if (!handle)
-    llvm::report_fatal_error("lusolve: null factorisation");
-  auto &lu = *static_cast<LU *>(handle);
+  auto &lu = solverOf<LU>(handle, "lusolve", "a dense LU factorisation");
   RowMatrix rhs = asMatrix(b, lu.rows(), 1, "lusolve");
   storeMatrix(RowMatrix(lu.solve(Eigen::MatrixXd(rhs))), x, "lusolve");
 }
@@ -241,9 +357,8 @@ extern "C" void _mlir_ciface_simit_rt_lusolve(void *handle,
 extern "C" void _mlir_ciface_simit_rt_lltsolve(void *handle,
                                                StridedMemRefType<double, 1> *b,
                                                StridedMemRefType<double, 1> *x) {
-  if (!handle)
-    llvm::report_fatal_error("lltsolve: null factorisation");
-  auto &llt = *static_cast<LLT *>(handle);
+  auto &llt = solverOf<LLT>(handle, "lltsolve",
+                           "a dense Cholesky factorisation");
   RowMatrix rhs = asMatrix(b, llt.rows(), 1, "lltsolve");
   storeMatrix(RowMatrix(llt.solve(Eigen::MatrixXd(rhs))), x, "lltsolve");
 }
@@ -251,9 +366,7 @@ extern "C" void _mlir_ciface_simit_rt_lltsolve(void *handle,
 extern "C" void _mlir_ciface_simit_rt_lumatsolve(
     void *handle, StridedMemRefType<double, 1> *b,
     StridedMemRefType<double, 1> *x, int64_t cols) {
-  if (!handle)
-    llvm::report_fatal_error("lumatsolve: null factorisation");
-  auto &lu = *static_cast<LU *>(handle);
+  auto &lu = solverOf<LU>(handle, "lumatsolve", "a dense LU factorisation");
   RowMatrix rhs = asMatrix(b, lu.rows(), cols, "lumatsolve");
   storeMatrix(RowMatrix(lu.solve(Eigen::MatrixXd(rhs))), x, "lumatsolve");
 }
@@ -261,17 +374,18 @@ extern "C" void _mlir_ciface_simit_rt_lumatsolve(
 extern "C" void _mlir_ciface_simit_rt_lltmatsolve(
     void *handle, StridedMemRefType<double, 1> *b,
     StridedMemRefType<double, 1> *x, int64_t cols) {
-  if (!handle)
-    llvm::report_fatal_error("lltmatsolve: null factorisation");
-  auto &llt = *static_cast<LLT *>(handle);
+  auto &llt = solverOf<LLT>(handle, "lltmatsolve",
+                           "a dense Cholesky factorisation");
   RowMatrix rhs = asMatrix(b, llt.rows(), cols, "lltmatsolve");
   storeMatrix(RowMatrix(llt.solve(Eigen::MatrixXd(rhs))), x, "lltmatsolve");
 }
 
-extern "C" void simit_rt_lufree(void *handle) { delete static_cast<LU *>(handle); }
+extern "C" void simit_rt_lufree(void *handle) {
+  delete static_cast<Factorisation *>(handle);
+}
 
 extern "C" void simit_rt_cholfree(void *handle) {
-  delete static_cast<LLT *>(handle);
+  delete static_cast<Factorisation *>(handle);
 }
 
 extern "C" void _mlir_ciface_simit_rt_triangularSolve(
@@ -320,6 +434,14 @@ simit::runtimeSymbolMap(llvm::orc::MangleAndInterner interner) {
       reinterpret_cast<void *>(&_mlir_ciface_simit_rt_lumatsolve));
   add("_mlir_ciface_simit_rt_lltmatsolve",
       reinterpret_cast<void *>(&_mlir_ciface_simit_rt_lltmatsolve));
+  add("_mlir_ciface_simit_rt_lu_bcsr",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_lu_bcsr));
+  add("_mlir_ciface_simit_rt_chol_bcsr",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_chol_bcsr));
+  add("_mlir_ciface_simit_rt_lusolve_bcsr",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_lusolve_bcsr));
+  add("_mlir_ciface_simit_rt_lltsolve_bcsr",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_lltsolve_bcsr));
   add("simit_rt_lufree", reinterpret_cast<void *>(&simit_rt_lufree));
   add("simit_rt_cholfree", reinterpret_cast<void *>(&simit_rt_cholfree));
   add("_mlir_ciface_simit_rt_triangularSolve",

@@ -41,7 +41,7 @@ struct Grid {
 
 /// Compiles `main` of test/Programs/System/<name>.
 llvm::Expected<Function> compileMain(Program &program, llvm::StringRef name) {
-  std::string path = (SIMIT_SYSTEM_PROGRAMS "/" + name).str();
+  std::string path = (SIMIT_SOURCE_DIR "/test/Programs/System/" + name).str();
   if (llvm::Error err = program.loadFile(path))
     return std::move(err);
   return program.compile("main");

@@ -118,3 +118,35 @@ TEST(RuntimeFunctionsTest, LargeFreedBlocksAreReusedBySize) {
   _mlir_memref_to_llvm_free(small);
   _mlir_memref_to_llvm_free(nullptr);
 }
+
+// [1 2; 0 1] as 1x1 blocks: SimplicialLLT would read one triangle only, so
+// chol must reject the non-symmetric matrix rather than factorise [1 0; 0 1]
+// or [1 2; 2 1].
+TEST(RuntimeFunctionsTest, SparseCholeskyRejectsANonSymmetricMatrix) {
+  std::vector<int32_t> rowptr{0, 2, 3}, colidx{0, 1, 1};
+  std::vector<double> values{1.0, 2.0, 1.0};
+  auto rp = describe<int32_t, 1>(rowptr.data(), {3});
+  auto ci = describe<int32_t, 1>(colidx.data(), {3});
+  auto vals = describe<double, 3>(values.data(), {3, 1, 1});
+  EXPECT_DEATH(_mlir_ciface_simit_rt_chol_bcsr(&rp, &ci, &vals),
+               "chol: the system matrix is not symmetric");
+}
+
+// The LU handle of [4 1; 3 2] (blocks 1x1) solves b = (5, 5) to x = (1, 1)
+// (det 5, x = (2*5 - 1*5, 4*5 - 3*5) / 5); a Cholesky solve refuses it.
+TEST(RuntimeFunctionsTest, SparseLUSolvesAndHandlesAreChecked) {
+  std::vector<int32_t> rowptr{0, 2, 4}, colidx{0, 1, 0, 1};
+  std::vector<double> values{4.0, 1.0, 3.0, 2.0}, bv{5.0, 5.0}, x{0.0, 0.0};
+  auto rp = describe<int32_t, 1>(rowptr.data(), {3});
+  auto ci = describe<int32_t, 1>(colidx.data(), {4});
+  auto vals = describe<double, 3>(values.data(), {4, 1, 1});
+  auto bm = describe<double, 2>(bv.data(), {2, 1});
+  auto xm = describe<double, 2>(x.data(), {2, 1});
+  void *lu = _mlir_ciface_simit_rt_lu_bcsr(&rp, &ci, &vals);
+  _mlir_ciface_simit_rt_lusolve_bcsr(lu, &bm, &xm);
+  EXPECT_NEAR(x[0], 1.0, 1e-12);
+  EXPECT_NEAR(x[1], 1.0, 1e-12);
+  EXPECT_DEATH(_mlir_ciface_simit_rt_lltsolve_bcsr(lu, &bm, &xm),
+               "lltsolve: the handle is not a sparse Cholesky factorisation");
+  simit_rt_lufree(lu);
+}

@@ -82,6 +82,28 @@ void _mlir_ciface_simit_rt_lltmatsolve(void *handle,
                                        StridedMemRefType<double, 1> *b,
                                        StridedMemRefType<double, 1> *x,
                                        int64_t cols);
+/// Sparse solvers of square system matrices (Eigen SparseLU with COLAMD
+/// ordering, SimplicialLLT), BCSR arrays as for the CG solver and system
+/// vectors memref<?xBxf64>. chol rejects (report_fatal_error) a matrix
+/// that is not symmetric or not positive definite, lu a singular one. The
+/// handles are freed by lufree/cholfree like the dense ones.
+/// MLIR (attributes {llvm.emit_c_interface}):
+///   @simit_rt_lu_bcsr(memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>)
+///       -> !llvm.ptr, likewise @simit_rt_chol_bcsr
+///   @simit_rt_lusolve_bcsr(!llvm.ptr, memref<?x?xf64> b, memref<?x?xf64> x),
+///       likewise @simit_rt_lltsolve_bcsr
+void *_mlir_ciface_simit_rt_lu_bcsr(StridedMemRefType<int32_t, 1> *rowptr,
+                                    StridedMemRefType<int32_t, 1> *colidx,
+                                    StridedMemRefType<double, 3> *values);
+void *_mlir_ciface_simit_rt_chol_bcsr(StridedMemRefType<int32_t, 1> *rowptr,
+                                      StridedMemRefType<int32_t, 1> *colidx,
+                                      StridedMemRefType<double, 3> *values);
+void _mlir_ciface_simit_rt_lusolve_bcsr(void *handle,
+                                        StridedMemRefType<double, 2> *b,
+                                        StridedMemRefType<double, 2> *x);
+void _mlir_ciface_simit_rt_lltsolve_bcsr(void *handle,
+                                         StridedMemRefType<double, 2> *b,
+                                         StridedMemRefType<double, 2> *x);
 void simit_rt_lufree(void *handle);
 void simit_rt_cholfree(void *handle);
 void _mlir_ciface_simit_rt_triangularSolve(StridedMemRefType<double, 1> *a,

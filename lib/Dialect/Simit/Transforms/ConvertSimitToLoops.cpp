@@ -57,6 +57,10 @@ std::string Storage::describe() const {
     return ("stencil of grid '" + edges.getValue() + "' with " +
             Twine(offsets.size()) + " offsets")
         .str();
+  case Kind::Incidence:
+    return ("incidence of '" + edges.getValue() + "' over ('" +
+            rows.getValue() + "', '" + cols.getValue() + "')")
+        .str();
   }
   llvm_unreachable("storage kind");
 }
@@ -229,10 +233,13 @@ Value FunctionLowering::getField(StringAttr set, StringAttr field,
 }
 
 Value FunctionLowering::getEndpoints(SetType set) {
+  return getEndpoints(set.getName(), set.getCardinality());
+}
+
+Value FunctionLowering::getEndpoints(StringAttr set, int64_t cardinality) {
   return getBinding(
-      BindingKind::Endpoints, {set.getName().getValue()},
-      MemRefType::get({ShapedType::kDynamic, set.getCardinality()},
-                      b.getI32Type()));
+      BindingKind::Endpoints, {set.getValue()},
+      MemRefType::get({ShapedType::kDynamic, cardinality}, b.getI32Type()));
 }
 
 Value FunctionLowering::getPatternArray(BindingKind kind, StringAttr edges,
@@ -290,8 +297,26 @@ Value FunctionLowering::numBlocks(const Storage &storage,
   case Storage::Kind::Stencil:
     return arith::MulIOp::create(b, loc, getSetSize(storage.rows),
                                  indexConstant(storage.offsets.size()));
+  case Storage::Kind::Incidence:
+    return arith::MulIOp::create(b, loc, getSetSize(storage.edges),
+                                 indexConstant(storage.cardinality));
   }
   llvm_unreachable("storage kind");
+}
+
+SmallVector<Value> FunctionLowering::blockIndices(MemRefType type,
+                                                 ArrayRef<Value> prefix,
+                                                 int64_t c) {
+  SmallVector<Value> indices(prefix);
+  SmallVector<int64_t> inner;
+  for (int64_t d = type.getRank() - 1; d >= static_cast<int64_t>(prefix.size());
+       --d) {
+    inner.push_back(c % type.getDimSize(d));
+    c /= type.getDimSize(d);
+  }
+  for (int64_t i : llvm::reverse(inner))
+    indices.push_back(indexConstant(i));
+  return indices;
 }
 
 void FunctionLowering::fill(Location loc, Value array, Value scalar) {
@@ -657,15 +682,20 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
   }
   if (auto alloc = dyn_cast<AllocOp>(op)) {
     Type type = cast<RefType>(alloc.getType()).getValueType();
+    // A matrix variable's storage is that of the first matrix stored to
+    // it: its array is made there.
     if (cast<SystemTensorType>(type).getOrder() != 1)
-      return op->emitError("variables holding system matrices are not "
-                           "supported by the loop lowering");
+      return success();
     map(alloc, allocSystem(loc, type, Storage::dense()));
+    storages[alloc] = Storage::dense();
     return success();
   }
   if (auto load = dyn_cast<LoadOp>(op)) {
     Value buffer = lookup(load.getRef());
-    storages[load] = Storage::dense();
+    if (!buffer)
+      return op->emitError("a variable holding a system matrix is read "
+                           "before a matrix is stored to it");
+    storages[load] = storages.lookup(load.getRef());
     if (canAlias(op, [&](Operation *w) {
           auto store = dyn_cast<StoreOp>(w);
           return (store && store.getRef() == load.getRef()) ||
@@ -684,6 +714,34 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
   }
   if (auto store = dyn_cast<StoreOp>(op)) {
     Value value = lookup(store.getValue()), buffer = lookup(store.getRef());
+    Storage storage = storages.lookup(store.getValue());
+    if (!buffer) {
+      // The first store to a matrix variable, which must be where the
+      // variable is declared so that its array dominates every use.
+      Operation *alloc = store.getRef().getDefiningOp();
+      if (!alloc || alloc->getBlock() != op->getBlock())
+        return op->emitError("a variable holding a system matrix must be "
+                             "first assigned where it is declared");
+      if (!storage.isMatrix())
+        return op->emitError("a variable holding a system matrix must be "
+                             "first assigned an assembled matrix");
+      storages[store.getRef()] = storage;
+      // A fresh matrix used only here becomes the variable's array.
+      if (store.getValue().hasOneUse() &&
+          isa_and_present<MapOp, AssembleOp, IndexExprOp>(
+              store.getValue().getDefiningOp())) {
+        map(store.getRef(), value);
+        return success();
+      }
+      buffer = allocSystem(loc, store.getValue().getType(), storage,
+                           /*zeroFill=*/false);
+      map(store.getRef(), buffer);
+    } else if (storage != storages.lookup(store.getRef())) {
+      return op->emitError("a variable stored as ")
+             << storages.lookup(store.getRef()).describe()
+             << " cannot be assigned a value stored as "
+             << storage.describe();
+    }
     if (value != buffer)
       memref::CopyOp::create(b, loc, value, buffer);
     return success();
@@ -691,8 +749,7 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
   if (auto insert = dyn_cast<InsertOp>(op)) {
     auto type = cast<SystemTensorType>(insert.getTensor().getType());
     if (type.getOrder() != 1)
-      return op->emitError("writing one block of a system matrix is not "
-                           "supported by the loop lowering");
+      return lowerMatrixBlockAccess(op);
     // `v(p) = b` on a variable (load, insert, store back) writes the
     // variable's array in place; otherwise the vector is copied first.
     Value tensor = lookup(insert.getTensor());
@@ -713,18 +770,9 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
     Value position = lookup(insert.getIndices()[0]);
     Value value = lookup(insert.getValue());
     for (int64_t c = 0, n = numComponents(insert.getValue().getType()); c < n;
-         ++c) {
-      SmallVector<Value> indices{position};
-      int64_t rest = c;
-      SmallVector<int64_t> blockIdx;
-      for (int64_t d = memref.getRank() - 1; d >= 1; --d) {
-        blockIdx.push_back(rest % memref.getDimSize(d));
-        rest /= memref.getDimSize(d);
-      }
-      for (int64_t i : llvm::reverse(blockIdx))
-        indices.push_back(indexConstant(i));
-      memref::StoreOp::create(b, loc, component(value, c), target, indices);
-    }
+         ++c)
+      memref::StoreOp::create(b, loc, component(value, c), target,
+                              blockIndices(memref, {position}, c));
     storages[insert] = Storage::dense();
     map(insert, target);
     return success();
@@ -732,25 +780,15 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
   if (auto extract = dyn_cast<ExtractOp>(op)) {
     auto type = cast<SystemTensorType>(extract.getTensor().getType());
     if (type.getOrder() != 1)
-      return op->emitError("reading one block of a system matrix is not "
-                           "supported by the loop lowering");
+      return lowerMatrixBlockAccess(op);
     Value array = lookup(extract.getTensor());
     Value position = lookup(extract.getIndices()[0]);
     int64_t n = numComponents(extract.getType());
     SmallVector<Value> components;
     auto memref = cast<MemRefType>(array.getType());
-    for (int64_t c = 0; c < n; ++c) {
-      SmallVector<Value> indices{position};
-      int64_t rest = c;
-      SmallVector<int64_t> blockIdx;
-      for (int64_t d = memref.getRank() - 1; d >= 1; --d) {
-        blockIdx.push_back(rest % memref.getDimSize(d));
-        rest /= memref.getDimSize(d);
-      }
-      for (int64_t i : llvm::reverse(blockIdx))
-        indices.push_back(indexConstant(i));
-      components.push_back(memref::LoadOp::create(b, loc, array, indices));
-    }
+    for (int64_t c = 0; c < n; ++c)
+      components.push_back(memref::LoadOp::create(
+          b, loc, array, blockIndices(memref, {position}, c)));
     map(extract, n == 1 && !isa<ShapedType>(extract.getType())
                      ? components[0]
                      : fromComponents(convertType(extract.getType()),
@@ -770,6 +808,38 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
                                "loop lowering";
 }
 
+func::FuncOp FunctionLowering::declareRuntime(Location loc, StringRef name,
+                                              FunctionType type) {
+  auto callee = module.lookupSymbol<func::FuncOp>(name);
+  if (callee)
+    return callee.getFunctionType() == type ? callee : func::FuncOp();
+  OpBuilder::InsertionGuard guard(b);
+  b.setInsertionPointToEnd(module.getBody());
+  callee = func::FuncOp::create(b, loc, name, type);
+  callee.setPrivate();
+  callee->setAttr("llvm.emit_c_interface", UnitAttr::get(b.getContext()));
+  return callee;
+}
+
+Value FunctionLowering::asRuntimeBlocks(Location loc, Value array,
+                                        MemRefType target) {
+  // memref<?xf64> becomes memref<?x1xf64> or memref<?x1x1xf64>.
+  auto type = cast<MemRefType>(array.getType());
+  int64_t rank = target.getRank();
+  if (type.getRank() == 1 && rank > 1) {
+    SmallVector<int64_t> shape(rank, 1);
+    shape[0] = ShapedType::kDynamic;
+    SmallVector<OpFoldResult> sizes(rank, b.getIndexAttr(1));
+    sizes[0] = memref::DimOp::create(b, loc, array, 0).getResult();
+    ReassociationIndices all(rank);
+    std::iota(all.begin(), all.end(), 0);
+    array = memref::ExpandShapeOp::create(
+        b, loc, MemRefType::get(shape, type.getElementType()), array,
+        ArrayRef<ReassociationIndices>{all}, sizes);
+  }
+  return memref::CastOp::create(b, loc, target, array);
+}
+
 /// The runtime's conjugate gradient solver (lib/Engine/RuntimeFunctions).
 static constexpr llvm::StringLiteral kCgSolve = "simit_rt_cg_solve_bcsr";
 
@@ -782,10 +852,13 @@ LogicalResult FunctionLowering::lowerSolve(SolveOp op) {
                         "from an edge set; this matrix is stored as ")
            << storage.describe();
   SmallVector<int64_t> block = matrixType.getBlockShape();
+  // Scalar blocks are 1x1 blocks to the runtime.
+  if (block.empty())
+    block = {1, 1};
   if (!matrixType.getComponentType().isF64() || block.size() != 2 ||
       block[0] != block[1])
-    return op.emitError("the runtime solver takes f64 matrices of square "
-                        "blocks");
+    return op.emitError("the runtime solver takes f64 matrices of scalars or "
+                        "of square blocks");
 
   // func.func private @simit_rt_cg_solve_bcsr(rowptr, colidx, values, b, x,
   //     tolerance, maxIterations) -> iterations, declared once.
@@ -793,21 +866,14 @@ LogicalResult FunctionLowering::lowerSolve(SolveOp op) {
   Type f64 = b.getF64Type();
   int64_t dyn = ShapedType::kDynamic;
   Type indexArray = MemRefType::get({dyn}, b.getI32Type());
-  Type values = MemRefType::get({dyn, dyn, dyn}, f64);
-  Type vector = MemRefType::get({dyn, dyn}, f64);
+  auto values = MemRefType::get({dyn, dyn, dyn}, f64);
+  auto vector = MemRefType::get({dyn, dyn}, f64);
   auto type = FunctionType::get(
       ctx, {indexArray, indexArray, values, vector, vector, f64, b.getI32Type()},
       {b.getI32Type()});
-  auto callee = module.lookupSymbol<func::FuncOp>(kCgSolve);
-  if (!callee) {
-    OpBuilder::InsertionGuard guard(b);
-    b.setInsertionPointToEnd(module.getBody());
-    callee = func::FuncOp::create(b, loc, kCgSolve, type);
-    callee.setPrivate();
-    callee->setAttr("llvm.emit_c_interface", UnitAttr::get(ctx));
-  } else if (callee.getFunctionType() != type) {
+  func::FuncOp callee = declareRuntime(loc, kCgSolve, type);
+  if (!callee)
     return op.emitError("@") << kCgSolve << " is declared with another type";
-  }
 
   // x starts at zero; CG stops when r.r <= 1e-20 or after 2 n iterations
   // (n unknowns: exact arithmetic needs at most n).
@@ -819,17 +885,15 @@ LogicalResult FunctionLowering::lowerSolve(SolveOp op) {
       arith::MulIOp::create(b, loc, unknowns, indexConstant(2)));
   Value tolerance =
       arith::ConstantOp::create(b, loc, b.getF64FloatAttr(1e-20));
-  auto cast = [&](Value v, Type t) {
-    return memref::CastOp::create(b, loc, t, v).getResult();
-  };
   func::CallOp::create(
       b, loc, callee,
       ValueRange{getPatternArray(BindingKind::PatternRowPtr, storage.edges,
                                  storage.rows, storage.cols),
                  getPatternArray(BindingKind::PatternColIdx, storage.edges,
                                  storage.rows, storage.cols),
-                 cast(lookup(op.getMatrix()), values),
-                 cast(lookup(op.getRhs()), vector), cast(x, vector), tolerance,
+                 asRuntimeBlocks(loc, lookup(op.getMatrix()), values),
+                 asRuntimeBlocks(loc, lookup(op.getRhs()), vector),
+                 asRuntimeBlocks(loc, x, vector), tolerance,
                  limit});
   storages[op] = Storage::dense();
   map(op, x);
@@ -848,9 +912,90 @@ static bool isSolverFunction(StringRef name) {
       name);
 }
 
+LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
+  Location loc = call.getLoc();
+  StringRef name = call.getCallee();
+  bool factorise = name == "simit_rt_lu" || name == "simit_rt_chol";
+  bool solve = name == "simit_rt_lusolve" || name == "simit_rt_lltsolve";
+  Value matrix = factorise ? call.getOperand(0) : Value();
+  Storage storage = matrix ? storages.lookup(matrix) : Storage();
+  auto f64Blocks = [](Type t, unsigned order) {
+    auto type = dyn_cast<SystemTensorType>(t);
+    if (!type || !type.isSystem() || type.getOrder() != order ||
+        !type.getComponentType().isF64())
+      return false;
+    SmallVector<int64_t> block = type.getBlockShape();
+    return block.empty() || (order == 2 && block.size() == 2 &&
+                             block[0] == block[1]) ||
+           (order == 1 && block.size() == 1);
+  };
+  if (factorise && !(f64Blocks(matrix.getType(), 2) &&
+                     storage.kind == Storage::Kind::Pattern &&
+                     storage.rows == storage.cols))
+    return call.emitError("'@")
+           << name
+           << "' on a system matrix needs a square f64 matrix of scalars or "
+              "square blocks assembled from an edge set; this one is stored "
+              "as "
+           << storage.describe();
+  if (solve && !(call.getNumOperands() == 2 &&
+                 isa<OpaqueType>(call.getOperand(0).getType()) &&
+                 f64Blocks(call.getOperand(1).getType(), 1) &&
+                 call.getNumResults() == 1 &&
+                 call.getResult(0).getType() == call.getOperand(1).getType()))
+    return call.emitError("'@") << name
+                                << "' on system vectors needs an f64 vector "
+                                   "and a factorisation handle";
+  if (!factorise && !solve)
+    return call.emitError("'@") << name
+                                << "' is not supported on system tensors by "
+                                   "the loop lowering";
+
+  MLIRContext *ctx = b.getContext();
+  Type ptr = LLVM::LLVMPointerType::get(ctx);
+  int64_t dyn = ShapedType::kDynamic;
+  auto indexArray = MemRefType::get({dyn}, b.getI32Type());
+  auto values = MemRefType::get({dyn, dyn, dyn}, b.getF64Type());
+  auto vector = MemRefType::get({dyn, dyn}, b.getF64Type());
+  std::string runtimeName = (name + "_bcsr").str();
+  if (factorise) {
+    auto type = FunctionType::get(ctx, {indexArray, indexArray, values}, {ptr});
+    func::FuncOp callee = declareRuntime(loc, runtimeName, type);
+    if (!callee)
+      return call.emitError("@") << runtimeName
+                                 << " is declared with another type";
+    auto lowered = func::CallOp::create(
+        b, loc, callee,
+        ValueRange{getPatternArray(BindingKind::PatternRowPtr, storage.edges,
+                                   storage.rows, storage.cols),
+                   getPatternArray(BindingKind::PatternColIdx, storage.edges,
+                                   storage.rows, storage.cols),
+                   asRuntimeBlocks(loc, lookup(matrix), values)});
+    map(call.getResult(0), lowered.getResult(0));
+    return success();
+  }
+  auto type = FunctionType::get(ctx, {ptr, vector, vector}, {});
+  func::FuncOp callee = declareRuntime(loc, runtimeName, type);
+  if (!callee)
+    return call.emitError("@") << runtimeName
+                               << " is declared with another type";
+  Value x = allocSystem(loc, call.getResult(0).getType(), Storage::dense(),
+                        /*zeroFill=*/false);
+  func::CallOp::create(
+      b, loc, callee,
+      ValueRange{lookup(call.getOperand(0)),
+                 asRuntimeBlocks(loc, lookup(call.getOperand(1)), vector),
+                 asRuntimeBlocks(loc, x, vector)});
+  storages[call.getResult(0)] = Storage::dense();
+  map(call.getResult(0), x);
+  return success();
+}
+
 LogicalResult FunctionLowering::lowerSolverCall(func::CallOp call,
                                                 func::FuncOp callee) {
   Location loc = call.getLoc();
+  if (llvm::any_of(call.getOperandTypes(), isSystem))
+    return lowerSystemSolverCall(call);
   MLIRContext *ctx = b.getContext();
   StringRef name = call.getCallee();
   Type f64 = b.getF64Type();
@@ -1249,6 +1394,50 @@ LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {
       }
       continue;
     }
+    if (auto system = dyn_cast<SystemTensorType>(type);
+        system && system.isSystem()) {
+      if (system.getOrder() != 1)
+        return op->emitError("printing system matrices is not supported by "
+                             "the loop lowering yet");
+      // A system vector: its elements in set order, separated by spaces
+      // when they are scalars, one element's block per line otherwise
+      // (the block's components separated by spaces).
+      Value array = lookup(value);
+      auto memref = cast<MemRefType>(array.getType());
+      int64_t blockSize = numComponents(system.getBlockType());
+      Value size = memref::DimOp::create(b, loc, array, 0);
+      LogicalResult inner = success();
+      scf::ForOp::create(
+          b, loc, indexConstant(0), size, indexConstant(1), ValueRange{},
+          [&](OpBuilder &nb, Location, Value i, ValueRange) {
+            OpBuilder::InsertionGuard guard(b);
+            b.setInsertionPoint(nb.getInsertionBlock(),
+                                nb.getInsertionPoint());
+            Value notFirst = arith::CmpIOp::create(
+                b, loc, arith::CmpIPredicate::ne, i, indexConstant(0));
+            scf::IfOp::create(b, loc, notFirst, [&](OpBuilder &tb, Location) {
+              OpBuilder::InsertionGuard guard(b);
+              b.setInsertionPoint(tb.getInsertionBlock(),
+                                  tb.getInsertionPoint());
+              callRuntime(loc, "simit_rt_print_str", {},
+                          {stringConstant(blockSize == 1 ? " " : "\n")});
+              scf::YieldOp::create(b, loc);
+            });
+            for (int64_t c = 0; c < blockSize; ++c) {
+              if (c > 0)
+                callRuntime(loc, "simit_rt_print_str", {},
+                            {stringConstant(" ")});
+              Value scalar = memref::LoadOp::create(
+                  b, loc, array, blockIndices(memref, {i}, c));
+              if (failed(printScalar(scalar)))
+                inner = failure();
+            }
+            scf::YieldOp::create(b, loc);
+          });
+      if (failed(inner))
+        return failure();
+      continue;
+    }
     if (isa<SystemTensorType>(type))
       return op->emitError("printing system tensors is not supported by the "
                            "loop lowering yet");
@@ -1395,11 +1584,17 @@ struct ConvertSimitToLoops
 
     // Element functions now live in the set loops and externs are
     // bindings: every other function on simit values is gone.
+    // Declarations of runtime functions that no lowered call uses (those
+    // replaced by their _bcsr forms) still have simit types: gone too.
     SmallVector<Operation *> dead;
     for (Operation &op : module.getOps()) {
       auto function = dyn_cast<func::FuncOp>(op);
+      bool unusedRuntime =
+          function && function.isExternal() &&
+          function->hasAttr("simit.runtime_function") &&
+          SymbolTable::symbolKnownUseEmpty(function, module);
       if ((function && !function.isExternal() && usesSimitDialect(function)) ||
-          isa<ExternOp>(op))
+          unusedRuntime || isa<ExternOp>(op))
         dead.push_back(&op);
     }
     for (Operation *op : dead)

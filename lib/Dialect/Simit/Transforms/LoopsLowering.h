@@ -6,7 +6,8 @@
 // as the lowering first needs them. The implementation is split by subject:
 // ConvertSimitToLoops.cpp (driver, bindings, host-level ops and control
 // flow), LowerLocalTensors.cpp (small dense tensors as flat vectors),
-// LowerMaps.cpp (map/assemble as set loops) and LowerIndexExpr.cpp.
+// LowerMaps.cpp (map/assemble as set loops), LowerMatrixBlocks.cpp (one
+// block of a matrix) and LowerIndexExpr.cpp.
 //
 //===----------------------------------------------------------------------===//
 
@@ -19,6 +20,7 @@
 #include "llvm/ADT/StringMap.h"
 
 #include <functional>
+#include <tuple>
 
 namespace mlir {
 namespace simit {
@@ -36,15 +38,22 @@ struct Storage {
     /// A matrix over (points, points) assembled through a grid: one dense
     /// array of blocks per stencil offset, block k * |points| + r is
     /// (r, r + offsets[k]) with periodic wrap-around; no index arrays.
-    Stencil
+    Stencil,
+    /// A matrix over (edges, endpoint set) assembled from the edge set:
+    /// row e holds one block per endpoint, block e * c + k at column
+    /// endpoint_k(e) (the edge set's endpoint array is the column index).
+    Incidence
   };
   Kind kind = Kind::Dense;
   /// Diagonal: rows == cols == the set. Pattern: the edge set and the two
   /// endpoint sets. Stencil: the grid and its point set (rows == cols).
+  /// Incidence: rows == edges, cols the endpoint set.
   StringAttr edges, rows, cols;
   /// Stencil: the point offsets (one DenseI64ArrayAttr of grid-rank
   /// entries each), sorted and unique.
   ArrayAttr offsets;
+  /// Incidence: the edge set's cardinality (blocks per row).
+  int64_t cardinality = 0;
 
   static Storage dense() { return Storage(); }
   static Storage diagonal(StringAttr set) {
@@ -57,10 +66,15 @@ struct Storage {
                          ArrayAttr offsets) {
     return Storage{Kind::Stencil, grid, points, points, offsets};
   }
+  static Storage incidence(StringAttr edges, StringAttr cols,
+                           int64_t cardinality) {
+    return Storage{Kind::Incidence, edges, edges, cols, nullptr, cardinality};
+  }
   bool isMatrix() const { return kind != Kind::Dense; }
   bool operator==(const Storage &o) const {
     return kind == o.kind && edges == o.edges && rows == o.rows &&
-           cols == o.cols && offsets == o.offsets;
+           cols == o.cols && offsets == o.offsets &&
+           cardinality == o.cardinality;
   }
   bool operator!=(const Storage &o) const { return !(*this == o); }
   /// Whether every block of `o` is a block of this storage (an edge pattern
@@ -136,6 +150,7 @@ public:
   Value getSetSize(StringAttr set);
   Value getField(StringAttr set, StringAttr field, Type fieldType);
   Value getEndpoints(SetType set);
+  Value getEndpoints(StringAttr set, int64_t cardinality);
   /// A BCSR array of the pattern of (edges; rows, cols); the location table
   /// needs the edge set's cardinality.
   Value getPatternArray(BindingKind kind, StringAttr edges, StringAttr rows,
@@ -154,6 +169,10 @@ public:
                     bool zeroFill = true);
   /// The number of blocks of an array stored as `storage`.
   Value numBlocks(const Storage &storage, StringAttr denseSet);
+  /// The memref indices of component `c` (flat, row major) of the block
+  /// that `prefix` selects in an array of `type`.
+  SmallVector<Value> blockIndices(MemRefType type, ArrayRef<Value> prefix,
+                                  int64_t c);
   /// Fills an array with a scalar.
   void fill(Location loc, Value array, Value scalar);
   /// The set of element value `original`, if known.
@@ -187,6 +206,12 @@ public:
   /// column it stands for.
   Value stencilBlock(const Storage &storage, Value row, Value k);
   Value stencilColumn(const Storage &storage, Value row, Value k);
+
+  // Blocks of system matrices outside maps (LowerMatrixBlocks.cpp):
+  // simit.extract / simit.insert at (row, col).
+  LogicalResult lowerMatrixBlockAccess(Operation *op);
+  /// The positions of blocks (row, col) of pattern matrices found so far.
+  SmallVector<std::tuple<Storage, Value, Value, Value>> blockPositions;
 
   // Index expressions (LowerIndexExpr.cpp).
   LogicalResult lowerIndexExpr(IndexExprOp op);
@@ -222,6 +247,18 @@ private:
   LogicalResult lowerPrintOrString(Operation *op);
   /// The address of a global NUL-terminated copy of `text` (!llvm.ptr).
   Value stringConstant(Location loc, StringRef text);
+  /// The private declaration of runtime function `name` with the C
+  /// interface (the JIT binds _mlir_ciface_<name>), created on first use;
+  /// null when it exists with another type.
+  func::FuncOp declareRuntime(Location loc, StringRef name,
+                              FunctionType type);
+  /// A system tensor array as the fully dynamic memref `target` of the
+  /// runtime's BCSR functions: arrays of scalars gain unit block
+  /// dimensions (memref<?xf64> as memref<?x1x1xf64>).
+  Value asRuntimeBlocks(Location loc, Value array, MemRefType target);
+  /// lu, chol, lusolve and lltsolve on square system matrices assembled
+  /// from an edge set and on system vectors: Eigen's sparse solvers.
+  LogicalResult lowerSystemSolverCall(func::CallOp call);
   /// A call to the runtime function `name`, declared on first use.
   Value callRuntime(Location loc, StringRef name, TypeRange results,
                     ValueRange args);

@@ -7,7 +7,8 @@
 //    result sums its outermost level with scf.parallel + scf.reduce,
 //  - the set level of a variable v that a matrix input A(u, v) pairs with a
 //    bound variable u follows A's sparsity: the blocks of row u of the BCSR
-//    pattern (rowptr/colidx), or v = u for a diagonal matrix,
+//    pattern (rowptr/colidx), the endpoints of edge u for an incidence
+//    matrix, or v = u for a diagonal matrix,
 //  - other levels are dense loops over the set or range.
 // `simit.index_sum` inside the body sums its variables at that point of the
 // body (the fused form). Index expressions without sets are unrolled over
@@ -242,6 +243,10 @@ IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
     if (storage.kind == Storage::Kind::Stencil) {
       // One block per stencil offset; the column follows from the row.
       ub = l.indexConstant(storage.offsets.size());
+    } else if (storage.kind == Storage::Kind::Incidence) {
+      // Row u (an edge) has a block per endpoint k: column endpoints[u, k].
+      colIdx = l.getEndpoints(storage.edges, storage.cardinality);
+      ub = l.indexConstant(storage.cardinality);
     } else {
       rowPtr = l.getPatternArray(BindingKind::PatternRowPtr, storage.edges,
                                  storage.rows, storage.cols);
@@ -264,13 +269,24 @@ IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
     }
     b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
     Storage storage = storageOf(choice.coupledBy);
-    bool stencil = storage.kind == Storage::Kind::Stencil;
-    bound[v][0] = stencil ? l.stencilColumn(storage, row, iv)
-                          : arith::IndexCastOp::create(
-                                b, loc, b.getIndexType(),
-                                memref::LoadOp::create(b, loc, colIdx,
-                                                       ValueRange{iv}));
-    Value position = stencil ? l.stencilBlock(storage, row, iv) : iv;
+    Value position = iv;
+    if (storage.kind == Storage::Kind::Stencil) {
+      bound[v][0] = l.stencilColumn(storage, row, iv);
+      position = l.stencilBlock(storage, row, iv);
+    } else if (storage.kind == Storage::Kind::Incidence) {
+      bound[v][0] = arith::IndexCastOp::create(
+          b, loc, b.getIndexType(),
+          memref::LoadOp::create(b, loc, colIdx, ValueRange{row, iv}));
+      position = arith::AddIOp::create(
+          b, loc,
+          arith::MulIOp::create(b, loc, row,
+                                l.indexConstant(storage.cardinality)),
+          iv);
+    } else {
+      bound[v][0] = arith::IndexCastOp::create(
+          b, loc, b.getIndexType(),
+          memref::LoadOp::create(b, loc, colIdx, ValueRange{iv}));
+    }
     nb.setInsertionPoint(b.getInsertionBlock(), b.getInsertionPoint());
     for (unsigned o = 0; o < numMatrixOperands(); ++o)
       if (indexList(o).size() == 2 && indexList(o)[1] == v &&
@@ -570,9 +586,10 @@ LogicalResult IndexExprLowering::lower() {
       !resultStorage.isMatrix() && llvm::any_of(summed, [&](unsigned v) {
         return isa<StringAttr>(level(v, 0));
       });
-  // A sum over a set into a blocked vector (y = A x) runs each row's blocks
-  // once: for the row, for its blocks, for the block's components, add into
-  // the row of the (zeroed) result. Otherwise every result component is
+  // A sum over a set into a blocked vector (y = A x, y = A' x) runs each
+  // row's blocks once: for the row, for its blocks, for the block's
+  // components, add into the (zeroed) result at the row, or at the block's
+  // column when A is read transposed. Otherwise every result component is
   // written once by the loop nest.
   Value output = inPlaceTarget();
   if (output && sparseSum)
@@ -583,12 +600,26 @@ LogicalResult IndexExprLowering::lower() {
   if (sparseSum) {
     SmallVector<unsigned> all(free);
     llvm::append_range(all, summed);
+    // A result variable that is the column of a matrix read transposed
+    // (y(j) = A(i, j) x(i)) is not looped over: the loop runs over A's
+    // rows i, binds j from each row's blocks and adds into y(j).
+    auto transposedRow = [&](unsigned v) -> std::optional<unsigned> {
+      for (unsigned o = 0; o < op.getInputs().size(); ++o) {
+        ArrayRef<int64_t> list = indexList(o);
+        if (storageOf(o).isMatrix() && list.size() == 2 && list[1] == v &&
+            list[0] != v && !isSetBound(list[0]) &&
+            !llvm::is_contained(free, list[0]))
+          return list[0];
+      }
+      return std::nullopt;
+    };
     std::function<LogicalResult(bool)> loopAll =
         [&](bool outermost) -> LogicalResult {
       std::optional<Choice> choice;
       for (unsigned v : free)
         if (!isSetBound(v) && isa<StringAttr>(level(v, 0))) {
-          choice = Choice{v, 0};
+          std::optional<unsigned> row = transposedRow(v);
+          choice = row ? Choice{*row, 0} : choose({v});
           break;
         }
       if (!choice)

@@ -116,22 +116,6 @@ static Value combine(OpBuilder &b, Location loc, ReductionKind kind, Value old,
   llvm_unreachable("reduction kind");
 }
 
-/// The memref indices of component `c` of a block, after `prefix`.
-static SmallVector<Value> componentIndices(FunctionLowering &l,
-                                           MemRefType type,
-                                           ArrayRef<Value> prefix, int64_t c) {
-  SmallVector<Value> indices(prefix);
-  SmallVector<int64_t> inner;
-  for (int64_t d = type.getRank() - 1; d >= static_cast<int64_t>(prefix.size());
-       --d) {
-    inner.push_back(c % type.getDimSize(d));
-    c /= type.getDimSize(d);
-  }
-  for (int64_t i : llvm::reverse(inner))
-    indices.push_back(l.indexConstant(i));
-  return indices;
-}
-
 /// Lowers an insert into result slot `r` of the element function: the
 /// block is combined into (or stored to) its place in the output.
 static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
@@ -184,12 +168,27 @@ static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
     prefix.push_back(*block);
     break;
   }
+  case Storage::Kind::Incidence: {
+    // (the edge, its endpoint k): block e * c + k, written by this edge
+    // only.
+    Value k = l.endpointPositions.lookup(insert.getIndices()[1]);
+    if (l.lookup(insert.getIndices()[0]) != ctx.element || !k)
+      return insert.emitError("a matrix over (edges, endpoints) can only be "
+                              "written at the edge and one of its "
+                              "endpoints");
+    prefix.push_back(arith::AddIOp::create(
+        b, loc,
+        arith::MulIOp::create(b, loc, ctx.element,
+                              l.indexConstant(storage.cardinality)),
+        k));
+    break;
+  }
   }
   Value value = l.lookup(insert.getValue());
   auto type = cast<MemRefType>(output.getType());
   int64_t n = numComponents(insert.getValue().getType());
   for (int64_t c = 0; c < n; ++c) {
-    SmallVector<Value> indices = componentIndices(l, type, prefix, c);
+    SmallVector<Value> indices = l.blockIndices(type, prefix, c);
     Value component = l.component(value, c);
     if (ctx.accumulate) {
       Value old = memref::LoadOp::create(b, loc, output, indices);
@@ -260,7 +259,7 @@ LogicalResult FunctionLowering::lowerElementAccess(Operation *op,
     SmallVector<Value> components;
     for (int64_t c = 0, n = numComponents(fieldType); c < n; ++c)
       components.push_back(memref::LoadOp::create(
-          b, loc, array, componentIndices(*this, type, {index}, c)));
+          b, loc, array, blockIndices(type, {index}, c)));
     map(read, fromComponents(convertType(read.getType()), components));
     return success();
   }
@@ -277,7 +276,7 @@ LogicalResult FunctionLowering::lowerElementAccess(Operation *op,
       element->scatters = true;
     for (int64_t c = 0, n = numComponents(fieldType); c < n; ++c)
       memref::StoreOp::create(b, loc, component(value, c), array,
-                              componentIndices(*this, type, {index}, c));
+                              blockIndices(type, {index}, c));
     return success();
   }
   handled = false;
@@ -357,6 +356,15 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
         } else {
           storage = Storage::diagonal(rows);
         }
+      } else if (rows == set.getName()) {
+        // The incidence matrix: a column per endpoint of each edge.
+        if (!llvm::all_of(set.getEndpoints(),
+                          [&](Attribute e) { return e == cols; }))
+          return op->emitError("a matrix over (edge set '")
+                 << set.getName().getValue()
+                 << "', endpoint set) assembled from the edges needs every "
+                    "endpoint in its column set";
+        storage = Storage::incidence(rows, cols, set.getCardinality());
       } else {
         if (!llvm::is_contained(set.getEndpoints(), rows) ||
             !llvm::is_contained(set.getEndpoints(), cols))

@@ -205,3 +205,81 @@ func.func @scalar_not_a_variable() -> f64 attributes {simit.export} {
   %t = simit.assemble @direct() to %points reduce <add> : (!Points) -> f64
   return %t : f64
 }
+
+// -----
+
+// A matrix variable's array is made at its first store, which must
+// dominate its uses.
+!Point = !simit.element<"Point", {x : f64}>
+!Spring = !simit.element<"Spring", {k : f64}>
+!A = !simit.tensor<["points", "points"] x f64>
+!Springs = !simit.set<"springs", !Spring, ["points", "points"]>
+simit.extern @springs : !Springs
+func.func @link(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> !A {
+  %a = simit.tuple_get %ends[0] : !simit.tuple<!Point x 2> -> !Point
+  %k = simit.elem_read %s["k"] : !Spring -> f64
+  %A0 = simit.zeros : !A
+  %A1 = simit.insert %k into %A0[%a, %a] : f64 into !A, (!Point, !Point)
+  return %A1 : !A
+}
+func.func @late(%c : i1) attributes {simit.export} {
+  %springs = simit.get_set @springs : !Springs
+  %var = simit.alloc : !simit.ref<!A>
+  scf.if %c {
+    %A = simit.assemble @link() to %springs reduce <add> : (!Springs) -> !A
+    // expected-error @below {{a variable holding a system matrix must be first assigned where it is declared}}
+    simit.store %A, %var : !simit.ref<!A>
+  }
+  return
+}
+
+// -----
+
+// Blocks of an incidence matrix are not read one at a time.
+!Point = !simit.element<"Point", {x : f64}>
+!Spring = !simit.element<"Spring", {g : f64}>
+!D = !simit.tensor<["springs", "points"] x f64>
+!Points = !simit.set<"points", !Point>
+!Springs = !simit.set<"springs", !Spring, ["points", "points"]>
+simit.extern @points : !Points
+simit.extern @springs : !Springs
+func.func @difference(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> !D {
+  %a = simit.tuple_get %ends[0] : !simit.tuple<!Point x 2> -> !Point
+  %one = arith.constant 1.0 : f64
+  %D0 = simit.zeros : !D
+  %D1 = simit.insert %one into %D0[%s, %a] : f64 into !D, (!Spring, !Point)
+  return %D1 : !D
+}
+func.func @entry(%i : index) -> f64 attributes {simit.export} {
+  %springs = simit.get_set @springs : !Springs
+  %points = simit.get_set @points : !Points
+  %D = simit.assemble @difference() to %springs reduce <add> : (!Springs) -> !D
+  %s = simit.set_element %springs[%i] : !Springs -> !Spring
+  %p = simit.set_element %points[%i] : !Points -> !Point
+  // expected-error @below {{blocks of a matrix stored as incidence of 'springs' over ('springs', 'points') cannot be accessed one at a time by the loop lowering}}
+  %v = simit.extract %D[%s, %p] : !D, (!Spring, !Point) -> f64
+  return %v : f64
+}
+
+// -----
+
+// An incidence matrix needs every endpoint in its column set.
+!Particle = !simit.element<"Particle", {q : f64}>
+!Node = !simit.element<"Node", {x : f64}>
+!Link = !simit.element<"Link", {w : f64}>
+!D = !simit.tensor<["links", "nodes"] x f64>
+!Links = !simit.set<"links", !Link, ["particles", "nodes"]>
+simit.extern @links : !Links
+func.func @weights(%l : !Link, %ends : !simit.tuple<{p : !Particle, n : !Node}>) -> !D {
+  %n = simit.tuple_get %ends[1] : !simit.tuple<{p : !Particle, n : !Node}> -> !Node
+  %w = simit.elem_read %l["w"] : !Link -> f64
+  %D0 = simit.zeros : !D
+  %D1 = simit.insert %w into %D0[%l, %n] : f64 into !D, (!Link, !Node)
+  return %D1 : !D
+}
+func.func @mixed() attributes {simit.export} {
+  %links = simit.get_set @links : !Links
+  // expected-error @below {{a matrix over (edge set 'links', endpoint set) assembled from the edges needs every endpoint in its column set}}
+  %D = simit.assemble @weights() to %links reduce <add> : (!Links) -> !D
+  return
+}

@@ -77,3 +77,37 @@ func.func @repeat(%s : !simit.string, %n : i32) -> !simit.string
   %r = simit.load %acc : !simit.ref<!simit.string>
   return %r : !simit.string
 }
+
+// A system vector prints its elements in set order: a loop over the set,
+// a separator before every element but the first (a space for scalar
+// elements, a newline for blocks), a block's components separated by
+// spaces.
+!Point = !simit.element<"Point", {x : f64, v : tensor<2xf64>}>
+!Points = !simit.set<"points", !Point>
+simit.extern @points : !Points
+// CHECK-LABEL: func.func @fields(
+// CHECK-SAME: %[[V:[^:]*]]: memref<?x2xf64>, %[[X:[^:]*]]: memref<?xf64>)
+// CHECK: %[[N:.*]] = memref.dim %[[X]], %{{.*}}
+// CHECK: scf.for %[[I:.*]] = %{{.*}} to %[[N]]
+// CHECK:   %[[LATER:.*]] = arith.cmpi ne, %[[I]], %{{.*}}
+// CHECK:   scf.if %[[LATER]] {
+// CHECK:     %[[SP:.*]] = llvm.mlir.addressof @{{simit_str_[0-9A-F]+}}
+// CHECK:     func.call @simit_rt_print_str(%[[SP]])
+// CHECK:   %[[XI:.*]] = memref.load %[[X]][%[[I]]]
+// CHECK:   func.call @simit_rt_print_f64(%[[XI]])
+// CHECK: scf.for %[[I:.*]] = %{{.*}} to %{{.*}}
+// CHECK:   scf.if
+// CHECK:     %[[NLS:.*]] = llvm.mlir.addressof @[[NL]]
+// CHECK:     func.call @simit_rt_print_str(%[[NLS]])
+// CHECK:   %[[V0:.*]] = memref.load %[[V]][%[[I]], %{{.*}}]
+// CHECK:   func.call @simit_rt_print_f64(%[[V0]])
+// CHECK:   func.call @simit_rt_print_str(
+// CHECK:   %[[V1:.*]] = memref.load %[[V]][%[[I]], %{{.*}}]
+// CHECK:   func.call @simit_rt_print_f64(%[[V1]])
+func.func @fields() attributes {simit.export} {
+  %points = simit.get_set @points : !Points
+  %x = simit.field_read %points["x"] : !Points -> !simit.tensor<["points"] x f64>
+  %v = simit.field_read %points["v"] : !Points -> !simit.tensor<["points"] x tensor<2xf64>>
+  simit.print %x, %v : !simit.tensor<["points"] x f64>, !simit.tensor<["points"] x tensor<2xf64>>
+  return
+}

@@ -1,0 +1,92 @@
+// RUN: simit-opt %s --split-input-file --verify-diagnostics \
+// RUN:   --convert-simit-to-loops | FileCheck %s
+
+// Solvers on system matrices of scalars: the arrays gain unit block
+// dimensions (memref.expand_shape) before the cast to the dynamic BCSR
+// shapes of the runtime. chol/lltsolve on system tensors call the _bcsr
+// runtime functions; cholfree stays the (shared) free; the original
+// declarations on simit types are erased.
+
+!Point = !simit.element<"Point", {b : f64}>
+!Spring = !simit.element<"Spring", {k : f64}>
+!A = !simit.tensor<["points", "points"] x f64>
+!V = !simit.tensor<["points"] x f64>
+!Points = !simit.set<"points", !Point>
+!Springs = !simit.set<"springs", !Spring, ["points", "points"]>
+simit.extern @points : !Points
+simit.extern @springs : !Springs
+
+func.func @link(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> !A {
+  %a = simit.tuple_get %ends[0] : !simit.tuple<!Point x 2> -> !Point
+  %k = simit.elem_read %s["k"] : !Spring -> f64
+  %A0 = simit.zeros : !A
+  %A1 = simit.insert %k into %A0[%a, %a] : f64 into !A, (!Point, !Point)
+  return %A1 : !A
+}
+
+// CHECK-NOT: func.func private @simit_rt_chol(
+// CHECK-LABEL: func.func @cholesky(
+// CHECK-SAME: %[[NP:[^:]*]]: index, %{{[^:]*}}: index, %{{[^:]*}}: memref<?x2xi32>, %[[B:[^:]*]]: memref<?xf64>, %{{[^:]*}}: memref<?xf64>, %[[ROWPTR:[^:]*]]: memref<?xi32>, %[[COLIDX:[^:]*]]: memref<?xi32>, %{{[^:]*}}: memref<?x4xi32>)
+// CHECK: %[[AV:.*]] = memref.alloc(%{{.*}}) : memref<?xf64>
+// CHECK: %[[AE:.*]] = memref.expand_shape %[[AV]] {{\[\[}}0, 1, 2]] output_shape [%{{.*}}, 1, 1] : memref<?xf64> into memref<?x1x1xf64>
+// CHECK: %[[AC:.*]] = memref.cast %[[AE]] : memref<?x1x1xf64> to memref<?x?x?xf64>
+// CHECK: %[[H:.*]] = call @simit_rt_chol_bcsr(%[[ROWPTR]], %[[COLIDX]], %[[AC]]) : (memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>) -> !llvm.ptr
+// CHECK: %[[X:.*]] = memref.alloc(%[[NP]]) : memref<?xf64>
+// CHECK: memref.expand_shape %[[B]] {{\[\[}}0, 1]]
+// CHECK: memref.expand_shape %[[X]] {{\[\[}}0, 1]]
+// CHECK: call @simit_rt_lltsolve_bcsr(%[[H]], %{{.*}}, %{{.*}}) : (!llvm.ptr, memref<?x?xf64>, memref<?x?xf64>) -> ()
+// CHECK: call @simit_rt_cholfree(%[[H]]) : (!llvm.ptr) -> ()
+// CHECK: return %[[X]]
+func.func @cholesky() -> !V attributes {simit.export} {
+  %springs = simit.get_set @springs : !Springs
+  %points = simit.get_set @points : !Points
+  %A = simit.assemble @link() to %springs reduce <add> : (!Springs) -> !A
+  %h = call @simit_rt_chol(%A) : (!A) -> !simit.opaque
+  %b = simit.field_read %points["b"] : !Points -> !V
+  %x = call @simit_rt_lltsolve(%h, %b) : (!simit.opaque, !V) -> !V
+  call @simit_rt_cholfree(%h) : (!simit.opaque) -> ()
+  return %x : !V
+}
+func.func private @simit_rt_chol(!A) -> !simit.opaque attributes {simit.runtime_function = "chol"}
+func.func private @simit_rt_lltsolve(!simit.opaque, !V) -> !V attributes {simit.runtime_function = "lltsolve"}
+func.func private @simit_rt_cholfree(!simit.opaque) attributes {simit.runtime_function = "cholfree"}
+
+// CHECK-LABEL: func.func @backslash(
+// CHECK: %[[AE:.*]] = memref.expand_shape %{{.*}} {{\[\[}}0, 1, 2]]
+// CHECK: %[[AC:.*]] = memref.cast %[[AE]] : memref<?x1x1xf64> to memref<?x?x?xf64>
+// CHECK: call @simit_rt_cg_solve_bcsr(%{{.*}}, %{{.*}}, %[[AC]], %{{.*}}, %{{.*}}, %{{.*}}, %{{.*}})
+// CHECK-DAG: func.func private @simit_rt_chol_bcsr(memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>) -> !llvm.ptr attributes {llvm.emit_c_interface}
+// CHECK-DAG: func.func private @simit_rt_lltsolve_bcsr(!llvm.ptr, memref<?x?xf64>, memref<?x?xf64>) attributes {llvm.emit_c_interface}
+func.func @backslash() -> !V attributes {simit.export} {
+  %springs = simit.get_set @springs : !Springs
+  %points = simit.get_set @points : !Points
+  %A = simit.assemble @link() to %springs reduce <add> : (!Springs) -> !A
+  %b = simit.field_read %points["b"] : !Points -> !V
+  %x = simit.solve %A, %b : !A, !V -> !V
+  return %x : !V
+}
+
+// -----
+
+!Point = !simit.element<"Point", {m : f64, b : f64}>
+!A = !simit.tensor<["points", "points"] x f64>
+!Points = !simit.set<"points", !Point>
+simit.extern @points : !Points
+
+func.func @mass(%p : !Point) -> !A {
+  %m = simit.elem_read %p["m"] : !Point -> f64
+  %A0 = simit.zeros : !A
+  %A1 = simit.insert %m into %A0[%p, %p] : f64 into !A, (!Point, !Point)
+  return %A1 : !A
+}
+
+func.func @diagonal() attributes {simit.export} {
+  %points = simit.get_set @points : !Points
+  %A = simit.assemble @mass() to %points reduce <add> : (!Points) -> !A
+  // expected-error @+1 {{'@simit_rt_lu' on a system matrix needs a square f64 matrix of scalars or square blocks assembled from an edge set; this one is stored as diagonal of 'points'}}
+  %h = call @simit_rt_lu(%A) : (!A) -> !simit.opaque
+  call @simit_rt_lufree(%h) : (!simit.opaque) -> ()
+  return
+}
+func.func private @simit_rt_lu(!A) -> !simit.opaque attributes {simit.runtime_function = "lu"}
+func.func private @simit_rt_lufree(!simit.opaque) attributes {simit.runtime_function = "lufree"}

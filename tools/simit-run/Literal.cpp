@@ -188,6 +188,22 @@ private:
     return llvm::Error::success();
   }
 
+  /// `re, im>` after a `<`: the parts of a complex literal.
+  llvm::Error complexParts(std::vector<double> &parts) {
+    double re, im;
+    Literal::Kind kind;
+    if (llvm::Error err = number(re, kind))
+      return err;
+    if (!consume(','))
+      return error("expected ','");
+    if (llvm::Error err = number(im, kind))
+      return err;
+    if (!consume('>'))
+      return error("expected '>'");
+    parts = {re, im};
+    return llvm::Error::success();
+  }
+
   /// `[ ... ]`: rows separated by `;`, or nested literals.
   llvm::Expected<Literal> dense() {
     Literal result;
@@ -220,19 +236,26 @@ private:
         rowLengths.push_back(0);
         continue;
       }
-      double value;
+      std::vector<double> values;
       Literal::Kind kind;
       skipSpace();
       size_t start = pos;
-      if (llvm::Error err = number(value, kind))
-        return std::move(err);
+      if (consume('<')) {
+        if (llvm::Error err = complexParts(values))
+          return std::move(err);
+        kind = Literal::Kind::Complex;
+      } else {
+        values.resize(1);
+        if (llvm::Error err = number(values[0], kind))
+          return std::move(err);
+      }
       if (!first && kind != result.kind) {
         pos = start;
         return error("mismatched element types");
       }
       result.kind = kind;
       first = false;
-      result.values.push_back(value);
+      llvm::append_range(result.values, values);
       ++rowLengths.back();
       consume(',');
     }
@@ -272,17 +295,8 @@ private:
       result = std::move(*value);
     } else if (consume('<')) {
       result.kind = Literal::Kind::Complex;
-      double re, im;
-      Literal::Kind kind;
-      if (llvm::Error err = number(re, kind))
+      if (llvm::Error err = complexParts(result.values))
         return std::move(err);
-      if (!consume(','))
-        return error("expected ','");
-      if (llvm::Error err = number(im, kind))
-        return std::move(err);
-      if (!consume('>'))
-        return error("expected '>'");
-      result.values = {re, im};
     } else if (text.substr(pos).starts_with("true") ||
                text.substr(pos).starts_with("false")) {
       bool value = text.substr(pos).starts_with("true");

@@ -26,12 +26,11 @@ Value FunctionLowering::component(Type type, Value lowered, Value position) {
   auto complex = dyn_cast<ComplexType>(getComponentType(type));
   if (!complex)
     return vector::ExtractOp::create(b, loc, lowered, OpFoldResult(position));
-  Value re = arith::MulIOp::create(b, loc, position, indexConstant(2));
-  Value im = arith::AddIOp::create(b, loc, re, indexConstant(1));
-  return complex::CreateOp::create(
-      b, loc, complex,
-      vector::ExtractOp::create(b, loc, lowered, OpFoldResult(re)),
-      vector::ExtractOp::create(b, loc, lowered, OpFoldResult(im)));
+  Value rePosition = arith::MulIOp::create(b, loc, position, indexConstant(2));
+  Value imPosition = arith::AddIOp::create(b, loc, rePosition, indexConstant(1));
+  Value re = vector::ExtractOp::create(b, loc, lowered, OpFoldResult(rePosition));
+  Value im = vector::ExtractOp::create(b, loc, lowered, OpFoldResult(imPosition));
+  return complex::CreateOp::create(b, loc, complex, re, im);
 }
 
 Value FunctionLowering::component(Type type, Value lowered, int64_t position) {
@@ -42,12 +41,11 @@ Value FunctionLowering::component(Type type, Value lowered, int64_t position) {
   if (!complex)
     return vector::ExtractOp::create(b, loc, lowered,
                                      ArrayRef<int64_t>{position});
-  return complex::CreateOp::create(
-      b, loc, complex,
-      vector::ExtractOp::create(b, loc, lowered,
-                                ArrayRef<int64_t>{2 * position}),
-      vector::ExtractOp::create(b, loc, lowered,
-                                ArrayRef<int64_t>{2 * position + 1}));
+  Value re = vector::ExtractOp::create(b, loc, lowered,
+                                       ArrayRef<int64_t>{2 * position});
+  Value im = vector::ExtractOp::create(b, loc, lowered,
+                                       ArrayRef<int64_t>{2 * position + 1});
+  return complex::CreateOp::create(b, loc, complex, re, im);
 }
 
 Value FunctionLowering::insertComponent(Value lowered, Value scalar,
@@ -616,7 +614,8 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
       if (isa<NormOp>(op) && isa<ComplexType>(xi.getType())) {
         Value re = complex::ReOp::create(b, loc, xi);
         Value im = complex::ImOp::create(b, loc, xi);
-        t = a.add(a.mul(re, re), a.mul(im, im));
+        Value reSquared = a.mul(re, re);
+        t = a.add(reSquared, a.mul(im, im));
       }
       sum = sum ? a.add(sum, t) : t;
     }

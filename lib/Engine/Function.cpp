@@ -343,7 +343,8 @@ llvm::Error Function::Impl::prepareArgument(const ArgumentBinding &arg,
     } else if (type.isVector) {
       size_t align = valueAlignment(type);
       size_t offset = (vectorBytes + align - 1) / align * align;
-      vectorCopies.push_back({buffer.data, offset, dataSize(type), args.size()});
+      vectorCopies.push_back(
+          {buffer.data, offset, dataSize(type), args.size()});
       vectorBytes = offset + valueSize(type);
       args.push_back(nullptr); // set once vectorStorage is allocated
     } else {

@@ -348,8 +348,7 @@ static llvm::StringRef kindName(Literal::Kind kind) {
   llvm_unreachable("unknown literal kind");
 }
 
-static bool kindMatches(Literal::Kind kind, ScalarKind scalar,
-                        bool isComplex) {
+static bool kindMatches(Literal::Kind kind, ScalarKind scalar, bool isComplex) {
   bool isFloat = scalar == ScalarKind::Float64 || scalar == ScalarKind::Float32;
   if (isComplex || kind == Literal::Kind::Complex)
     return isComplex && kind == Literal::Kind::Complex && isFloat;
@@ -446,8 +445,9 @@ std::string simit::compareResult(const HostValue &actual,
                                  const Literal &expected) {
   if (!kindMatches(expected.kind, actual.scalar, actual.isComplex))
     return "the result is " +
-           (actual.isComplex ? "complex<" + scalarKindName(actual.scalar).str() + ">"
-                             : scalarKindName(actual.scalar).str()) +
+           (actual.isComplex
+                ? "complex<" + scalarKindName(actual.scalar).str() + ">"
+                : scalarKindName(actual.scalar).str()) +
            ", the expected value " + kindName(expected.kind).str();
   if (expected.kind == Literal::Kind::String) {
     std::string text = stringOf(actual);

@@ -50,9 +50,7 @@ struct HostValue {
   /// The numbers in `bytes`: the components, or twice as many (re, im
   /// pairs) for complex components.
   size_t numNumbers() const { return bytes.size() / scalarSize(scalar); }
-  size_t numComponents() const {
-    return numNumbers() / (isComplex ? 2 : 1);
-  }
+  size_t numComponents() const { return numNumbers() / (isComplex ? 2 : 1); }
   /// Number i converted to double (bools and integers exactly); for complex
   /// components, 2k is the real and 2k + 1 the imaginary part of component k.
   double component(size_t i) const;

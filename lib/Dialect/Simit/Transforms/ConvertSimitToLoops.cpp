@@ -115,8 +115,7 @@ Type FunctionLowering::convertType(Type type) {
   if (auto system = dyn_cast<SystemTensorType>(type)) {
     Type component = system.getComponentType();
     if (!system.isSystem())
-      return VectorType::get({storedLength(type)},
-                             storedNumberType(component));
+      return VectorType::get({storedLength(type)}, storedNumberType(component));
     if (isa<ComplexType>(component))
       return nullptr;
     // Outer dimensions: a set is dynamic; a matrix over two sets stores a
@@ -1350,10 +1349,10 @@ LogicalResult FunctionLowering::run(func::FuncOp original) {
                                 "matrices");
     Type host = hostType(arg.getType(), type);
     Value param = entry->addArgument(host, arg.getLoc());
-    map(arg, host == type ? param
-                          : vector::ShapeCastOp::create(b, arg.getLoc(), type,
-                                                        param)
-                                .getResult());
+    map(arg, host == type
+                 ? param
+                 : vector::ShapeCastOp::create(b, arg.getLoc(), type, param)
+                       .getResult());
     if (isSystem(arg.getType()))
       storages[arg] = Storage::dense();
     bindingAttrs.push_back(DictionaryAttr::get(

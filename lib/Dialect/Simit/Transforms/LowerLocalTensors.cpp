@@ -27,9 +27,12 @@ Value FunctionLowering::component(Type type, Value lowered, Value position) {
   if (!complex)
     return vector::ExtractOp::create(b, loc, lowered, OpFoldResult(position));
   Value rePosition = arith::MulIOp::create(b, loc, position, indexConstant(2));
-  Value imPosition = arith::AddIOp::create(b, loc, rePosition, indexConstant(1));
-  Value re = vector::ExtractOp::create(b, loc, lowered, OpFoldResult(rePosition));
-  Value im = vector::ExtractOp::create(b, loc, lowered, OpFoldResult(imPosition));
+  Value imPosition =
+      arith::AddIOp::create(b, loc, rePosition, indexConstant(1));
+  Value re =
+      vector::ExtractOp::create(b, loc, lowered, OpFoldResult(rePosition));
+  Value im =
+      vector::ExtractOp::create(b, loc, lowered, OpFoldResult(imPosition));
   return complex::CreateOp::create(b, loc, complex, re, im);
 }
 
@@ -56,11 +59,9 @@ Value FunctionLowering::insertComponent(Value lowered, Value scalar,
                                     OpFoldResult(position));
   Value re = arith::MulIOp::create(b, loc, position, indexConstant(2));
   Value im = arith::AddIOp::create(b, loc, re, indexConstant(1));
-  lowered = vector::InsertOp::create(b, loc,
-                                     complex::ReOp::create(b, loc, scalar),
-                                     lowered, OpFoldResult(re));
-  return vector::InsertOp::create(b, loc,
-                                  complex::ImOp::create(b, loc, scalar),
+  lowered = vector::InsertOp::create(
+      b, loc, complex::ReOp::create(b, loc, scalar), lowered, OpFoldResult(re));
+  return vector::InsertOp::create(b, loc, complex::ImOp::create(b, loc, scalar),
                                   lowered, OpFoldResult(im));
 }
 
@@ -131,7 +132,8 @@ struct Arith {
       Type part = complex.getElementType();
       return complex::ConstantOp::create(
           b, loc, complex,
-          b.getArrayAttr({b.getFloatAttr(part, 1.0), b.getFloatAttr(part, 0.0)}));
+          b.getArrayAttr(
+              {b.getFloatAttr(part, 1.0), b.getFloatAttr(part, 0.0)}));
     }
     return arith::ConstantOp::create(b, loc, b.getFloatAttr(type, 1.0));
   }
@@ -430,7 +432,8 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
     return success();
   }
   if (auto bcast = dyn_cast<BroadcastOp>(op)) {
-    map(bcast, broadcast(*this, loc, resultType(), bcast.getType(), operand(0)));
+    map(bcast,
+        broadcast(*this, loc, resultType(), bcast.getType(), operand(0)));
     return success();
   }
   if (auto extract = dyn_cast<ExtractOp>(op)) {
@@ -443,9 +446,9 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
     int64_t n = numComponents(extract.getType());
     SmallVector<Value> components;
     for (int64_t c = 0; c < n; ++c)
-      components.push_back(component(
-          extract.getTensor().getType(), tensor,
-          arith::AddIOp::create(b, loc, offset, indexConstant(c))));
+      components.push_back(
+          component(extract.getTensor().getType(), tensor,
+                    arith::AddIOp::create(b, loc, offset, indexConstant(c))));
     map(extract, fromComponents(resultType(), components));
     return success();
   }
@@ -502,8 +505,9 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
 
   // Arithmetic. Complex (re, im) pairs add, subtract and negate as floats;
   // products and quotients go component by component.
-  bool complexResult = op->getNumResults() == 1 &&
-                       isa<ComplexType>(getComponentType(op->getResult(0).getType()));
+  bool complexResult =
+      op->getNumResults() == 1 &&
+      isa<ComplexType>(getComponentType(op->getResult(0).getType()));
   if (complexResult && isa<MulOp, DivOp, ScaleOp>(op)) {
     bool isScale = isa<ScaleOp>(op);
     Value tensor = isScale ? cast<ScaleOp>(op).getTensor() : op->getOperand(0);
@@ -513,7 +517,7 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
                                      lookup(cast<ScaleOp>(op).getScalar()))
                 : allComponents(*this, op->getOperand(1));
     for (auto [xi, yi] : llvm::zip_equal(x, y))
-      r.push_back(isScale           ? a.mul(yi, xi)
+      r.push_back(isScale          ? a.mul(yi, xi)
                   : isa<MulOp>(op) ? a.mul(xi, yi)
                                    : a.div(xi, yi));
     map(op->getResult(0), fromComponents(resultType(), r));

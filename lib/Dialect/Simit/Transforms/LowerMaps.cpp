@@ -238,8 +238,7 @@ LogicalResult FunctionLowering::lowerElementAccess(Operation *op,
     for (int64_t c = 0, n = numComponents(fieldType); c < n; ++c)
       memref::StoreOp::create(b, loc,
                               component(write.getValue().getType(), value, c),
-                              array,
-                              componentIndices(*this, type, {index}, c));
+                              array, componentIndices(*this, type, {index}, c));
     return success();
   }
   handled = false;

@@ -80,19 +80,27 @@ std::string shapeString(llvm::ArrayRef<int> shape) {
 
 /// Alignment and byte size of a value in memory, as LLVM lays it out on
 /// x86-64: a vector is aligned to its size rounded up to a power of two.
+/// A complex scalar is a struct of two parts; a complex vector
+/// (`vector<N x 2 x T>`) an array of N `<2 x T>` vectors.
 size_t valueAlignment(const ValueType &type) {
   if (type.isMemRef)
     return 8;
+  if (type.isVector && type.isComplex)
+    return 2 * scalarSize(type.scalar);
   if (type.isVector)
     return llvm::PowerOf2Ceil(type.numComponents() * scalarSize(type.scalar));
   return scalarSize(type.scalar);
+}
+/// Bytes of the components of a scalar or vector.
+size_t dataSize(const ValueType &type) {
+  return type.numComponents() * type.partsPerComponent() *
+         scalarSize(type.scalar);
 }
 size_t valueSize(const ValueType &type) {
   if (type.isMemRef)
     return 8 * (3 + 2 * type.rank());
   size_t align = valueAlignment(type);
-  return (type.numComponents() * scalarSize(type.scalar) + align - 1) / align *
-         align;
+  return (dataSize(type) + align - 1) / align * align;
 }
 
 /// Zeroed bytes aligned for any value the JIT loads or stores whole.
@@ -332,27 +340,27 @@ llvm::Error Function::Impl::prepareArgument(const ArgumentBinding &arg,
                    ", which no host buffer provides");
     std::vector<int64_t> bufferShape(buffer.shape.begin(), buffer.shape.end());
     // A vector is the lowering's flattened form of a local tensor: any
-    // buffer of as many components fits it.
-    int64_t bufferComponents = 1;
+    // buffer of as many numbers fits it.
+    int64_t bufferNumbers = 1;
     for (int64_t dim : bufferShape)
-      bufferComponents *= dim;
-    bool shapeFits = type.isVector
-                         ? bufferComponents == type.numComponents()
-                         : bufferShape == type.shape;
+      bufferNumbers *= dim;
+    bool shapeFits =
+        type.isVector
+            ? bufferNumbers == type.numComponents() * type.partsPerComponent()
+            : bufferShape == type.hostShape();
     if (buffer.type != expected || !shapeFits)
       return error(arg.describe() + " is bound to " +
                    componentTypeName(buffer.type).str() + " of shape " +
                    shapeString(buffer.shape) + ", but the program expects " +
                    componentTypeName(expected).str() + " of shape " +
-                   shapeString(type.shape));
+                   shapeString(type.hostShape()));
     if (type.isMemRef) {
       pushMemRef(word, buffer.data, type.shape);
     } else if (type.isVector) {
       size_t align = valueAlignment(type);
       size_t offset = (vectorBytes + align - 1) / align * align;
       vectorCopies.push_back(
-          {buffer.data, offset, type.numComponents() * scalarSize(type.scalar),
-           args.size()});
+          {buffer.data, offset, dataSize(type), args.size()});
       vectorBytes = offset + valueSize(type);
       args.push_back(nullptr); // set once vectorStorage is allocated
     } else {
@@ -409,16 +417,11 @@ void Function::Impl::decodeResults() {
        llvm::zip_equal(signature().results, resultOffsets)) {
     HostValue value;
     value.scalar = type.scalar;
+    value.isComplex = type.isComplex;
     size_t elementSize = scalarSize(type.scalar);
-    if (type.isVector) {
-      value.shape = type.shape;
-      value.bytes.assign(base + offset,
-                         base + offset + type.numComponents() * elementSize);
-      results.push_back(std::move(value));
-      continue;
-    }
     if (!type.isMemRef) {
-      value.bytes.assign(base + offset, base + offset + elementSize);
+      value.shape = type.shape;
+      value.bytes.assign(base + offset, base + offset + dataSize(type));
       results.push_back(std::move(value));
       continue;
     }
@@ -617,7 +620,7 @@ std::string Function::findNonFinite() const {
     if (result.scalar != ScalarKind::Float64 &&
         result.scalar != ScalarKind::Float32)
       continue;
-    for (size_t i = 0; i < result.numComponents(); ++i)
+    for (size_t i = 0; i < result.numNumbers(); ++i)
       if (!std::isfinite(result.component(i)))
         return llvm::formatv("result component {0} is not finite", i).str();
   }

@@ -77,11 +77,19 @@ int64_t ValueType::numComponents() const {
   return n;
 }
 
+std::vector<int64_t> ValueType::hostShape() const {
+  std::vector<int64_t> result = shape;
+  if (isComplex)
+    result.push_back(2);
+  return result;
+}
+
 std::string ValueType::str() const {
   if (!isMemRef && !isVector)
-    return scalarKindName(scalar).str();
+    return isComplex ? "complex<" + scalarKindName(scalar).str() + ">"
+                     : scalarKindName(scalar).str();
   std::string text = isVector ? "vector<" : "memref<";
-  for (int64_t dim : shape)
+  for (int64_t dim : hostShape())
     text += (dim == kDynamic ? std::string("?") : std::to_string(dim)) + "x";
   return text + scalarKindName(scalar).str() + ">";
 }
@@ -132,6 +140,25 @@ llvm::Expected<ValueType> simit::toValueType(mlir::Type type) {
       return typeError(type, "only fixed vectors of numbers are supported");
     result.isVector = true;
     result.shape.assign(vector.getShape().begin(), vector.getShape().end());
+    // Local tensors are flat; a second dimension of 2 holds complex pairs.
+    if (vector.getRank() == 2 && vector.getShape()[1] == 2 &&
+        (result.scalar == ScalarKind::Float64 ||
+         result.scalar == ScalarKind::Float32)) {
+      result.isComplex = true;
+      result.shape.pop_back();
+    } else if (vector.getRank() != 1) {
+      return typeError(type, "expected a 1-D vector, or N x 2 floats for "
+                             "complex components");
+    }
+    return result;
+  }
+  if (auto complex = llvm::dyn_cast<mlir::ComplexType>(type)) {
+    if (!toScalarKind(complex.getElementType(), result.scalar) ||
+        (result.scalar != ScalarKind::Float64 &&
+         result.scalar != ScalarKind::Float32))
+      return typeError(type, "only complex numbers of f32 or f64 parts are "
+                             "supported");
+    result.isComplex = true;
     return result;
   }
   if (llvm::isa<mlir::LLVM::LLVMPointerType>(type)) {
@@ -139,7 +166,8 @@ llvm::Expected<ValueType> simit::toValueType(mlir::Type type) {
     return result;
   }
   if (!toScalarKind(type, result.scalar))
-    return typeError(type, "expected an index, i1, i32, i64, f32, f64 or memref");
+    return typeError(type, "expected an index, i1, i32, i64, f32, f64, "
+                           "complex, vector or memref");
   return result;
 }
 

@@ -188,6 +188,22 @@ private:
     return llvm::Error::success();
   }
 
+  /// `re, im>` after a `<`: the parts of a complex literal.
+  llvm::Error complexParts(std::vector<double> &parts) {
+    double re, im;
+    Literal::Kind kind;
+    if (llvm::Error err = number(re, kind))
+      return err;
+    if (!consume(','))
+      return error("expected ','");
+    if (llvm::Error err = number(im, kind))
+      return err;
+    if (!consume('>'))
+      return error("expected '>'");
+    parts = {re, im};
+    return llvm::Error::success();
+  }
+
   /// `[ ... ]`: rows separated by `;`, or nested literals.
   llvm::Expected<Literal> dense() {
     Literal result;
@@ -220,19 +236,26 @@ private:
         rowLengths.push_back(0);
         continue;
       }
-      double value;
+      std::vector<double> values;
       Literal::Kind kind;
       skipSpace();
       size_t start = pos;
-      if (llvm::Error err = number(value, kind))
-        return std::move(err);
+      if (consume('<')) {
+        if (llvm::Error err = complexParts(values))
+          return std::move(err);
+        kind = Literal::Kind::Complex;
+      } else {
+        values.resize(1);
+        if (llvm::Error err = number(values[0], kind))
+          return std::move(err);
+      }
       if (!first && kind != result.kind) {
         pos = start;
         return error("mismatched element types");
       }
       result.kind = kind;
       first = false;
-      result.values.push_back(value);
+      llvm::append_range(result.values, values);
       ++rowLengths.back();
       consume(',');
     }
@@ -272,17 +295,8 @@ private:
       result = std::move(*value);
     } else if (consume('<')) {
       result.kind = Literal::Kind::Complex;
-      double re, im;
-      Literal::Kind kind;
-      if (llvm::Error err = number(re, kind))
+      if (llvm::Error err = complexParts(result.values))
         return std::move(err);
-      if (!consume(','))
-        return error("expected ','");
-      if (llvm::Error err = number(im, kind))
-        return std::move(err);
-      if (!consume('>'))
-        return error("expected '>'");
-      result.values = {re, im};
     } else if (text.substr(pos).starts_with("true") ||
                text.substr(pos).starts_with("false")) {
       bool value = text.substr(pos).starts_with("true");
@@ -334,19 +348,22 @@ static llvm::StringRef kindName(Literal::Kind kind) {
   llvm_unreachable("unknown literal kind");
 }
 
-static bool kindMatches(Literal::Kind kind, ScalarKind scalar) {
+static bool kindMatches(Literal::Kind kind, ScalarKind scalar, bool isComplex) {
+  bool isFloat = scalar == ScalarKind::Float64 || scalar == ScalarKind::Float32;
+  if (isComplex || kind == Literal::Kind::Complex)
+    return isComplex && kind == Literal::Kind::Complex && isFloat;
   switch (kind) {
   case Literal::Kind::Int:
     return scalar == ScalarKind::Int32 || scalar == ScalarKind::Int64 ||
            scalar == ScalarKind::Index;
   case Literal::Kind::Float:
-    return scalar == ScalarKind::Float64 || scalar == ScalarKind::Float32;
+    return isFloat;
   case Literal::Kind::Bool:
     return scalar == ScalarKind::Bool;
   case Literal::Kind::String:
     return scalar == ScalarKind::String;
   case Literal::Kind::Complex:
-    return false;
+    break;
   }
   llvm_unreachable("unknown literal kind");
 }
@@ -365,7 +382,7 @@ llvm::Error simit::toHostBuffer(const Literal &literal, const ValueType &type,
     component = ComponentType::Float64; // not checked for strings
     return llvm::Error::success();
   }
-  if (!kindMatches(literal.kind, type.scalar) ||
+  if (!kindMatches(literal.kind, type.scalar, type.isComplex) ||
       !componentTypeFor(type.scalar, component))
     return llvm::createStringError(kindName(literal.kind) +
                                    " literal cannot be passed as " +
@@ -380,7 +397,10 @@ llvm::Error simit::toHostBuffer(const Literal &literal, const ValueType &type,
                                    llvm::Twine(literal.numComponents()) +
                                    " components cannot be passed as " +
                                    type.str());
+  // Complex components are passed as (re, im) pairs of floats.
   shape.assign(literal.shape.begin(), literal.shape.end());
+  if (type.isComplex)
+    shape.push_back(2);
   size_t size = scalarSize(type.scalar);
   storage.assign((literal.values.size() * size + 7) / 8, 0);
   auto *bytes = reinterpret_cast<uint8_t *>(storage.data());
@@ -423,8 +443,11 @@ static std::string stringOf(const HostValue &value) {
 
 std::string simit::compareResult(const HostValue &actual,
                                  const Literal &expected) {
-  if (!kindMatches(expected.kind, actual.scalar))
-    return "the result is " + scalarKindName(actual.scalar).str() +
+  if (!kindMatches(expected.kind, actual.scalar, actual.isComplex))
+    return "the result is " +
+           (actual.isComplex
+                ? "complex<" + scalarKindName(actual.scalar).str() + ">"
+                : scalarKindName(actual.scalar).str()) +
            ", the expected value " + kindName(expected.kind).str();
   if (expected.kind == Literal::Kind::String) {
     std::string text = stringOf(actual);
@@ -437,10 +460,12 @@ std::string simit::compareResult(const HostValue &actual,
     return "the result has shape [" + llvm::join(llvm::map_range(actual.shape, [](int64_t d) { return std::to_string(d); }), ", ") +
            "], the expected value [" +
            llvm::join(llvm::map_range(expected.shape, [](int64_t d) { return std::to_string(d); }), ", ") + "]";
+  // Complex values compare part by part, like floats.
   for (size_t i = 0; i < expected.values.size(); ++i) {
     double a = actual.component(i), e = expected.values[i];
     bool equal;
-    if (expected.kind != Literal::Kind::Float)
+    if (expected.kind != Literal::Kind::Float &&
+        expected.kind != Literal::Kind::Complex)
       equal = a == e;
     else if (e == 0.0)
       equal = a == 0.0;
@@ -500,7 +525,7 @@ static std::string formatComponents(const std::vector<int64_t> &shape,
 }
 
 std::string simit::formatValue(const HostValue &value) {
-  auto component = [&](size_t i) -> std::string {
+  auto number = [&](size_t i) -> std::string {
     double v = value.component(i);
     switch (value.scalar) {
     case ScalarKind::Float64:
@@ -517,6 +542,11 @@ std::string simit::formatValue(const HostValue &value) {
       return "\"" + stringOf(value) + "\"";
     }
     llvm_unreachable("unknown scalar kind");
+  };
+  auto component = [&](size_t i) -> std::string {
+    if (!value.isComplex)
+      return number(i);
+    return "<" + number(2 * i) + ", " + number(2 * i + 1) + ">";
   };
   if (value.shape.empty())
     return component(0);

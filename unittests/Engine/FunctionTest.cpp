@@ -146,6 +146,31 @@ func.func @vscale(%v: vector<4xf64>, %s: f64) -> (vector<4xf64>, f64)
 }
 )mlir";
 
+/// z * v for a complex z and a vector of two complex numbers (the lowering's
+/// vector<N x 2 x T> at the host boundary), and the conjugate of z.
+constexpr const char *kComplex = R"mlir(
+func.func @cscale(%z: complex<f64>, %v: vector<2x2xf64>)
+    -> (vector<2x2xf64>, complex<f64>)
+    attributes {simit.bindings = [
+      {kind = "param", index = 0}, {kind = "param", index = 1}]} {
+  %r0 = vector.extract %v[0, 0] : f64 from vector<2x2xf64>
+  %i0 = vector.extract %v[0, 1] : f64 from vector<2x2xf64>
+  %r1 = vector.extract %v[1, 0] : f64 from vector<2x2xf64>
+  %i1 = vector.extract %v[1, 1] : f64 from vector<2x2xf64>
+  %c0 = complex.create %r0, %i0 : complex<f64>
+  %c1 = complex.create %r1, %i1 : complex<f64>
+  %p0 = complex.mul %z, %c0 : complex<f64>
+  %p1 = complex.mul %z, %c1 : complex<f64>
+  %x0 = complex.re %p0 : complex<f64>
+  %y0 = complex.im %p0 : complex<f64>
+  %x1 = complex.re %p1 : complex<f64>
+  %y1 = complex.im %p1 : complex<f64>
+  %out = vector.from_elements %x0, %y0, %x1, %y1 : vector<2x2xf64>
+  %zc = complex.conj %z : complex<f64>
+  return %out, %zc : vector<2x2xf64>, complex<f64>
+}
+)mlir";
+
 /// Reads the endpoints: d(s) = e(s, 1) - e(s, 0) as a float.
 constexpr const char *kEndpoints = R"mlir(
 func.func @spans(%ne: index, %ends: memref<?x2xi32>, %d: memref<?xf64>)
@@ -347,6 +372,42 @@ TEST(FunctionTest, PassesAndReturnsVectorsByValue) {
   EXPECT_EQ(message(vscale.init()),
             "function 'vscale': parameter 0 is bound to float64 of shape [5], "
             "but the program expects float64 of shape [4]");
+}
+
+TEST(FunctionTest, PassesAndReturnsComplexValues) {
+  Program program;
+  Function cscale = compile(program, kComplex, "cscale");
+  // Complex values are bound as (re, im) pairs: z = 1 + 2i,
+  // v = (3 - i, i).
+  double z[2] = {1.0, 2.0};
+  double v[4] = {3.0, -1.0, 0.0, 1.0};
+  ASSERT_EQ(message(cscale.bindParameter(0, z, ComponentType::Float64, {})),
+            "success");
+  ASSERT_EQ(message(cscale.bindParameter(1, v, ComponentType::Float64, {2, 2})),
+            "success");
+  EXPECT_EQ(message(cscale.init()),
+            "function 'cscale': parameter 0 is bound to float64 of shape [], "
+            "but the program expects float64 of shape [2]");
+  ASSERT_EQ(message(cscale.bindParameter(0, z, ComponentType::Float64, {2})),
+            "success");
+  ASSERT_EQ(message(cscale.run()), "success");
+  ASSERT_EQ(cscale.results().size(), 2u);
+  // (1 + 2i)(3 - i) = 3 - i + 6i + 2 = 5 + 5i; (1 + 2i) i = -2 + i.
+  const HostValue &scaled = cscale.results()[0];
+  EXPECT_TRUE(scaled.isComplex);
+  EXPECT_EQ(scaled.shape, (std::vector<int64_t>{2}));
+  ASSERT_EQ(scaled.numComponents(), 2u);
+  EXPECT_EQ(scaled.component(0), 5.0);
+  EXPECT_EQ(scaled.component(1), 5.0);
+  EXPECT_EQ(scaled.component(2), -2.0);
+  EXPECT_EQ(scaled.component(3), 1.0);
+  // conj(1 + 2i) = 1 - 2i.
+  const HostValue &conjugate = cscale.results()[1];
+  EXPECT_TRUE(conjugate.isComplex);
+  EXPECT_TRUE(conjugate.shape.empty());
+  ASSERT_EQ(conjugate.numNumbers(), 2u);
+  EXPECT_EQ(conjugate.component(0), 1.0);
+  EXPECT_EQ(conjugate.component(1), -2.0);
 }
 
 TEST(FunctionTest, ListsWhatItNeeds) {

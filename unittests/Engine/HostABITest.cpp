@@ -83,6 +83,35 @@ TEST_F(HostABITest, ReadsEveryKind) {
   EXPECT_EQ(signature->results[0].str(), "f64");
 }
 
+TEST_F(HostABITest, ReadsComplexScalarsAndVectors) {
+  auto signature = read(R"mlir(
+    func.func private @f(complex<f64>, vector<3x2xf32>) -> vector<2x2xf64>
+      attributes {simit.bindings = [{kind = "param", index = 0},
+                                    {kind = "param", index = 1}]}
+  )mlir");
+  ASSERT_TRUE(!!signature) << llvm::toString(signature.takeError());
+  const ValueType &z = signature->arguments[0].type;
+  EXPECT_TRUE(z.isComplex);
+  EXPECT_FALSE(z.isVector);
+  EXPECT_EQ(z.scalar, ScalarKind::Float64);
+  EXPECT_EQ(z.str(), "complex<f64>");
+  EXPECT_EQ(z.hostShape(), (std::vector<int64_t>{2}));
+  const ValueType &v = signature->arguments[1].type;
+  EXPECT_TRUE(v.isComplex);
+  EXPECT_TRUE(v.isVector);
+  EXPECT_EQ(v.scalar, ScalarKind::Float32);
+  EXPECT_EQ(v.shape, (std::vector<int64_t>{3}));
+  EXPECT_EQ(v.numComponents(), 3);
+  EXPECT_EQ(v.str(), "vector<3x2xf32>");
+  EXPECT_TRUE(signature->results[0].isComplex);
+  // Other 2-D vectors are not host types: local tensors are flat.
+  std::string error = readError(R"mlir(func.func private @g(vector<2x3xf64>)
+      attributes {simit.bindings = [{kind = "param", index = 0}]})mlir");
+  EXPECT_NE(error.find("unsupported host type vector<2x3xf64>"),
+            std::string::npos)
+      << error;
+}
+
 TEST_F(HostABITest, RequiresTheBindingsAttribute) {
   EXPECT_EQ(readError("func.func private @f(f64) -> i32"),
             "function 'f' has no simit.bindings attribute");

@@ -42,11 +42,17 @@ class CompiledModule;
 /// dense tensor copied out of the returned memref.
 struct HostValue {
   ScalarKind scalar = ScalarKind::Float64;
+  /// Complex components: each is a (re, im) pair of `scalar`s in `bytes`.
+  bool isComplex = false;
   std::vector<int64_t> shape; // empty for a scalar
-  std::vector<uint8_t> bytes; // row-major, scalarSize(scalar) per component
+  std::vector<uint8_t> bytes; // row-major, scalarSize(scalar) per number
 
-  size_t numComponents() const { return bytes.size() / scalarSize(scalar); }
-  /// Component i converted to double (bools and integers exactly).
+  /// The numbers in `bytes`: the components, or twice as many (re, im
+  /// pairs) for complex components.
+  size_t numNumbers() const { return bytes.size() / scalarSize(scalar); }
+  size_t numComponents() const { return numNumbers() / (isComplex ? 2 : 1); }
+  /// Number i converted to double (bools and integers exactly); for complex
+  /// components, 2k is the real and 2k + 1 the imaginary part of component k.
   double component(size_t i) const;
 };
 
@@ -75,7 +81,9 @@ public:
   llvm::Error bind(llvm::StringRef name, void *data, ComponentType type,
                    llvm::ArrayRef<int> shape);
   /// Binds parameter `index` (0-based, in the Simit signature's order) to a
-  /// host buffer, as bind does for externs.
+  /// host buffer, as bind does for externs. A complex parameter of shape S
+  /// is bound to a buffer of its parts' type (Float64 or Float32) of shape
+  /// S followed by 2 (re, im pairs, the layout of std::complex).
   llvm::Error bindParameter(unsigned index, void *data, ComponentType type,
                             llvm::ArrayRef<int> shape);
   template <typename T>

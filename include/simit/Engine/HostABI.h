@@ -58,19 +58,30 @@ struct ValueType {
   ScalarKind scalar = ScalarKind::Float64;
   bool isMemRef = false;
   bool isVector = false;
+  /// Every component is a (real, imaginary) pair of `scalar`s (Float64 or
+  /// Float32): a `complex<T>` scalar, or a `vector<N x 2 x T>` of N complex
+  /// components (the lowering's form of a local complex tensor).
+  bool isComplex = false;
   /// Memref or vector dimensions, kDynamic for `?`; empty for a scalar or
-  /// a rank-0 memref.
+  /// a rank-0 memref. A complex vector's pair dimension is not included.
   std::vector<int64_t> shape;
 
   int64_t rank() const { return static_cast<int64_t>(shape.size()); }
   /// Components of a vector (1 for a scalar).
   int64_t numComponents() const;
-  /// "memref<?x3xf64>", "vector<9xf64>", "f64".
+  /// Scalars per component: 2 for complex, else 1.
+  int64_t partsPerComponent() const { return isComplex ? 2 : 1; }
+  /// The shape of a host buffer of `scalar`s holding the value: `shape`,
+  /// then 2 for the (re, im) pairs of a complex value.
+  std::vector<int64_t> hostShape() const;
+  /// "memref<?x3xf64>", "vector<9xf64>", "vector<2x2xf64>", "f64",
+  /// "complex<f64>".
   std::string str() const;
 };
 
-/// Reads an MLIR type (index, i1/i32/i64, f32/f64, a memref of them with the
-/// identity layout, or a static vector of numbers) as a ValueType.
+/// Reads an MLIR type (index, i1/i32/i64, f32/f64, complex<f32/f64>, a
+/// memref of numbers with the identity layout, a static vector of numbers,
+/// or a `vector<N x 2 x f32/f64>` of complex pairs) as a ValueType.
 llvm::Expected<ValueType> toValueType(mlir::Type type);
 
 /// What one argument carries.

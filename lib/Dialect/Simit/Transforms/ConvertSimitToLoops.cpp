@@ -100,8 +100,22 @@ static bool isSystem(Type type) { return hasSetDimension(type); }
 // Types
 //===----------------------------------------------------------------------===//
 
+/// The numbers a local tensor of `component`s is stored as: complex
+/// components are (re, im) pairs of their part type.
+static Type storedNumberType(Type component) {
+  if (auto complex = dyn_cast<ComplexType>(component))
+    return complex.getElementType();
+  return component;
+}
+
+/// The length of the flat vector or array that stores a local tensor.
+static int64_t storedLength(Type type) {
+  return numComponents(type) *
+         (isa<ComplexType>(getComponentType(type)) ? 2 : 1);
+}
+
 Type FunctionLowering::convertType(Type type) {
-  if (isa<FloatType, IntegerType, IndexType>(type))
+  if (isa<FloatType, IntegerType, IndexType, ComplexType>(type))
     return type;
   if (isa<StringType, OpaqueType>(type))
     return LLVM::LLVMPointerType::get(type.getContext());
@@ -110,7 +124,9 @@ Type FunctionLowering::convertType(Type type) {
   if (auto system = dyn_cast<SystemTensorType>(type)) {
     Type component = system.getComponentType();
     if (!system.isSystem())
-      return VectorType::get({numComponents(type)}, component);
+      return VectorType::get({storedLength(type)}, storedNumberType(component));
+    if (isa<ComplexType>(component))
+      return nullptr;
     // Outer dimensions: a set is dynamic; a matrix over two sets stores a
     // dynamic number of blocks. Then the block shape.
     SmallVector<int64_t> shape;
@@ -133,19 +149,20 @@ Type FunctionLowering::convertType(Type type) {
   if (auto tensor = dyn_cast<RankedTensorType>(type)) {
     if (tensor.getRank() == 0)
       return tensor.getElementType();
-    return VectorType::get({tensor.getNumElements()}, tensor.getElementType());
+    return VectorType::get({storedLength(type)},
+                           storedNumberType(tensor.getElementType()));
   }
   if (auto ref = dyn_cast<RefType>(type)) {
     Type value = ref.getValueType();
     if (isSystem(value))
       return convertType(value);
-    if (isa<FloatType, IntegerType, IndexType>(value))
+    if (isa<FloatType, IntegerType, IndexType, ComplexType>(value))
       return MemRefType::get({}, value);
     if (isa<StringType>(value))
       return MemRefType::get({}, LLVM::LLVMPointerType::get(type.getContext()));
     if (isa<RankedTensorType, SystemTensorType>(value))
-      return MemRefType::get({numComponents(value)},
-                             getComponentType(value));
+      return MemRefType::get({storedLength(value)},
+                             storedNumberType(getComponentType(value)));
     return nullptr;
   }
   return nullptr;
@@ -275,6 +292,11 @@ Value FunctionLowering::zeroOf(Type scalarType) {
   // A string variable starts empty.
   if (isa<LLVM::LLVMPointerType>(scalarType))
     return stringConstant(function.getLoc(), "");
+  if (auto complex = dyn_cast<ComplexType>(scalarType)) {
+    Attribute zero = b.getFloatAttr(complex.getElementType(), 0.0);
+    return complex::ConstantOp::create(b, function.getLoc(), complex,
+                                       b.getArrayAttr({zero, zero}));
+  }
   return arith::ConstantOp::create(b, function.getLoc(),
                                    b.getZeroAttr(scalarType));
 }
@@ -573,6 +595,26 @@ LogicalResult FunctionLowering::lowerGeneric(Operation *op) {
   if (auto constant = dyn_cast<arith::ConstantOp>(op)) {
     if (auto dense = dyn_cast<DenseElementsAttr>(constant.getValue())) {
       Type type = convertType(constant.getType());
+      // Complex components become (re, im) pairs of floats.
+      if (auto complex = dyn_cast<ComplexType>(dense.getElementType())) {
+        SmallVector<Attribute> parts;
+        for (std::complex<APFloat> c :
+             dense.getValues<std::complex<APFloat>>()) {
+          parts.push_back(FloatAttr::get(complex.getElementType(), c.real()));
+          parts.push_back(FloatAttr::get(complex.getElementType(), c.imag()));
+        }
+        Value lowered =
+            isa<VectorType>(type)
+                ? arith::ConstantOp::create(
+                      b, op->getLoc(),
+                      DenseElementsAttr::get(cast<ShapedType>(type), parts))
+                      .getResult()
+                : complex::ConstantOp::create(b, op->getLoc(), complex,
+                                              b.getArrayAttr(parts))
+                      .getResult();
+        map(constant, lowered);
+        return success();
+      }
       Attribute value = isa<VectorType>(type)
                             ? Attribute(dense.reshape(cast<ShapedType>(type)))
                             : dense.getSplatValue<Attribute>();
@@ -771,8 +813,9 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
     Value value = lookup(insert.getValue());
     for (int64_t c = 0, n = numComponents(insert.getValue().getType()); c < n;
          ++c)
-      memref::StoreOp::create(b, loc, component(value, c), target,
-                              blockIndices(memref, {position}, c));
+      memref::StoreOp::create(b, loc,
+                              component(insert.getValue().getType(), value, c),
+                              target, blockIndices(memref, {position}, c));
     storages[insert] = Storage::dense();
     map(insert, target);
     return success();
@@ -1115,34 +1158,32 @@ LogicalResult FunctionLowering::lowerSolverCall(func::CallOp call,
 
 LogicalResult FunctionLowering::lowerFunctionReturn(func::ReturnOp op) {
   SmallVector<Value> results;
-  for (Value operand : op.getOperands()) {
+  for (auto [operand, type] : llvm::zip_equal(op.getOperands(), resultTypes)) {
     if (storages.lookup(operand).isMatrix())
       return op.emitError("exported functions cannot return system matrices");
-    results.push_back(lookup(operand));
+    Value result = lookup(operand);
+    if (result.getType() != type)
+      result = vector::ShapeCastOp::create(b, op.getLoc(), type, result);
+    results.push_back(result);
   }
   func::ReturnOp::create(b, op.getLoc(), results);
   return success();
 }
 
-/// Whether `type` is or holds complex numbers (not lowered yet).
-static bool holdsComplex(Type type) {
-  if (isa<ComplexType>(type))
-    return true;
-  if (auto shaped = dyn_cast<ShapedType>(type))
-    return holdsComplex(shaped.getElementType());
-  if (auto system = dyn_cast<SystemTensorType>(type))
-    return holdsComplex(system.getComponentType());
+/// Whether `type` is a system tensor of complex components, or a variable
+/// of one (set-sized arrays of complex numbers are not lowered yet).
+static bool isComplexSystem(Type type) {
   if (auto ref = dyn_cast<RefType>(type))
-    return holdsComplex(ref.getValueType());
-  return false;
+    type = ref.getValueType();
+  return isSystem(type) && isa<ComplexType>(getComponentType(type));
 }
 
 LogicalResult FunctionLowering::lowerOp(Operation *op) {
-  auto complexValue = [](Value v) { return holdsComplex(v.getType()); };
-  if (llvm::any_of(op->getResults(), complexValue) ||
-      llvm::any_of(op->getOperands(), complexValue))
-    return op->emitError("complex values are not supported by the loop "
-                         "lowering yet");
+  auto complexSystem = [](Value v) { return isComplexSystem(v.getType()); };
+  if (llvm::any_of(op->getResults(), complexSystem) ||
+      llvm::any_of(op->getOperands(), complexSystem))
+    return op->emitError("complex system tensors are not supported by the "
+                         "loop lowering yet");
   if (auto loop = dyn_cast<scf::ForOp>(op))
     return lowerFor(loop);
   if (auto branch = dyn_cast<scf::IfOp>(op))
@@ -1218,6 +1259,9 @@ LogicalResult FunctionLowering::lowerOp(Operation *op) {
     if (isSystem(global.getType()))
       return op->emitError("extern system tensors are not supported by the "
                            "loop lowering");
+    if (isa<ComplexType>(getComponentType(global.getType())))
+      return op->emitError("complex externs are not supported by the loop "
+                           "lowering yet");
     map(ref, getExtern(global));
     return success();
   }
@@ -1339,18 +1383,35 @@ LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {
   }
 
   auto print = cast<PrintOp>(op);
+  auto printText = [&](StringRef text) {
+    callRuntime(loc, "simit_rt_print_str", {}, {stringConstant(text)});
+  };
+  auto printFloat = [&](Value scalar) -> LogicalResult {
+    auto floatType = cast<FloatType>(scalar.getType());
+    if (floatType.getWidth() < 64)
+      scalar = arith::ExtFOp::create(b, loc, b.getF64Type(), scalar);
+    else if (floatType.getWidth() > 64)
+      return op->emitError("cannot print floats wider than 64 bits");
+    callRuntime(loc, "simit_rt_print_f64", {}, {scalar});
+    return success();
+  };
   auto printScalar = [&](Value scalar) -> LogicalResult {
     Type type = scalar.getType();
     if (isa<LLVM::LLVMPointerType>(type)) {
       callRuntime(loc, "simit_rt_print_str", {}, {scalar});
       return success();
     }
-    if (auto floatType = dyn_cast<FloatType>(type)) {
-      if (floatType.getWidth() < 64)
-        scalar = arith::ExtFOp::create(b, loc, b.getF64Type(), scalar);
-      else if (floatType.getWidth() > 64)
-        return op->emitError("cannot print floats wider than 64 bits");
-      callRuntime(loc, "simit_rt_print_f64", {}, {scalar});
+    if (isa<FloatType>(type))
+      return printFloat(scalar);
+    // A complex prints as <re,im> (language.md section 6).
+    if (isa<ComplexType>(type)) {
+      printText("<");
+      if (failed(printFloat(complex::ReOp::create(b, loc, scalar))))
+        return failure();
+      printText(",");
+      if (failed(printFloat(complex::ImOp::create(b, loc, scalar))))
+        return failure();
+      printText(">");
       return success();
     }
     if (isa<IndexType>(type)) {
@@ -1372,13 +1433,7 @@ LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {
   };
   for (Value value : print.getValues()) {
     Type type = value.getType();
-    if (isa<ComplexType>(type))
-      return op->emitError("printing complex values is not supported by the "
-                           "loop lowering yet");
     if (auto tensor = dyn_cast<RankedTensorType>(type)) {
-      if (isa<ComplexType>(tensor.getElementType()))
-        return op->emitError("printing complex values is not supported by "
-                             "the loop lowering yet");
       Value lowered = lookup(value);
       if (!lowered)
         return op->emitError("print operand was not lowered");
@@ -1387,9 +1442,8 @@ LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {
       int64_t columns = tensor.getRank() >= 2 ? tensor.getShape().back() : n;
       for (int64_t i = 0; i < n; ++i) {
         if (i > 0)
-          callRuntime(loc, "simit_rt_print_str", {},
-                      {stringConstant(i % columns == 0 ? "\n" : " ")});
-        if (failed(printScalar(component(lowered, i))))
+          printText(i % columns == 0 ? "\n" : " ");
+        if (failed(printScalar(component(type, lowered, i))))
           return failure();
       }
       continue;
@@ -1448,7 +1502,7 @@ LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {
       return failure();
   }
   if (print.getNewline())
-    callRuntime(loc, "simit_rt_print_str", {}, {stringConstant("\n")});
+    printText("\n");
   return success();
 }
 
@@ -1459,18 +1513,31 @@ LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {
 FunctionLowering::FunctionLowering(ModuleOp module, func::FuncOp function)
     : module(module), function(function), b(function.getContext()) {}
 
+/// The type an exported function's parameter or result of type `original`
+/// (lowered to `lowered`) has at the host boundary: a local complex tensor
+/// is `vector<N x 2 x T>`, so the host ABI can tell its (re, im) pairs from
+/// a tensor of 2N floats; everything else is its lowered type.
+static Type hostType(Type original, Type lowered) {
+  auto vector = dyn_cast<VectorType>(lowered);
+  if (!vector || !isa<ComplexType>(getComponentType(original)))
+    return lowered;
+  return VectorType::get({vector.getNumElements() / 2, 2},
+                         vector.getElementType());
+}
+
 LogicalResult FunctionLowering::run(func::FuncOp original) {
   MLIRContext *ctx = original.getContext();
   Block *entry = function.addEntryBlock();
   allocaBlock = entry;
   SmallVector<Attribute> bindingAttrs;
+  b.setInsertionPointToEnd(entry);
   for (auto [i, arg] : llvm::enumerate(original.getArguments())) {
-    if (holdsComplex(arg.getType()))
+    Type type = convertType(arg.getType());
+    if (isComplexSystem(arg.getType()))
       return original.emitError("exported function parameter ")
              << i << " of type " << arg.getType()
-             << " cannot be lowered: complex values are not supported by the "
-                "loop lowering yet";
-    Type type = convertType(arg.getType());
+             << " cannot be lowered: complex system tensors are not supported "
+                "by the loop lowering yet";
     if (!type || isa<SetType, ElementType>(arg.getType()))
       return original.emitError("exported function parameter ")
              << i << " of type " << arg.getType()
@@ -1479,7 +1546,12 @@ LogicalResult FunctionLowering::run(func::FuncOp original) {
         cast<SystemTensorType>(arg.getType()).getOrder() != 1)
       return original.emitError("exported functions cannot take system "
                                 "matrices");
-    map(arg, entry->addArgument(type, arg.getLoc()));
+    Type host = hostType(arg.getType(), type);
+    Value param = entry->addArgument(host, arg.getLoc());
+    map(arg, host == type
+                 ? param
+                 : vector::ShapeCastOp::create(b, arg.getLoc(), type, param)
+                       .getResult());
     if (isSystem(arg.getType()))
       storages[arg] = Storage::dense();
     bindingAttrs.push_back(DictionaryAttr::get(
@@ -1489,13 +1561,12 @@ LogicalResult FunctionLowering::run(func::FuncOp original) {
                              b.getI64IntegerAttr(i))}));
   }
   for (Type type : original.getResultTypes()) {
-    Type lowered = holdsComplex(type) ? Type() : convertType(type);
+    Type lowered = convertType(type);
     if (!lowered)
       return original.emitError("exported function result of type ")
              << type << " cannot be lowered";
-    resultTypes.push_back(lowered);
+    resultTypes.push_back(hostType(type, lowered));
   }
-  b.setInsertionPointToEnd(entry);
   if (failed(lowerOps(original.front())))
     return failure();
 

@@ -34,6 +34,10 @@ void mlir::simit::buildSimitCpuPipeline(
   pm.addPass(createConvertSimitToLoops());
   pm.addPass(createCanonicalizerPass());
   pm.addPass(createCSEPass());
+  // Complex arithmetic becomes arith and math on the parts; what is left
+  // (complex.create/re/im/constant, complex<T> as a struct) goes to LLVM
+  // below.
+  pm.addPass(createConvertComplexToStandardPass());
   // scf.parallel runs sequentially below: its stack slots are made once.
   pm.addNestedPass<func::FuncOp>(createSimitHoistParallelAllocas());
   // Temporaries of system tensors are freed once no value needs them.
@@ -44,11 +48,15 @@ void mlir::simit::buildSimitCpuPipeline(
   pm.addPass(memref::createExpandStridedMetadataPass());
   pm.addPass(createLowerAffinePass());
   pm.addPass(createConvertVectorToLLVMPass());
+  // Unrolled vector.shape_casts (complex tensors at the host boundary) start
+  // from ub.poison.
+  pm.addPass(createUBToLLVMConversionPass());
   pm.addPass(createConvertMathToLLVMPass());
   // What LLVM has no intrinsic for (cbrt) becomes a call into libm.
   pm.addPass(createConvertMathToLibmPass());
   pm.addPass(createArithToLLVMConversionPass());
   pm.addPass(createConvertIndexToLLVMPass());
+  pm.addPass(createConvertComplexToLLVMPass());
   FinalizeMemRefToLLVMConversionPassOptions memrefOptions;
   memrefOptions.useGenericFunctions = options.runtimeAllocator;
   pm.addPass(createFinalizeMemRefToLLVMConversionPass(memrefOptions));

@@ -10,6 +10,7 @@
 
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
+#include "mlir/Conversion/Passes.h"
 #include "mlir/Dialect/Bufferization/Pipelines/Passes.h"
 #include "mlir/Dialect/GPU/IR/GPUDialect.h"
 #include "mlir/Dialect/GPU/Pipelines/Passes.h"
@@ -45,6 +46,9 @@ struct GpuPipeline : public simit::impl::SimitGpuPipelineBase<GpuPipeline> {
       pm.addPass(createCSEPass());
       bufferization::buildBufferDeallocationPipeline(pm);
     }
+    // Complex arithmetic on the parts, before kernels are outlined: the
+    // NVVM conversions handle complex.create/re/im but not the arithmetic.
+    pm.addPass(createConvertComplexToStandardPass());
     pm.addPass(simit::createSimitGpuScatterAtomics());
     pm.addPass(simit::createSimitParallelLoopsToGpu({blockSize, fpContract}));
     pm.addPass(simit::createSimitGpuDeviceMemory());

@@ -180,10 +180,15 @@ public:
 
   // Local tensors (LowerLocalTensors.cpp).
   LogicalResult lowerLocalOp(Operation *op, bool &handled);
-  /// Component `position` (flat, row major) of a lowered local value.
-  Value component(Value lowered, Value position);
-  Value component(Value lowered, int64_t position);
-  /// The lowered local value made of `components`.
+  /// Component `position` (flat, row major) of `lowered`, the lowered
+  /// value of a local tensor or scalar of type `type`: a complex component
+  /// is rebuilt from its (re, im) pair.
+  Value component(Type type, Value lowered, Value position);
+  Value component(Type type, Value lowered, int64_t position);
+  /// `lowered` (a flat vector) with component `position` set to `scalar`.
+  Value insertComponent(Value lowered, Value scalar, Value position);
+  /// The lowered local value made of `components` (complex ones stored as
+  /// (re, im) pairs).
   Value fromComponents(Type loweredType, ArrayRef<Value> components);
 
   // Maps (LowerMaps.cpp).

@@ -148,7 +148,7 @@ FailureOr<Value> IndexExprLowering::access(unsigned i) {
       flat = arith::MulIOp::create(b, loc, flat, l.indexConstant(size));
       flat = arith::AddIOp::create(b, loc, flat, index);
     }
-    return l.component(lowered, flat);
+    return l.component(type, lowered, flat);
   }
   Storage storage = storageOf(i);
   if (!storage.isMatrix())
@@ -685,5 +685,9 @@ LogicalResult IndexExprLowering::lower() {
 }
 
 LogicalResult FunctionLowering::lowerIndexExpr(IndexExprOp op) {
+  // The loop nests sum with arith on floats and integers only.
+  if (isa<ComplexType>(getComponentType(op.getType())))
+    return op.emitError("index expressions on complex tensors are not "
+                        "supported by the loop lowering yet");
   return IndexExprLowering(*this, op).lower();
 }

@@ -5,7 +5,9 @@
 // (blocks contiguous), so it stays an SSA value: loop-carried values, branches
 // and value semantics need no buffers. Linear algebra on such tensors is
 // unrolled over their (small, static) shapes; variables holding them are
-// memref.alloca'd arrays of components.
+// memref.alloca'd arrays of components. A complex component is stored as
+// its (re, im) pair of floats (vectors cannot hold complex numbers), and
+// arithmetic on complex components uses the complex dialect.
 //
 //===----------------------------------------------------------------------===//
 
@@ -17,71 +19,145 @@ using namespace mlir;
 using namespace mlir::simit;
 using namespace mlir::simit::loops;
 
-Value FunctionLowering::component(Value lowered, Value position) {
+Value FunctionLowering::component(Type type, Value lowered, Value position) {
   if (!isa<VectorType>(lowered.getType()))
     return lowered;
-  return vector::ExtractOp::create(b, lowered.getLoc(), lowered,
-                                   OpFoldResult(position));
+  Location loc = lowered.getLoc();
+  auto complex = dyn_cast<ComplexType>(getComponentType(type));
+  if (!complex)
+    return vector::ExtractOp::create(b, loc, lowered, OpFoldResult(position));
+  Value rePosition = arith::MulIOp::create(b, loc, position, indexConstant(2));
+  Value imPosition =
+      arith::AddIOp::create(b, loc, rePosition, indexConstant(1));
+  Value re =
+      vector::ExtractOp::create(b, loc, lowered, OpFoldResult(rePosition));
+  Value im =
+      vector::ExtractOp::create(b, loc, lowered, OpFoldResult(imPosition));
+  return complex::CreateOp::create(b, loc, complex, re, im);
 }
 
-Value FunctionLowering::component(Value lowered, int64_t position) {
+Value FunctionLowering::component(Type type, Value lowered, int64_t position) {
   if (!isa<VectorType>(lowered.getType()))
     return lowered;
-  return vector::ExtractOp::create(b, lowered.getLoc(), lowered,
-                                   ArrayRef<int64_t>{position});
+  Location loc = lowered.getLoc();
+  auto complex = dyn_cast<ComplexType>(getComponentType(type));
+  if (!complex)
+    return vector::ExtractOp::create(b, loc, lowered,
+                                     ArrayRef<int64_t>{position});
+  Value re = vector::ExtractOp::create(b, loc, lowered,
+                                       ArrayRef<int64_t>{2 * position});
+  Value im = vector::ExtractOp::create(b, loc, lowered,
+                                       ArrayRef<int64_t>{2 * position + 1});
+  return complex::CreateOp::create(b, loc, complex, re, im);
+}
+
+Value FunctionLowering::insertComponent(Value lowered, Value scalar,
+                                        Value position) {
+  Location loc = lowered.getLoc();
+  if (!isa<ComplexType>(scalar.getType()))
+    return vector::InsertOp::create(b, loc, scalar, lowered,
+                                    OpFoldResult(position));
+  Value re = arith::MulIOp::create(b, loc, position, indexConstant(2));
+  Value im = arith::AddIOp::create(b, loc, re, indexConstant(1));
+  lowered = vector::InsertOp::create(
+      b, loc, complex::ReOp::create(b, loc, scalar), lowered, OpFoldResult(re));
+  return vector::InsertOp::create(b, loc, complex::ImOp::create(b, loc, scalar),
+                                  lowered, OpFoldResult(im));
 }
 
 Value FunctionLowering::fromComponents(Type loweredType,
                                        ArrayRef<Value> components) {
   if (!isa<VectorType>(loweredType))
     return components.front();
-  return vector::FromElementsOp::create(b, function.getLoc(),
-                                        cast<VectorType>(loweredType),
-                                        components);
+  Location loc = function.getLoc();
+  SmallVector<Value> numbers;
+  for (Value c : components) {
+    if (!isa<ComplexType>(c.getType())) {
+      numbers.push_back(c);
+      continue;
+    }
+    numbers.push_back(complex::ReOp::create(b, loc, c));
+    numbers.push_back(complex::ImOp::create(b, loc, c));
+  }
+  return vector::FromElementsOp::create(b, loc, cast<VectorType>(loweredType),
+                                        numbers);
 }
 
 namespace {
-/// Scalar arithmetic on floats or integers (complex is not lowered).
+/// Scalar (or element-wise vector) arithmetic on floats and integers, and
+/// scalar arithmetic on complex numbers.
 struct Arith {
   OpBuilder &b;
   Location loc;
 
   Value add(Value x, Value y) {
+    if (isa<ComplexType>(x.getType()))
+      return complex::AddOp::create(b, loc, x, y);
     if (isa<FloatType>(getElementTypeOrSelf(x)))
       return arith::AddFOp::create(b, loc, x, y);
     return arith::AddIOp::create(b, loc, x, y);
   }
   Value sub(Value x, Value y) {
+    if (isa<ComplexType>(x.getType()))
+      return complex::SubOp::create(b, loc, x, y);
     if (isa<FloatType>(getElementTypeOrSelf(x)))
       return arith::SubFOp::create(b, loc, x, y);
     return arith::SubIOp::create(b, loc, x, y);
   }
   Value mul(Value x, Value y) {
+    if (isa<ComplexType>(x.getType()))
+      return complex::MulOp::create(b, loc, x, y);
     if (isa<FloatType>(getElementTypeOrSelf(x)))
       return arith::MulFOp::create(b, loc, x, y);
     return arith::MulIOp::create(b, loc, x, y);
   }
   Value div(Value x, Value y) {
+    if (isa<ComplexType>(x.getType()))
+      return complex::DivOp::create(b, loc, x, y);
     if (isa<FloatType>(getElementTypeOrSelf(x)))
       return arith::DivFOp::create(b, loc, x, y);
     return arith::DivSIOp::create(b, loc, x, y);
   }
   Value neg(Value x) {
+    if (isa<ComplexType>(x.getType()))
+      return complex::NegOp::create(b, loc, x);
     if (isa<FloatType>(getElementTypeOrSelf(x)))
       return arith::NegFOp::create(b, loc, x);
     Value zero = arith::ConstantOp::create(b, loc, b.getZeroAttr(x.getType()));
     return arith::SubIOp::create(b, loc, zero, x);
   }
+  /// 1 of a float or complex type.
+  Value one(Type type) {
+    if (auto complex = dyn_cast<ComplexType>(type)) {
+      Type part = complex.getElementType();
+      return complex::ConstantOp::create(
+          b, loc, complex,
+          b.getArrayAttr(
+              {b.getFloatAttr(part, 1.0), b.getFloatAttr(part, 0.0)}));
+    }
+    return arith::ConstantOp::create(b, loc, b.getFloatAttr(type, 1.0));
+  }
 };
 } // namespace
 
-/// The components of a lowered local value.
-static SmallVector<Value> allComponents(FunctionLowering &l, Value lowered) {
+/// The components of the lowered value of the local value `original`.
+static SmallVector<Value> allComponents(FunctionLowering &l, Value original) {
   SmallVector<Value> components;
-  int64_t n = numComponents(lowered.getType());
+  Value lowered = l.lookup(original);
+  int64_t n = numComponents(original.getType());
   for (int64_t i = 0; i < n; ++i)
-    components.push_back(l.component(lowered, i));
+    components.push_back(l.component(original.getType(), lowered, i));
   return components;
+}
+
+/// The lowered local tensor of type `type` whose components all equal the
+/// scalar `scalar`.
+static Value broadcast(FunctionLowering &l, Location loc, Type loweredType,
+                       Type type, Value scalar) {
+  if (!isa<ComplexType>(scalar.getType()))
+    return vector::BroadcastOp::create(l.b, loc, loweredType, scalar);
+  return l.fromComponents(loweredType,
+                          SmallVector<Value>(numComponents(type), scalar));
 }
 
 /// The determinant of the n x n matrix of components `m` (row major), by
@@ -106,10 +182,7 @@ static Value determinant(Arith &a, ArrayRef<Value> m, int64_t n) {
 
 /// The inverse of the n x n matrix `m`: the adjugate over the determinant.
 static SmallVector<Value> inverse(Arith &a, ArrayRef<Value> m, int64_t n) {
-  Value inverseDet = a.div(
-      arith::ConstantOp::create(a.b, a.loc,
-                                a.b.getFloatAttr(m[0].getType(), 1.0)),
-      determinant(a, m, n));
+  Value inverseDet = a.div(a.one(m[0].getType()), determinant(a, m, n));
   SmallVector<Value> result(n * n);
   for (int64_t r = 0; r < n; ++r)
     for (int64_t c = 0; c < n; ++c) {
@@ -120,10 +193,7 @@ static SmallVector<Value> inverse(Arith &a, ArrayRef<Value> m, int64_t n) {
           if (i != r && j != c)
             minor.push_back(m[i * n + j]);
       Value cofactor =
-          n == 1 ? arith::ConstantOp::create(
-                       a.b, a.loc, a.b.getFloatAttr(m[0].getType(), 1.0))
-                       .getResult()
-                 : determinant(a, minor, n - 1);
+          n == 1 ? a.one(m[0].getType()) : determinant(a, minor, n - 1);
       if ((r + c) % 2)
         cofactor = a.neg(cofactor);
       result[c * n + r] = a.mul(cofactor, inverseDet);
@@ -260,7 +330,7 @@ static LogicalResult lowerBlockedLinalg(FunctionLowering &l, Arith &a,
   if (!levelsOf(op->getOperand(0), 2, ar, ac))
     return fail();
   if (isa<TransposeOp>(op)) {
-    SmallVector<Value> x = allComponents(l, l.lookup(op->getOperand(0)));
+    SmallVector<Value> x = allComponents(l, op->getOperand(0));
     int64_t m = 1, n = 1;
     for (size_t k = 0; k < ar.size(); ++k) {
       m *= ar[k];
@@ -280,8 +350,8 @@ static LogicalResult lowerBlockedLinalg(FunctionLowering &l, Arith &a,
   if (!levelsOf(op->getOperand(1), isMatVec ? 1 : 2, br, bc) ||
       br.size() != ar.size() || br != ac)
     return fail();
-  SmallVector<Value> x = allComponents(l, l.lookup(op->getOperand(0))),
-                     y = allComponents(l, l.lookup(op->getOperand(1)));
+  SmallVector<Value> x = allComponents(l, op->getOperand(0)),
+                     y = allComponents(l, op->getOperand(1));
   int64_t m = 1, k = 1, n = 1;
   for (size_t d = 0; d < ar.size(); ++d) {
     m *= ar[d];
@@ -324,7 +394,8 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
                                llvm::to_vector(llvm::map_range(
                                    extract.getIndices(),
                                    [&](Value v) { return lookup(v); })));
-    map(extract, component(lookup(extract.getTensor()), offset));
+    map(extract, component(extract.getTensor().getType(),
+                           lookup(extract.getTensor()), offset));
     return success();
   }
   if (auto insert = dyn_cast<tensor::InsertOp>(op)) {
@@ -332,14 +403,13 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
                                llvm::to_vector(llvm::map_range(
                                    insert.getIndices(),
                                    [&](Value v) { return lookup(v); })));
-    map(insert, vector::InsertOp::create(b, loc, lookup(insert.getScalar()),
-                                         lookup(insert.getDest()),
-                                         OpFoldResult(offset)));
+    map(insert, insertComponent(lookup(insert.getDest()),
+                                lookup(insert.getScalar()), offset));
     return success();
   }
   if (auto splat = dyn_cast<tensor::SplatOp>(op)) {
-    map(splat, vector::BroadcastOp::create(b, loc, resultType(),
-                                           lookup(splat.getInput())));
+    map(splat, broadcast(*this, loc, resultType(), splat.getType(),
+                         lookup(splat.getInput())));
     return success();
   }
   if (op->getDialect() == op->getContext()->getLoadedDialect("tensor"))
@@ -395,9 +465,9 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
         arith::ConstantOp::create(b, loc, b.getZeroAttr(type)));
     return success();
   }
-  if (auto broadcast = dyn_cast<BroadcastOp>(op)) {
-    map(broadcast, vector::BroadcastOp::create(b, loc, resultType(),
-                                               operand(0)));
+  if (auto bcast = dyn_cast<BroadcastOp>(op)) {
+    map(bcast,
+        broadcast(*this, loc, resultType(), bcast.getType(), operand(0)));
     return success();
   }
   if (auto extract = dyn_cast<ExtractOp>(op)) {
@@ -410,8 +480,9 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
     int64_t n = numComponents(extract.getType());
     SmallVector<Value> components;
     for (int64_t c = 0; c < n; ++c)
-      components.push_back(component(
-          tensor, arith::AddIOp::create(b, loc, offset, indexConstant(c))));
+      components.push_back(
+          component(extract.getTensor().getType(), tensor,
+                    arith::AddIOp::create(b, loc, offset, indexConstant(c))));
     map(extract, fromComponents(resultType(), components));
     return success();
   }
@@ -426,8 +497,8 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
     int64_t n = numComponents(insert.getValue().getType());
     for (int64_t c = 0; c < n; ++c) {
       Value position = arith::AddIOp::create(b, loc, offset, indexConstant(c));
-      tensor = vector::InsertOp::create(b, loc, component(value, c), tensor,
-                                        OpFoldResult(position));
+      tensor = insertComponent(
+          tensor, component(insert.getValue().getType(), value, c), position);
     }
     map(insert, tensor);
     return success();
@@ -460,17 +531,32 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
         indices.push_back(keep ? indexConstant(keptIndex[nextKept++])
                                : lookup(slice.getIndices()[nextFixed++]));
       components.push_back(
-          component(tensor, blockOffset(*this, loc, type, indices)));
+          component(type, tensor, blockOffset(*this, loc, type, indices)));
     }
     map(slice, fromComponents(resultType(), components));
     return success();
   }
 
-  // Arithmetic.
-  if (getComponentType(op->getResult(0).getType()) &&
-      isa<ComplexType>(getComponentType(op->getResult(0).getType())))
-    return op->emitError("complex tensors are not supported by the loop "
-                         "lowering");
+  // Arithmetic. Complex (re, im) pairs add, subtract and negate as floats;
+  // products and quotients go component by component.
+  bool complexResult =
+      op->getNumResults() == 1 &&
+      isa<ComplexType>(getComponentType(op->getResult(0).getType()));
+  if (complexResult && isa<MulOp, DivOp, ScaleOp>(op)) {
+    bool isScale = isa<ScaleOp>(op);
+    Value tensor = isScale ? cast<ScaleOp>(op).getTensor() : op->getOperand(0);
+    SmallVector<Value> x = allComponents(*this, tensor), r;
+    SmallVector<Value> y =
+        isScale ? SmallVector<Value>(x.size(),
+                                     lookup(cast<ScaleOp>(op).getScalar()))
+                : allComponents(*this, op->getOperand(1));
+    for (auto [xi, yi] : llvm::zip_equal(x, y))
+      r.push_back(isScale          ? a.mul(yi, xi)
+                  : isa<MulOp>(op) ? a.mul(xi, yi)
+                                   : a.div(xi, yi));
+    map(op->getResult(0), fromComponents(resultType(), r));
+    return success();
+  }
   if (isa<AddOp, SubOp, MulOp, DivOp>(op)) {
     Value x = operand(0), y = operand(1);
     Value r = isa<AddOp>(op)   ? a.add(x, y)
@@ -513,7 +599,7 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
                << op->getName()
                << "' on blocked local tensors of mixed block ranks is not "
                   "supported";
-      SmallVector<Value> x = allComponents(*this, operand(i));
+      SmallVector<Value> x = allComponents(*this, v);
       for (int64_t position : *order)
         unblocked[i].push_back(x[position]);
     }
@@ -550,8 +636,8 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
   if (isa<MatVecOp, MatMulOp>(op)) {
     SmallVector<int64_t> ls = shapeOf(op->getOperand(0)),
                          rs = shapeOf(op->getOperand(1));
-    SmallVector<Value> x = allComponents(*this, operand(0)),
-                       y = allComponents(*this, operand(1));
+    SmallVector<Value> x = allComponents(*this, op->getOperand(0)),
+                       y = allComponents(*this, op->getOperand(1));
     int64_t m = ls[0], k = ls[1], n = rs.size() == 2 ? rs[1] : 1;
     SmallVector<Value> r;
     for (int64_t i = 0; i < m; ++i)
@@ -572,7 +658,7 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
       map(op->getResult(0), operand(0));
       return success();
     }
-    SmallVector<Value> x = allComponents(*this, operand(0)), r;
+    SmallVector<Value> x = allComponents(*this, op->getOperand(0)), r;
     for (int64_t j = 0; j < s[1]; ++j)
       for (int64_t i = 0; i < s[0]; ++i)
         r.push_back(x[i * s[1] + j]);
@@ -580,12 +666,19 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
     return success();
   }
   if (isa<DotOp, NormOp>(op)) {
-    SmallVector<Value> x = allComponents(*this, operand(0));
+    SmallVector<Value> x = allComponents(*this, op->getOperand(0));
     SmallVector<Value> y =
-        isa<DotOp>(op) ? allComponents(*this, operand(1)) : x;
+        isa<DotOp>(op) ? allComponents(*this, op->getOperand(1)) : x;
     Value sum;
     for (auto [xi, yi] : llvm::zip(x, y)) {
       Value t = a.mul(xi, yi);
+      // The norm of complex components sums their squared moduli.
+      if (isa<NormOp>(op) && isa<ComplexType>(xi.getType())) {
+        Value re = complex::ReOp::create(b, loc, xi);
+        Value im = complex::ImOp::create(b, loc, xi);
+        Value reSquared = a.mul(re, re);
+        t = a.add(reSquared, a.mul(im, im));
+      }
       sum = sum ? a.add(sum, t) : t;
     }
     if (isa<NormOp>(op))

@@ -189,7 +189,7 @@ static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
   int64_t n = numComponents(insert.getValue().getType());
   for (int64_t c = 0; c < n; ++c) {
     SmallVector<Value> indices = l.blockIndices(type, prefix, c);
-    Value component = l.component(value, c);
+    Value component = l.component(insert.getValue().getType(), value, c);
     if (ctx.accumulate) {
       Value old = memref::LoadOp::create(b, loc, output, indices);
       component = combine(b, loc, ctx.reduction, old, component);
@@ -242,6 +242,11 @@ LogicalResult FunctionLowering::lowerElementAccess(Operation *op,
     StringAttr set = elementSetOf(elementValue);
     fieldType =
         cast<ElementType>(elementValue.getType()).getFieldType(field);
+    if (isa<ComplexType>(getComponentType(fieldType))) {
+      op->emitError("complex fields are not supported by the loop lowering "
+                    "yet");
+      return {};
+    }
     if (!set) {
       op->emitError("the loop lowering cannot tell which set this element "
                     "belongs to");
@@ -275,8 +280,9 @@ LogicalResult FunctionLowering::lowerElementAccess(Operation *op,
     if (element && index != element->element)
       element->scatters = true;
     for (int64_t c = 0, n = numComponents(fieldType); c < n; ++c)
-      memref::StoreOp::create(b, loc, component(value, c), array,
-                              blockIndices(type, {index}, c));
+      memref::StoreOp::create(b, loc,
+                              component(write.getValue().getType(), value, c),
+                              array, blockIndices(type, {index}, c));
     return success();
   }
   handled = false;

@@ -134,8 +134,9 @@ LogicalResult FunctionLowering::lowerMatrixBlockAccess(Operation *op) {
   Value value = lookup(insert.getValue());
   for (int64_t c = 0, n = numComponents(insert.getValue().getType()); c < n;
        ++c)
-    memref::StoreOp::create(b, loc, component(value, c), target,
-                            blockIndices(type, {position}, c));
+    memref::StoreOp::create(b, loc,
+                            component(insert.getValue().getType(), value, c),
+                            target, blockIndices(type, {position}, c));
   storages[insert] = storage;
   map(insert, target);
   return success();

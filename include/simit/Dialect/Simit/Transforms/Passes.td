@@ -88,6 +88,7 @@ def ConvertSimitToLoops : Pass<"convert-simit-to-loops", "::mlir::ModuleOp"> {
                            "::mlir::math::MathDialect",
                            "::mlir::memref::MemRefDialect",
                            "::mlir::vector::VectorDialect",
+                           "::mlir::complex::ComplexDialect",
                            "::mlir::LLVM::LLVMDialect"];
 }
 

@@ -36,16 +36,16 @@ bool isContiguous(const StridedMemRefType<T, N> &m) {
 }
 
 /// y = A p over the BCSR arrays, blocks of b x b.
+template <typename T>
 void multiply(int64_t rows, int64_t b, const int32_t *rowptr,
-              const int32_t *colidx, const double *values, const double *p,
-              double *y) {
+              const int32_t *colidx, const T *values, const T *p, T *y) {
   for (int64_t r = 0; r < rows; ++r) {
-    double *yr = y + r * b;
+    T *yr = y + r * b;
     for (int64_t i = 0; i < b; ++i)
       yr[i] = 0;
     for (int32_t k = rowptr[r]; k < rowptr[r + 1]; ++k) {
-      const double *block = values + static_cast<int64_t>(k) * b * b;
-      const double *pc = p + static_cast<int64_t>(colidx[k]) * b;
+      const T *block = values + static_cast<int64_t>(k) * b * b;
+      const T *pc = p + static_cast<int64_t>(colidx[k]) * b;
       for (int64_t i = 0; i < b; ++i)
         for (int64_t j = 0; j < b; ++j)
           yr[i] += block[i * b + j] * pc[j];
@@ -53,18 +53,22 @@ void multiply(int64_t rows, int64_t b, const int32_t *rowptr,
   }
 }
 
-double dot(const std::vector<double> &u, const std::vector<double> &v) {
+/// Dot products accumulate in double, also for float vectors.
+template <typename T>
+double dot(const std::vector<T> &u, const std::vector<T> &v) {
   double sum = 0;
   for (size_t i = 0; i < u.size(); ++i)
-    sum += u[i] * v[i];
+    sum += static_cast<double>(u[i]) * v[i];
   return sum;
 }
-} // namespace
 
-extern "C" int32_t _mlir_ciface_simit_rt_cg_solve_bcsr(
-    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
-    StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *b,
-    StridedMemRefType<double, 2> *x, double tolerance, int32_t maxIterations) {
+/// Unpreconditioned CG on T components (see RuntimeFunctions.h).
+template <typename T>
+int32_t cgSolve(StridedMemRefType<int32_t, 1> *rowptr,
+                StridedMemRefType<int32_t, 1> *colidx,
+                StridedMemRefType<T, 3> *values, StridedMemRefType<T, 2> *b,
+                StridedMemRefType<T, 2> *x, double tolerance,
+                int32_t maxIterations) {
   if (!isContiguous(*rowptr) || !isContiguous(*colidx) ||
       !isContiguous(*values) || !isContiguous(*b) || !isContiguous(*x))
     llvm::report_fatal_error("simit_rt_cg_solve_bcsr: operands must be "
@@ -77,12 +81,12 @@ extern "C" int32_t _mlir_ciface_simit_rt_cg_solve_bcsr(
                              "match the matrix");
   const int32_t *rp = rowptr->data + rowptr->offset;
   const int32_t *ci = colidx->data + colidx->offset;
-  const double *vals = values->data + values->offset;
-  const double *rhs = b->data + b->offset;
-  double *sol = x->data + x->offset;
+  const T *vals = values->data + values->offset;
+  const T *rhs = b->data + b->offset;
+  T *sol = x->data + x->offset;
 
   size_t n = static_cast<size_t>(rows * block);
-  std::vector<double> r(n), p(n), ap(n);
+  std::vector<T> r(n), p(n), ap(n);
   multiply(rows, block, rp, ci, vals, sol, ap.data());
   for (size_t i = 0; i < n; ++i)
     r[i] = rhs[i] - ap[i];
@@ -91,18 +95,34 @@ extern "C" int32_t _mlir_ciface_simit_rt_cg_solve_bcsr(
   int32_t iteration = 0;
   while (rr > tolerance && iteration < maxIterations) {
     multiply(rows, block, rp, ci, vals, p.data(), ap.data());
-    double alpha = rr / dot(p, ap);
+    T alpha = static_cast<T>(rr / dot(p, ap));
     for (size_t i = 0; i < n; ++i) {
       sol[i] += alpha * p[i];
       r[i] -= alpha * ap[i];
     }
     double rrNew = dot(r, r);
+    T beta = static_cast<T>(rrNew / rr);
     for (size_t i = 0; i < n; ++i)
-      p[i] = r[i] + (rrNew / rr) * p[i];
+      p[i] = r[i] + beta * p[i];
     rr = rrNew;
     ++iteration;
   }
   return iteration;
+}
+} // namespace
+
+extern "C" int32_t _mlir_ciface_simit_rt_cg_solve_bcsr(
+    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
+    StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *b,
+    StridedMemRefType<double, 2> *x, double tolerance, int32_t maxIterations) {
+  return cgSolve(rowptr, colidx, values, b, x, tolerance, maxIterations);
+}
+
+extern "C" int32_t _mlir_ciface_simit_rt_cg_solve_bcsr_f32(
+    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
+    StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *b,
+    StridedMemRefType<float, 2> *x, double tolerance, int32_t maxIterations) {
+  return cgSolve(rowptr, colidx, values, b, x, tolerance, maxIterations);
 }
 
 // print/println: through llvm::outs() so the output interleaves with the
@@ -407,6 +427,8 @@ simit::runtimeSymbolMap(llvm::orc::MangleAndInterner interner) {
   };
   add("_mlir_ciface_simit_rt_cg_solve_bcsr",
       reinterpret_cast<void *>(&_mlir_ciface_simit_rt_cg_solve_bcsr));
+  add("_mlir_ciface_simit_rt_cg_solve_bcsr_f32",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_cg_solve_bcsr_f32));
   add("simit_rt_print_f64", reinterpret_cast<void *>(&simit_rt_print_f64));
   add("simit_rt_print_i64", reinterpret_cast<void *>(&simit_rt_print_i64));
   add("simit_rt_print_str", reinterpret_cast<void *>(&simit_rt_print_str));

@@ -30,6 +30,12 @@ int32_t _mlir_ciface_simit_rt_cg_solve_bcsr(
     StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
     StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *b,
     StridedMemRefType<double, 2> *x, double tolerance, int32_t maxIterations);
+/// The same on f32 components (dot products in double); MLIR:
+/// @simit_rt_cg_solve_bcsr_f32 with f32 memrefs and the same scalars.
+int32_t _mlir_ciface_simit_rt_cg_solve_bcsr_f32(
+    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
+    StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *b,
+    StridedMemRefType<float, 2> *x, double tolerance, int32_t maxIterations);
 
 /// print/println of scalars and strings (lowered simit.print).
 void simit_rt_print_f64(double value);

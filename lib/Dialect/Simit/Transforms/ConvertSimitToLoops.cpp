@@ -883,8 +883,10 @@ Value FunctionLowering::asRuntimeBlocks(Location loc, Value array,
   return memref::CastOp::create(b, loc, target, array);
 }
 
-/// The runtime's conjugate gradient solver (lib/Engine/RuntimeFunctions).
+/// The runtime's conjugate gradient solvers (lib/Engine/RuntimeFunctions).
 static constexpr llvm::StringLiteral kCgSolve = "simit_rt_cg_solve_bcsr";
+static constexpr llvm::StringLiteral kCgSolveF32 =
+    "simit_rt_cg_solve_bcsr_f32";
 
 LogicalResult FunctionLowering::lowerSolve(SolveOp op) {
   Location loc = op.getLoc();
@@ -898,36 +900,40 @@ LogicalResult FunctionLowering::lowerSolve(SolveOp op) {
   // Scalar blocks are 1x1 blocks to the runtime.
   if (block.empty())
     block = {1, 1};
-  if (!matrixType.getComponentType().isF64() || block.size() != 2 ||
-      block[0] != block[1])
-    return op.emitError("the runtime solver takes f64 matrices of scalars or "
-                        "of square blocks");
+  Type component = matrixType.getComponentType();
+  if (!component.isF64() && !component.isF32())
+    return op.emitError("the runtime solver takes f64 or f32 matrices");
+  if (block.size() != 2 || block[0] != block[1])
+    return op.emitError("the runtime solver takes matrices of scalars or of "
+                        "square blocks");
 
-  // func.func private @simit_rt_cg_solve_bcsr(rowptr, colidx, values, b, x,
-  //     tolerance, maxIterations) -> iterations, declared once.
+  // func.func private @simit_rt_cg_solve_bcsr[_f32](rowptr, colidx, values,
+  //     b, x, tolerance, maxIterations) -> iterations, declared once.
   MLIRContext *ctx = b.getContext();
   Type f64 = b.getF64Type();
   int64_t dyn = ShapedType::kDynamic;
   Type indexArray = MemRefType::get({dyn}, b.getI32Type());
-  auto values = MemRefType::get({dyn, dyn, dyn}, f64);
-  auto vector = MemRefType::get({dyn, dyn}, f64);
+  auto values = MemRefType::get({dyn, dyn, dyn}, component);
+  auto vector = MemRefType::get({dyn, dyn}, component);
   auto type = FunctionType::get(
       ctx, {indexArray, indexArray, values, vector, vector, f64, b.getI32Type()},
       {b.getI32Type()});
-  func::FuncOp callee = declareRuntime(loc, kCgSolve, type);
+  StringRef solver = component.isF64() ? kCgSolve : kCgSolveF32;
+  func::FuncOp callee = declareRuntime(loc, solver, type);
   if (!callee)
-    return op.emitError("@") << kCgSolve << " is declared with another type";
+    return op.emitError("@") << solver << " is declared with another type";
 
-  // x starts at zero; CG stops when r.r <= 1e-20 or after 2 n iterations
-  // (n unknowns: exact arithmetic needs at most n).
+  // x starts at zero; CG stops when r.r <= 1e-20 (f32: 1e-10, above its
+  // rounding floor) or after 2 n iterations (n unknowns: exact arithmetic
+  // needs at most n).
   Value x = allocSystem(loc, op.getType(), Storage::dense());
   Value rows = getSetSize(storage.rows);
   Value unknowns = arith::MulIOp::create(b, loc, rows, indexConstant(block[0]));
   Value limit = arith::IndexCastOp::create(
       b, loc, b.getI32Type(),
       arith::MulIOp::create(b, loc, unknowns, indexConstant(2)));
-  Value tolerance =
-      arith::ConstantOp::create(b, loc, b.getF64FloatAttr(1e-20));
+  Value tolerance = arith::ConstantOp::create(
+      b, loc, b.getF64FloatAttr(component.isF64() ? 1e-20 : 1e-10));
   func::CallOp::create(
       b, loc, callee,
       ValueRange{getPatternArray(BindingKind::PatternRowPtr, storage.edges,

@@ -8,6 +8,8 @@
 //
 //===----------------------------------------------------------------------===//
 
+#include "EngineTestSupport.h"
+
 #include "simit/Engine/Program.h"
 #include "simit/Runtime/Set.h"
 
@@ -18,6 +20,7 @@
 #include <limits>
 
 using namespace simit;
+using namespace simit::test;
 using ::testing::HasSubstr;
 
 namespace {
@@ -190,10 +193,6 @@ func.func @spans(%ne: index, %ends: memref<?x2xi32>, %d: memref<?xf64>)
   return
 }
 )mlir";
-
-std::string message(llvm::Error err) {
-  return err ? llvm::toString(std::move(err)) : "success";
-}
 
 /// Compiles `name` from the MLIR text, failing the test on an error.
 Function compile(Program &program, llvm::StringRef text, llvm::StringRef name) {

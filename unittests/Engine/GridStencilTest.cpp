@@ -6,6 +6,8 @@
 //
 //===----------------------------------------------------------------------===//
 
+#include "EngineTestSupport.h"
+
 #include "simit/Engine/Program.h"
 #include "simit/Runtime/Set.h"
 
@@ -13,13 +15,10 @@
 #include "gtest/gtest.h"
 
 using namespace simit;
+using namespace simit::test;
 using ::testing::HasSubstr;
 
 namespace {
-std::string message(llvm::Error err) {
-  return err ? llvm::toString(std::move(err)) : "success";
-}
-
 /// A vertex set `points` (fields `in` and `out`) with values `in`, and a
 /// grid `grid` of the given extents over it.
 struct Grid {
@@ -39,20 +38,12 @@ struct Grid {
   }
 };
 
-/// Compiles `main` of test/Programs/System/<name>.
-llvm::Expected<Function> compileMain(Program &program, llvm::StringRef name) {
-  std::string path = (SIMIT_SOURCE_DIR "/test/Programs/System/" + name).str();
-  if (llvm::Error err = program.loadFile(path))
-    return std::move(err);
-  return program.compile("main");
-}
-
 /// Runs `main` of a program with nodes.x / links (the 1-D programs).
 std::vector<double> run1D(llvm::StringRef program,
                           llvm::ArrayRef<double> x,
                           llvm::ArrayRef<double> k = {}) {
   Program p;
-  llvm::Expected<Function> main = compileMain(p, program);
+  llvm::Expected<Function> main = compileSystemMain(p, program);
   EXPECT_TRUE(!!main) << llvm::toString(main.takeError());
   if (!main)
     return {};
@@ -73,13 +64,13 @@ std::vector<double> run1D(llvm::StringRef program,
 } // namespace
 
 TEST(GridStencilTest, PeriodicSecondDifference) {
-  EXPECT_THAT(run1D("grid_stencil_1d.sim", {1, 2, 4, 8}),
+  EXPECT_THAT(run1D("grid_stencil_1d", {1, 2, 4, 8}),
               ::testing::ElementsAre(-8, -1, -2, 11));
 }
 
 TEST(GridStencilTest, TwoDimensionalLaplacian) {
   Program p;
-  llvm::Expected<Function> main = compileMain(p, "grid_stencil_2d.sim");
+  llvm::Expected<Function> main = compileSystemMain(p, "grid_stencil_2d");
   ASSERT_TRUE(!!main) << llvm::toString(main.takeError());
   Grid g("points", "a", "c", "links", {3, 3}, {0, 0, 0, 0, 1, 0, 0, 0, 0});
   ASSERT_EQ(message(main->bind("points", g.points)), "success");
@@ -92,7 +83,7 @@ TEST(GridStencilTest, TwoDimensionalLaplacian) {
 }
 
 TEST(GridStencilTest, ReadsEdgeFields) {
-  EXPECT_THAT(run1D("grid_stencil_edge_fields.sim", {1, 2, 4, 8}, {1, 2, 3, 4}),
+  EXPECT_THAT(run1D("grid_stencil_edge_fields", {1, 2, 4, 8}, {1, 2, 3, 4}),
               ::testing::ElementsAre(-29, -3, -8, 40));
 }
 
@@ -100,15 +91,15 @@ TEST(GridStencilTest, OffsetsNamingOnePointShareALocation) {
   // On two points nodes[1] and nodes[-1] are the same point: A(p, q) is
   // written twice with -1 and holds -1 (the last write), so
   // y = (2 x0 - x1, 2 x1 - x0) = (0, 3) for x = (1, 2).
-  EXPECT_THAT(run1D("grid_stencil_1d.sim", {1, 2}),
+  EXPECT_THAT(run1D("grid_stencil_1d", {1, 2}),
               ::testing::ElementsAre(0, 3));
   // On one point all three offsets are p: the last write leaves A(p, p) = -1.
-  EXPECT_THAT(run1D("grid_stencil_1d.sim", {5}), ::testing::ElementsAre(-5));
+  EXPECT_THAT(run1D("grid_stencil_1d", {5}), ::testing::ElementsAre(-5));
 }
 
 TEST(GridStencilTest, ABoundSetThatIsNotAGridIsAnError) {
   Program p;
-  llvm::Expected<Function> main = compileMain(p, "grid_stencil_1d.sim");
+  llvm::Expected<Function> main = compileSystemMain(p, "grid_stencil_1d");
   ASSERT_TRUE(!!main) << llvm::toString(main.takeError());
   Set nodes("nodes");
   nodes.addField<double>("x");

@@ -1,5 +1,7 @@
 //===--- ProgramTest.cpp - Loading, emitting and compiling programs -------===//
 
+#include "EngineTestSupport.h"
+
 #include "simit/Engine/Program.h"
 
 #include "gmock/gmock.h"
@@ -9,6 +11,7 @@
 #include "llvm/Support/raw_ostream.h"
 
 using namespace simit;
+using namespace simit::test;
 using ::testing::HasSubstr;
 
 namespace {
@@ -26,9 +29,6 @@ func.func private @helper() {
 }
 )mlir";
 
-std::string message(llvm::Error err) {
-  return err ? llvm::toString(std::move(err)) : "success";
-}
 } // namespace
 
 TEST(ProgramTest, ExportsTheFunctionsWithBindings) {

@@ -6,6 +6,8 @@
 //
 //===----------------------------------------------------------------------===//
 
+#include "EngineTestSupport.h"
+
 #include "simit/Engine/Program.h"
 #include "simit/Engine/RuntimeFunctions.h"
 #include "simit/Runtime/Set.h"
@@ -17,6 +19,7 @@
 #include <cmath>
 
 using namespace simit;
+using namespace simit::test;
 using ::testing::HasSubstr;
 
 namespace {
@@ -57,10 +60,6 @@ export func multiply()
   points.y = K * points.x;
 end
 )sim";
-
-std::string message(llvm::Error err) {
-  return err ? llvm::toString(std::move(err)) : "success";
-}
 
 /// Points at x = 0, 1, 3 joined by springs of stiffness 2 and 3.
 struct Chain {

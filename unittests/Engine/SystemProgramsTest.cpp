@@ -7,6 +7,8 @@
 //
 //===----------------------------------------------------------------------===//
 
+#include "EngineTestSupport.h"
+
 #include "simit/Engine/Program.h"
 #include "simit/Runtime/Set.h"
 
@@ -18,21 +20,9 @@
 #include <unistd.h>
 
 using namespace simit;
+using namespace simit::test;
 
 namespace {
-std::string message(llvm::Error err) {
-  return err ? llvm::toString(std::move(err)) : "success";
-}
-
-/// Compiles `main` of test/Programs/System/<name>.sim.
-llvm::Expected<Function> compileMain(Program &program, llvm::StringRef name) {
-  std::string path =
-      (SIMIT_SOURCE_DIR "/test/Programs/System/" + name + ".sim").str();
-  if (llvm::Error err = program.loadFile(path))
-    return std::move(err);
-  return program.compile("main");
-}
-
 /// Binds the sets in order and runs the function once.
 std::string bindAndRun(Function &function,
                        std::initializer_list<std::pair<const char *, Set *>>
@@ -47,7 +37,7 @@ std::string bindAndRun(Function &function,
 // A = [1 2; 0 1]: A x = (21, 10), A' x = (1, 12) for x = (1, 10).
 TEST(SystemProgramsTest, Transpose) {
   Program program;
-  llvm::Expected<Function> compiled = compileMain(program, "system_transpose");
+  llvm::Expected<Function> compiled = compileSystemMain(program, "system_transpose");
   ASSERT_TRUE(!!compiled) << llvm::toString(compiled.takeError());
   Set points("points");
   Set links("links", {&points, &points});
@@ -70,7 +60,7 @@ TEST(SystemProgramsTest, Transpose) {
 // A' q = (1, 6, 2) for q = (1, 2).
 TEST(SystemProgramsTest, HeterogeneousEdges) {
   Program program;
-  llvm::Expected<Function> compiled = compileMain(program, "heterogeneous_edges");
+  llvm::Expected<Function> compiled = compileSystemMain(program, "heterogeneous_edges");
   ASSERT_TRUE(!!compiled) << llvm::toString(compiled.takeError());
   Set particles("particles"), nodes("nodes");
   Set links("links", {&particles, &nodes});
@@ -102,7 +92,7 @@ TEST(SystemProgramsTest, HeterogeneousEdges) {
 TEST(SystemProgramsTest, EdgeVertexIncidence) {
   Program program;
   llvm::Expected<Function> compiled =
-      compileMain(program, "edge_vertex_incidence");
+      compileSystemMain(program, "edge_vertex_incidence");
   ASSERT_TRUE(!!compiled) << llvm::toString(compiled.takeError());
   Set points("points");
   Set springs("springs", {&points, &points});
@@ -127,7 +117,7 @@ TEST(SystemProgramsTest, EdgeVertexIncidence) {
 TEST(SystemProgramsTest, BlockedComponentAccess) {
   Program program;
   llvm::Expected<Function> compiled =
-      compileMain(program, "blocked_component_access");
+      compileSystemMain(program, "blocked_component_access");
   ASSERT_TRUE(!!compiled) << llvm::toString(compiled.takeError());
   Set points("points");
   Set springs("springs", {&points, &points});
@@ -151,7 +141,7 @@ TEST(SystemProgramsTest, BlockedComponentAccess) {
 // A = L + I = [2 -1 0; -1 3 -1; 0 -1 2]: A x = (0, 2, 4) for x = (1, 2, 3).
 TEST(SystemProgramsTest, ForOverSet) {
   Program program;
-  llvm::Expected<Function> compiled = compileMain(program, "for_over_set");
+  llvm::Expected<Function> compiled = compileSystemMain(program, "for_over_set");
   ASSERT_TRUE(!!compiled) << llvm::toString(compiled.takeError());
   Set points("points");
   Set springs("springs", {&points, &points});
@@ -172,7 +162,7 @@ TEST(SystemProgramsTest, ForOverSet) {
 // "x: " then 1 2 3, then "sum: " and 1 + 2 + 3 = 6.
 TEST(SystemProgramsTest, PrintSystemVector) {
   Program program;
-  llvm::Expected<Function> compiled = compileMain(program, "print_system_vector");
+  llvm::Expected<Function> compiled = compileSystemMain(program, "print_system_vector");
   ASSERT_TRUE(!!compiled) << llvm::toString(compiled.takeError());
   Set points("points");
   auto x = points.addField<double>("x");
@@ -212,7 +202,7 @@ struct SpdScene {
 // A = [4 -2 0; -2 5 -3; 0 -3 3]: A x = (2, 0, 3) gives x = (2.5, 4, 5).
 TEST(SystemProgramsTest, Backslash) {
   Program program;
-  llvm::Expected<Function> compiled = compileMain(program, "system_backslash");
+  llvm::Expected<Function> compiled = compileSystemMain(program, "system_backslash");
   ASSERT_TRUE(!!compiled) << llvm::toString(compiled.takeError());
   SpdScene scene;
   ASSERT_EQ(bindAndRun(*compiled, {{"points", &scene.points},
@@ -225,7 +215,7 @@ TEST(SystemProgramsTest, Backslash) {
 
 TEST(SystemProgramsTest, Cholesky) {
   Program program;
-  llvm::Expected<Function> compiled = compileMain(program, "system_cholesky");
+  llvm::Expected<Function> compiled = compileSystemMain(program, "system_cholesky");
   ASSERT_TRUE(!!compiled) << llvm::toString(compiled.takeError());
   SpdScene scene;
   ASSERT_EQ(bindAndRun(*compiled, {{"points", &scene.points},
@@ -240,7 +230,7 @@ TEST(SystemProgramsTest, Cholesky) {
 // definite (A(0,0) = -1 < 0): chol stops the program.
 TEST(SystemProgramsTest, CholeskyRejectsAnIndefiniteMatrix) {
   Program program;
-  llvm::Expected<Function> compiled = compileMain(program, "system_cholesky");
+  llvm::Expected<Function> compiled = compileSystemMain(program, "system_cholesky");
   ASSERT_TRUE(!!compiled) << llvm::toString(compiled.takeError());
   SpdScene scene;
   scene.m.set(0, 0.0);
@@ -254,7 +244,7 @@ TEST(SystemProgramsTest, CholeskyRejectsAnIndefiniteMatrix) {
 // A = [4 1; 3 2], b = (5, 5): x = (1, 1).
 TEST(SystemProgramsTest, LU) {
   Program program;
-  llvm::Expected<Function> compiled = compileMain(program, "system_lu");
+  llvm::Expected<Function> compiled = compileSystemMain(program, "system_lu");
   ASSERT_TRUE(!!compiled) << llvm::toString(compiled.takeError());
   Set points("points");
   Set links("links", {&points, &points});

@@ -213,6 +213,11 @@ public:
   /// The positions of blocks (row, col) of pattern matrices found so far.
   SmallVector<std::tuple<Storage, Value, Value, Value>> blockPositions;
 
+  // --check-numerics (LowerCheckNumerics.cpp).
+  /// Calls the runtime's scan of each float system tensor result of `op`,
+  /// which simit-check-numerics marked, after `op` is lowered.
+  LogicalResult scanForNonFinite(Operation *op);
+
   // Index expressions (LowerIndexExpr.cpp).
   LogicalResult lowerIndexExpr(IndexExprOp op);
 

@@ -75,7 +75,7 @@ LogicalResult FunctionLowering::scanForNonFinite(Operation *op) {
       continue;
     Storage storage = storages.lookup(result);
     SimitNumericsLayout layout = layoutOf(storage);
-    Value rowptr = emptyIndices(), colidx = emptyIndices();
+    Value rowptr, colidx;
     int64_t perRow = 0;
     if (layout == SIMIT_NUMERICS_PATTERN) {
       rowptr = getPatternArray(BindingKind::PatternRowPtr, storage.edges,
@@ -92,6 +92,10 @@ LogicalResult FunctionLowering::scanForNonFinite(Operation *op) {
     } else if (layout == SIMIT_NUMERICS_STENCIL) {
       perRow = storage.offsets.size();
     }
+    if (!rowptr)
+      rowptr = emptyIndices();
+    if (!colidx)
+      colidx = emptyIndices();
     StringAttr rowSet = storage.isMatrix() ? storage.rows : firstSet(type);
     StringAttr colSet = storage.isMatrix() ? storage.cols : StringAttr();
 

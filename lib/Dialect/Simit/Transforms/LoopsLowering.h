@@ -7,7 +7,8 @@
 // ConvertSimitToLoops.cpp (driver, bindings, host-level ops and control
 // flow), LowerLocalTensors.cpp (small dense tensors as flat vectors),
 // LowerMaps.cpp (map/assemble as set loops), LowerMatrixBlocks.cpp (one
-// block of a matrix) and LowerIndexExpr.cpp.
+// block of a matrix), LowerIndexExpr.cpp and LowerCheckNumerics.cpp (scans
+// of results for --check-numerics).
 //
 //===----------------------------------------------------------------------===//
 

@@ -11,6 +11,8 @@
 
 #include "LoopsLowering.h"
 
+// The layout codes are shared with the runtime that reads them (a header
+// of plain declarations; nothing of the engine is linked).
 #include "simit/Engine/RuntimeFunctions.h"
 
 using namespace mlir;

@@ -149,8 +149,9 @@ private:
 };
 } // namespace
 
-llvm::Error simit::lowerToLLVM(mlir::ModuleOp module, LoweringResult &result,
-                               bool timePhases) {
+llvm::Error
+simit::lowerToLLVM(mlir::ModuleOp module, LoweringResult &result,
+                   mlir::simit::SimitCpuPipelineOptions pipelineOptions) {
   mlir::MLIRContext *context = module.getContext();
   DiagnosticCollector diagnostics(context);
 
@@ -159,8 +160,6 @@ llvm::Error simit::lowerToLLVM(mlir::ModuleOp module, LoweringResult &result,
   SignatureRecorder *recorderPtr = recorder.get();
   pm.addInstrumentation(std::move(recorder));
 
-  mlir::simit::SimitCpuPipelineOptions pipelineOptions;
-  pipelineOptions.timePhases = timePhases;
   pipelineOptions.runtimeAllocator = true;
   mlir::simit::buildSimitCpuPipeline(pm, pipelineOptions);
 

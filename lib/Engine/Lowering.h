@@ -5,6 +5,8 @@
 
 #include "CompiledModule.h"
 
+#include "simit/Dialect/Simit/Transforms/Passes.h"
+
 #include "mlir/IR/BuiltinOps.h"
 
 #include "llvm/ADT/StringMap.h"
@@ -35,9 +37,11 @@ struct LoweringResult {
 
 /// Lowers `module` in place to the LLVM dialect. Errors carry the MLIR
 /// diagnostics with their locations.
-/// Runs simit-cpu-pipeline; `timePhases` adds simit-time-phases.
-llvm::Error lowerToLLVM(mlir::ModuleOp module, LoweringResult &result,
-                        bool timePhases = false);
+/// Runs simit-cpu-pipeline with `options` (the JIT always uses the
+/// runtime allocator).
+llvm::Error
+lowerToLLVM(mlir::ModuleOp module, LoweringResult &result,
+            mlir::simit::SimitCpuPipelineOptions options = {});
 
 /// JIT-compiles a module in the LLVM dialect at -O3 for the host and looks
 /// up the entry point of every function in `signatures`.

@@ -63,7 +63,10 @@ struct Program::Impl {
       return err;
     mlir::OwningOpRef<mlir::ModuleOp> clone = module->clone();
     LoweringResult result;
-    if (llvm::Error err = lowerToLLVM(*clone, result, options.timePhases))
+    mlir::simit::SimitCpuPipelineOptions pipelineOptions;
+    pipelineOptions.timePhases = options.timePhases;
+    pipelineOptions.checkNumerics = options.checkNumerics;
+    if (llvm::Error err = lowerToLLVM(*clone, result, pipelineOptions))
       return err;
     llvmModule = std::move(clone);
     lowering = std::move(result);

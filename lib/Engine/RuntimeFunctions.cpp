@@ -4,8 +4,10 @@
 
 #include "RuntimeSymbols.h"
 
+#include "llvm/ADT/SmallVector.h"
 #include "llvm/Support/ErrorHandling.h"
 #include "llvm/Support/Format.h"
+#include "llvm/Support/InterleavedRange.h"
 #include "llvm/Support/raw_ostream.h"
 
 #include <Eigen/Cholesky>
@@ -15,7 +17,9 @@
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 
@@ -198,6 +202,112 @@ simit::PhaseTimes simit::readPhaseTimes() {
 
 void simit::resetPhaseTimes() {
   phaseMilliseconds[0] = phaseMilliseconds[1] = 0.0;
+}
+
+// The check of --check-numerics. Lowered code cannot throw: the first
+// problem of a run waits in this slot until the host takes it; later ones
+// are left unscanned, since they usually follow from the first.
+static std::optional<std::string> numericsProblem;
+
+std::optional<std::string> simit::takeNumericsProblem() {
+  std::optional<std::string> problem = std::move(numericsProblem);
+  numericsProblem.reset();
+  return problem;
+}
+
+namespace {
+/// Where block `k` of `blocks` blocks sits: its row and column element
+/// (column -1 for vectors) or, for stencils, its row and offset number.
+std::pair<int64_t, int64_t> blockPosition(int32_t layout, int64_t perRow,
+                                          const int32_t *rowptr,
+                                          int64_t rows, const int32_t *colidx,
+                                          int64_t k, int64_t blocks) {
+  switch (layout) {
+  case SIMIT_NUMERICS_DIAGONAL:
+    return {k, k};
+  case SIMIT_NUMERICS_PATTERN: {
+    // The last row starting at or before k.
+    const int32_t *row = std::upper_bound(rowptr, rowptr + rows + 1, k) - 1;
+    return {row - rowptr, colidx[k]};
+  }
+  case SIMIT_NUMERICS_FIXED_ROWS:
+    return {k / perRow, colidx[k]};
+  case SIMIT_NUMERICS_STENCIL: {
+    int64_t points = blocks / perRow;
+    return {k % points, k / points};
+  }
+  default:
+    return {k, -1};
+  }
+}
+
+template <typename T>
+void checkNumerics(const UnrankedMemRefType<T> &values, int32_t layout,
+                   int64_t perRow, const StridedMemRefType<int32_t, 1> &rowptr,
+                   const StridedMemRefType<int32_t, 1> &colidx,
+                   const char *what, const char *result, const char *rowSet,
+                   const char *colSet) {
+  DynamicMemRefType<T> array(values);
+  if (numericsProblem || array.rank == 0)
+    return;
+  int64_t blocks = array.sizes[0], components = 1;
+  for (int64_t d = 1; d < array.rank; ++d)
+    components *= array.sizes[d];
+  for (int64_t k = 0; k < blocks; ++k)
+    for (int64_t c = 0; c < components; ++c) {
+      // Component c (row major) of block k, and its indices in the block.
+      llvm::SmallVector<int64_t> indices(array.rank - 1);
+      int64_t position = array.offset + k * array.strides[0];
+      for (int64_t d = array.rank - 1, rest = c; d >= 1; --d) {
+        indices[d - 1] = rest % array.sizes[d];
+        position += indices[d - 1] * array.strides[d];
+        rest /= array.sizes[d];
+      }
+      T value = array.data[position];
+      if (std::isfinite(value))
+        continue;
+      auto [row, column] = blockPosition(
+          layout, perRow, rowptr.data + rowptr.offset, rowptr.sizes[0] - 1,
+          colidx.data + colidx.offset, k, blocks);
+      std::string text;
+      llvm::raw_string_ostream os(text);
+      os << what << " produced "
+         << (std::isnan(value) ? "nan" : value > 0 ? "inf" : "-inf") << ": "
+         << result;
+      if (layout == SIMIT_NUMERICS_VECTOR)
+        os << " element (" << rowSet << " " << row << ")";
+      else if (layout == SIMIT_NUMERICS_STENCIL)
+        os << " block (" << rowSet << " " << row << ", stencil offset "
+           << column << ")";
+      else
+        os << " block (" << rowSet << " " << row << ", " << colSet << " "
+           << column << ")";
+      if (indices.size() == 1)
+        os << " component " << indices[0];
+      else if (!indices.empty())
+        os << " component (" << llvm::interleaved(indices) << ")";
+      numericsProblem = std::move(text);
+      return;
+    }
+}
+} // namespace
+
+extern "C" void _mlir_ciface_simit_rt_check_numerics_f64(
+    UnrankedMemRefType<double> *values, int32_t layout, int64_t perRow,
+    StridedMemRefType<int32_t, 1> *rowptr,
+    StridedMemRefType<int32_t, 1> *colidx, const char *what,
+    const char *result, const char *rowSet, const char *colSet) {
+  checkNumerics(*values, layout, perRow, *rowptr, *colidx, what, result,
+                rowSet, colSet);
+}
+
+extern "C" void _mlir_ciface_simit_rt_check_numerics_f32(
+    UnrankedMemRefType<float> *values, int32_t layout, int64_t perRow,
+    StridedMemRefType<int32_t, 1> *rowptr,
+    StridedMemRefType<int32_t, 1> *colidx, const char *what,
+    const char *result, const char *rowSet, const char *colSet) {
+  checkNumerics(*values, layout, perRow, *rowptr, *colidx, what, result,
+                rowSet, colSet);
 }
 
 namespace {
@@ -444,6 +554,10 @@ simit::runtimeSymbolMap(llvm::orc::MangleAndInterner interner) {
       reinterpret_cast<void *>(&_mlir_memref_to_llvm_free));
   add("simit_rt_phase_begin", reinterpret_cast<void *>(&simit_rt_phase_begin));
   add("simit_rt_phase_end", reinterpret_cast<void *>(&simit_rt_phase_end));
+  add("_mlir_ciface_simit_rt_check_numerics_f64",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_check_numerics_f64));
+  add("_mlir_ciface_simit_rt_check_numerics_f32",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_check_numerics_f32));
   add("_mlir_ciface_simit_rt_lu",
       reinterpret_cast<void *>(&_mlir_ciface_simit_rt_lu));
   add("_mlir_ciface_simit_rt_chol",

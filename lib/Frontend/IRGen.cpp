@@ -146,9 +146,13 @@ void IRGenerator::genFunction(const FuncDecl &func) {
     genBlock(*func.body);
   SmallVector<Value> results;
   SMLoc end = func.body ? func.body->loc : func.loc;
+  // The result's name travels in the location of its final load, for
+  // messages about the value (simit-check-numerics).
   for (const auto &result : func.results)
-    results.push_back(dialect::LoadOp::create(builder, loc(result->loc),
-                                            bindings[result.get()].value));
+    results.push_back(dialect::LoadOp::create(
+        builder,
+        NameLoc::get(builder.getStringAttr(result->name), loc(result->loc)),
+        bindings[result.get()].value));
   func::ReturnOp::create(builder, loc(end), results);
   currentFunc = nullptr;
 }
@@ -186,7 +190,7 @@ bool IRGenerator::verifyModule() {
       return success();
     ok = false;
     SMLoc where;
-    if (auto fileLoc = dyn_cast<FileLineColLoc>(diag.getLocation()))
+    if (auto fileLoc = diag.getLocation()->findInstanceOf<FileLineColLoc>())
       if (sourceMgr.getNumBuffers() != 0)
         where = sourceMgr.FindLocForLineAndColumn(sourceMgr.getMainFileID(),
                                                   fileLoc.getLine(),

@@ -142,13 +142,20 @@ llvm::Error runAll(std::vector<NamedFunction> &group, bool checkNumerics,
   for (NamedFunction &named : group) {
     if (llvm::Error err = named.function.run())
       return err;
-    if (checkNumerics) {
-      std::string problem = named.function.findNonFinite();
-      if (!problem.empty())
-        return llvm::createStringError(
-            "check-numerics: after function '" + named.name + "' (frame " +
-            llvm::Twine(frame) + "): " + problem);
-    }
+    if (!checkNumerics)
+      continue;
+    // First the assembly or solve that produced a NaN or infinity, then
+    // what the function left in the fields and externs (from work that is
+    // neither, e.g. a solver written in Simit).
+    std::string where =
+        "function '" + named.name + "' (frame " + std::to_string(frame) + ")";
+    if (std::optional<std::string> problem = takeNumericsProblem())
+      return llvm::createStringError("check-numerics: " + where + ": " +
+                                     *problem);
+    std::string problem = named.function.findNonFinite();
+    if (!problem.empty())
+      return llvm::createStringError("check-numerics: after " + where + ": " +
+                                     problem);
   }
   return llvm::Error::success();
 }
@@ -179,6 +186,7 @@ llvm::Error simit::runScene(const SceneRunOptions &options) {
   ProgramOptions programOptions;
   programOptions.precision = options.precision;
   programOptions.timePhases = options.printTimes;
+  programOptions.checkNumerics = options.checkNumerics;
   Program program(programOptions);
   if (llvm::Error err = program.loadFile(programPath))
     return err;

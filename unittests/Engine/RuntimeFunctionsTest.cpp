@@ -6,7 +6,9 @@
 
 #include "gtest/gtest.h"
 
+#include <cmath>
 #include <random>
+#include <type_traits>
 #include <vector>
 
 namespace {
@@ -149,4 +151,86 @@ TEST(RuntimeFunctionsTest, SparseLUSolvesAndHandlesAreChecked) {
   EXPECT_DEATH(_mlir_ciface_simit_rt_lltsolve_bcsr(lu, &bm, &xm),
                "lltsolve: the handle is not a sparse Cholesky factorisation");
   simit_rt_lufree(lu);
+}
+
+namespace {
+/// Hands `m` to the scan as the unranked memref lowered code passes.
+template <typename T, int N>
+void scan(StridedMemRefType<T, N> &m, int32_t layout, int64_t perRow,
+          StridedMemRefType<int32_t, 1> &rowptr,
+          StridedMemRefType<int32_t, 1> &colidx, const char *result,
+          const char *rowSet, const char *colSet) {
+  UnrankedMemRefType<T> unranked{N, &m};
+  if constexpr (std::is_same_v<T, double>)
+    _mlir_ciface_simit_rt_check_numerics_f64(&unranked, layout, perRow,
+                                             &rowptr, &colidx, "map f to e",
+                                             result, rowSet, colSet);
+  else
+    _mlir_ciface_simit_rt_check_numerics_f32(&unranked, layout, perRow,
+                                             &rowptr, &colidx, "map f to e",
+                                             result, rowSet, colSet);
+}
+} // namespace
+
+// The BCSR matrix [[A B 0]; [0 C D]; [0 0 E]] of 2x2 blocks: rowptr
+// (0, 2, 4, 5), colidx (0, 1, 1, 2, 2). Block 3 is D = (1, 2) of the row
+// blocks: row 1, column colidx[3] = 2. Its component (1, 0) (flat 2) is
+// the first NaN; the -inf in block 4 comes later in the array.
+TEST(RuntimeFunctionsTest, CheckNumericsNamesTheFirstBadBlock) {
+  ASSERT_FALSE(simit::takeNumericsProblem());
+  std::vector<int32_t> rowptr{0, 2, 4, 5}, colidx{0, 1, 1, 2, 2};
+  std::vector<double> values(5 * 4, 1.0);
+  values[3 * 4 + 2] = std::nan("");
+  values[4 * 4 + 0] = -INFINITY;
+  auto rp = describe<int32_t, 1>(rowptr.data(), {4});
+  auto ci = describe<int32_t, 1>(colidx.data(), {5});
+  auto vals = describe<double, 3>(values.data(), {5, 2, 2});
+  scan(vals, SIMIT_NUMERICS_PATTERN, 0, rp, ci, "K", "p", "q");
+  EXPECT_EQ(simit::takeNumericsProblem(),
+            "map f to e produced nan: K block (p 1, q 2) component (1, 0)");
+  // Taken: the slot is empty again.
+  EXPECT_FALSE(simit::takeNumericsProblem());
+
+  // Only the first problem of a run is kept.
+  std::vector<double> vector{0.0, 1.0, INFINITY, 2.0};
+  auto vm = describe<double, 2>(vector.data(), {2, 2});
+  auto none = describe<int32_t, 1>(nullptr, {0});
+  scan(vm, SIMIT_NUMERICS_VECTOR, 0, none, none, "f", "p", "");
+  scan(vals, SIMIT_NUMERICS_PATTERN, 0, rp, ci, "K", "p", "q");
+  EXPECT_EQ(simit::takeNumericsProblem(),
+            "map f to e produced inf: f element (p 1) component 0");
+}
+
+// The other layouts place block k by their own rule; scalar blocks name no
+// component. Incidence rows of 2 blocks: block 3 is row 1 at column
+// colidx[3] = 7. A stencil of 2 offsets over 3 points: block 4 is point
+// 4 % 3 = 1 at offset 4 / 3 = 1. Diagonal: block 2 is (2, 2).
+TEST(RuntimeFunctionsTest, CheckNumericsPlacesBlocksByLayout) {
+  std::vector<int32_t> endpoints{4, 5, 6, 7};
+  auto ends = describe<int32_t, 1>(endpoints.data(), {4});
+  auto none = describe<int32_t, 1>(nullptr, {0});
+  std::vector<double> incidence{0, 0, 0, -INFINITY};
+  auto im = describe<double, 1>(incidence.data(), {4});
+  scan(im, SIMIT_NUMERICS_FIXED_ROWS, 2, none, ends, "B", "e", "p");
+  EXPECT_EQ(simit::takeNumericsProblem(),
+            "map f to e produced -inf: B block (e 1, p 7)");
+
+  std::vector<float> stencil(6 * 3, 0.0f);
+  stencil[4 * 3 + 2] = NAN;
+  auto sm = describe<float, 2>(stencil.data(), {6, 3});
+  scan(sm, SIMIT_NUMERICS_STENCIL, 2, none, none, "A", "p", "p");
+  EXPECT_EQ(simit::takeNumericsProblem(),
+            "map f to e produced nan: A block (p 1, stencil offset 1) "
+            "component 2");
+
+  std::vector<double> diagonal{1, 2, NAN};
+  auto dm = describe<double, 1>(diagonal.data(), {3});
+  scan(dm, SIMIT_NUMERICS_DIAGONAL, 0, none, none, "M", "p", "p");
+  EXPECT_EQ(simit::takeNumericsProblem(),
+            "map f to e produced nan: M block (p 2, p 2)");
+
+  // A finite array records nothing.
+  diagonal[2] = 3;
+  scan(dm, SIMIT_NUMERICS_DIAGONAL, 0, none, none, "M", "p", "p");
+  EXPECT_FALSE(simit::takeNumericsProblem());
 }

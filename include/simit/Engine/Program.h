@@ -41,6 +41,10 @@ struct ProgramOptions {
   /// Bracket assemblies and solves with the phase timer (simit-time-phases;
   /// simit::readPhaseTimes() in RuntimeFunctions.h reads it).
   bool timePhases = false;
+  /// Scan the results of assemblies and solves for NaN and infinity
+  /// (simit-check-numerics; simit::takeNumericsProblem() in
+  /// RuntimeFunctions.h reads the first one). Off, nothing is scanned.
+  bool checkNumerics = false;
 };
 
 /// Where --emit stops: the simit dialect as imported, the loops over sets

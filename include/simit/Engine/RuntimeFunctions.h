@@ -14,6 +14,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
+#include <string>
 
 extern "C" {
 
@@ -59,6 +61,45 @@ void _mlir_memref_to_llvm_free(void *pointer);
 /// solves (phase 1) with; simit::readPhaseTimes() reads it.
 void simit_rt_phase_begin(int32_t phase);
 void simit_rt_phase_end(int32_t phase);
+
+/// How block k of an array that simit_rt_check_numerics_* scans sits in
+/// its tensor (docs/lowering.md, storage of system tensors).
+enum SimitNumericsLayout : int32_t {
+  /// A vector: block k is element k of the row set.
+  SIMIT_NUMERICS_VECTOR = 0,
+  /// A diagonal matrix: block k is (k, k).
+  SIMIT_NUMERICS_DIAGONAL = 1,
+  /// BCSR: the row r with rowptr[r] <= k < rowptr[r + 1], column colidx[k].
+  SIMIT_NUMERICS_PATTERN = 2,
+  /// `perRow` blocks a row (an incidence matrix): row k / perRow, column
+  /// colidx[k].
+  SIMIT_NUMERICS_FIXED_ROWS = 3,
+  /// A grid stencil matrix of `perRow` offsets: block k is row
+  /// k % (blocks / perRow) at offset number k / (blocks / perRow).
+  SIMIT_NUMERICS_STENCIL = 4,
+};
+
+/// The check of --check-numerics (simit-check-numerics): scans a result
+/// array (memref<*xf64> / memref<*xf32>, dimension 0 the blocks) and, if it
+/// holds a NaN or infinity and no problem of this run is recorded yet,
+/// records the first one for simit::takeNumericsProblem():
+///   "<what> produced nan: <result> block (<rowSet> r, <colSet> c)
+///    component (i, j)" (vectors: "element (<rowSet> r)"; scalar blocks
+///   name no component).
+/// rowptr and colidx are read only by the layouts that name them.
+/// MLIR: func.func private @simit_rt_check_numerics_f64(memref<*xf64>, i32,
+///   i64, memref<?xi32>, memref<?xi32>, !llvm.ptr, !llvm.ptr, !llvm.ptr,
+///   !llvm.ptr) attributes {llvm.emit_c_interface}, likewise _f32.
+void _mlir_ciface_simit_rt_check_numerics_f64(
+    UnrankedMemRefType<double> *values, int32_t layout, int64_t perRow,
+    StridedMemRefType<int32_t, 1> *rowptr,
+    StridedMemRefType<int32_t, 1> *colidx, const char *what,
+    const char *result, const char *rowSet, const char *colSet);
+void _mlir_ciface_simit_rt_check_numerics_f32(
+    UnrankedMemRefType<float> *values, int32_t layout, int64_t perRow,
+    StridedMemRefType<int32_t, 1> *rowptr,
+    StridedMemRefType<int32_t, 1> *colidx, const char *what,
+    const char *result, const char *rowSet, const char *colSet);
 
 /// Dense solvers of small local f64 matrices (Eigen). Matrices and vectors
 /// are row-major memref<?xf64>; a factorisation is an opaque heap handle
@@ -129,6 +170,12 @@ struct PhaseTimes {
 };
 PhaseTimes readPhaseTimes();
 void resetPhaseTimes();
+
+/// The first NaN or infinity that an assembly or solve of a program
+/// compiled with ProgramOptions::checkNumerics produced since the last call
+/// (the message of simit_rt_check_numerics_*), and forgets it; nullopt when
+/// there was none.
+std::optional<std::string> takeNumericsProblem();
 
 } // namespace simit
 

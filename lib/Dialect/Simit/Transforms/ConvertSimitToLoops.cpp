@@ -424,6 +424,8 @@ LogicalResult FunctionLowering::lowerOps(Block &block) {
       continue;
     if (failed(lowerOp(&op)))
       return failure();
+    if (op.hasAttr(kCheckNumericsAttr) && failed(scanForNonFinite(&op)))
+      return failure();
   }
   return success();
 }

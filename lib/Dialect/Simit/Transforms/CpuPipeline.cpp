@@ -29,6 +29,8 @@ void mlir::simit::buildSimitCpuPipeline(
   pm.addPass(createSimitInlineFunctions());
   if (options.timePhases)
     pm.addPass(createSimitTimePhases());
+  if (options.checkNumerics)
+    pm.addPass(createSimitCheckNumerics());
   pm.addPass(createSimitLinalgToIndexExpr());
   pm.addPass(createSimitFuseIndexExpr());
   pm.addPass(createConvertSimitToLoops());
@@ -71,13 +73,13 @@ struct CpuPipeline : public simit::impl::SimitCpuPipelineBase<CpuPipeline> {
   using Base::Base;
   void getDependentDialects(DialectRegistry &registry) const override {
     OpPassManager pm(ModuleOp::getOperationName());
-    buildSimitCpuPipeline(pm, {timePhases, runtimeAllocator});
+    buildSimitCpuPipeline(pm, {timePhases, checkNumerics, runtimeAllocator});
     pm.getDependentDialects(registry);
   }
 
   void runOnOperation() override {
     OpPassManager pm(ModuleOp::getOperationName());
-    buildSimitCpuPipeline(pm, {timePhases, runtimeAllocator});
+    buildSimitCpuPipeline(pm, {timePhases, checkNumerics, runtimeAllocator});
     if (failed(runPipeline(pm, getOperation())))
       signalPassFailure();
   }

@@ -7,7 +7,8 @@
 // ConvertSimitToLoops.cpp (driver, bindings, host-level ops and control
 // flow), LowerLocalTensors.cpp (small dense tensors as flat vectors),
 // LowerMaps.cpp (map/assemble as set loops), LowerMatrixBlocks.cpp (one
-// block of a matrix) and LowerIndexExpr.cpp.
+// block of a matrix), LowerIndexExpr.cpp and LowerCheckNumerics.cpp (scans
+// of results for --check-numerics).
 //
 //===----------------------------------------------------------------------===//
 
@@ -217,6 +218,11 @@ public:
   LogicalResult lowerMatrixBlockAccess(Operation *op);
   /// The positions of blocks (row, col) of pattern matrices found so far.
   SmallVector<std::tuple<Storage, Value, Value, Value>> blockPositions;
+
+  // --check-numerics (LowerCheckNumerics.cpp).
+  /// Calls the runtime's scan of each float system tensor result of `op`,
+  /// which simit-check-numerics marked, after `op` is lowered.
+  LogicalResult scanForNonFinite(Operation *op);
 
   // Index expressions (LowerIndexExpr.cpp).
   LogicalResult lowerIndexExpr(IndexExprOp op);

@@ -27,6 +27,11 @@ namespace simit {
 #define GEN_PASS_REGISTRATION
 #include "simit/Dialect/Simit/Transforms/Passes.h.inc"
 
+/// The attribute simit-check-numerics gives the ops whose results
+/// convert-simit-to-loops scans for NaN and infinity: {op = "<what and
+/// where>", results = [<result names>]}.
+constexpr llvm::StringLiteral kCheckNumericsAttr = "simit.check_numerics";
+
 /// Whether `function` is an entry point the host calls: it carries the
 /// `simit.export` unit attribute (the frontend's `export func`).
 bool isExportedFunction(func::FuncOp function);

@@ -124,6 +124,25 @@ def SimitTimePhases : Pass<"simit-time-phases", "::mlir::ModuleOp"> {
                            "::mlir::func::FuncDialect"];
 }
 
+def SimitCheckNumerics : Pass<"simit-check-numerics", "::mlir::ModuleOp"> {
+  let summary = "Marks the assemblies and solves whose results are checked";
+  let description = [{
+    Gives every `simit.map` and `simit.assemble` with results, every
+    `simit.solve` and every call of a solver runtime function (`lusolve`,
+    `lltsolve`, ...) in an exported function, whose results include a
+    system tensor of floats, the attribute
+    `simit.check_numerics = {op = "<what> (<file>:<line>:<col>)",
+    results = ["<name>", ...]}`: the source construct and the name of each
+    result (an element function's result name, `solution` for solves).
+    convert-simit-to-loops then calls the runtime's scan of each such
+    result array (`simit_rt_check_numerics_f64`/`_f32`), which records the
+    first NaN or infinity of a run for the host
+    (simit::takeNumericsProblem()). Run it after simit-inline-functions, so
+    that the solves of inlined functions are marked;
+    `simit-cpu-pipeline{check-numerics=1}` does.
+  }];
+}
+
 def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
   let summary = "Runs every Simit lowering down to the LLVM dialect";
   let description = [{
@@ -137,6 +156,9 @@ def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
   let options = [
     Option<"timePhases", "time-phases", "bool", /*default=*/"false",
            "Time assemblies and solves with simit-time-phases">,
+    Option<"checkNumerics", "check-numerics", "bool", /*default=*/"false",
+           "Scan the results of assemblies and solves for NaN and infinity "
+           "(simit-check-numerics)">,
     Option<"runtimeAllocator", "runtime-allocator", "bool",
            /*default=*/"false",
            "Allocate heap memory through the Simit runtime's "

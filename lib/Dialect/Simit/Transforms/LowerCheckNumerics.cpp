@@ -1,0 +1,133 @@
+//===- LowerCheckNumerics.cpp - Scans of results for NaN and infinity -----===//
+//
+// After an op that simit-check-numerics marked, each float system tensor
+// result is handed to the runtime's scan together with what the runtime
+// needs to name an element: the layout of the blocks in the array (how the
+// storage maps a block to its row and column), the pattern's index arrays,
+// and the source description the pass wrote. The runtime function is
+// simit_rt_check_numerics_f64/_f32 (lib/Engine/RuntimeFunctions.cpp).
+//
+//===----------------------------------------------------------------------===//
+
+#include "LoopsLowering.h"
+
+// The layout codes are shared with the runtime that reads them (a header
+// of plain declarations; nothing of the engine is linked).
+#include "simit/Engine/RuntimeFunctions.h"
+
+using namespace mlir;
+using namespace mlir::simit;
+using namespace mlir::simit::loops;
+
+namespace {
+/// The row set of a vector: its first set dimension.
+StringAttr firstSet(SystemTensorType type) {
+  for (Attribute dim : type.getDims())
+    if (auto set = dyn_cast<StringAttr>(dim))
+      return set;
+  return {};
+}
+
+SimitNumericsLayout layoutOf(const Storage &storage) {
+  switch (storage.kind) {
+  case Storage::Kind::Dense:
+    return SIMIT_NUMERICS_VECTOR;
+  case Storage::Kind::Diagonal:
+    return SIMIT_NUMERICS_DIAGONAL;
+  case Storage::Kind::Pattern:
+    return SIMIT_NUMERICS_PATTERN;
+  case Storage::Kind::Incidence:
+    return SIMIT_NUMERICS_FIXED_ROWS;
+  case Storage::Kind::Stencil:
+    return SIMIT_NUMERICS_STENCIL;
+  }
+  llvm_unreachable("storage kind");
+}
+} // namespace
+
+LogicalResult FunctionLowering::scanForNonFinite(Operation *op) {
+  auto marks = op->getAttrOfType<DictionaryAttr>(kCheckNumericsAttr);
+  auto what = marks.getAs<StringAttr>("op");
+  auto names = marks.getAs<ArrayAttr>("results");
+  Location loc = op->getLoc();
+  MLIRContext *ctx = b.getContext();
+  int64_t dyn = ShapedType::kDynamic;
+  auto indexArray = MemRefType::get({dyn}, b.getI32Type());
+
+  // Layouts without index arrays get an empty one (a single stack slot at
+  // the function entry, so loops do not grow the stack).
+  Value noIndices;
+  auto emptyIndices = [&] {
+    if (!noIndices) {
+      OpBuilder::InsertionGuard guard(b);
+      b.setInsertionPointToStart(&function.front());
+      noIndices = memref::CastOp::create(
+          b, loc, indexArray,
+          memref::AllocaOp::create(b, loc,
+                                   MemRefType::get({0}, b.getI32Type())));
+    }
+    return noIndices;
+  };
+
+  for (auto [index, result] : llvm::enumerate(op->getResults())) {
+    auto type = dyn_cast<SystemTensorType>(result.getType());
+    Value array = lookup(result);
+    if (!type || !type.isSystem() || !array ||
+        !isa<Float64Type, Float32Type>(type.getComponentType()))
+      continue;
+    Storage storage = storages.lookup(result);
+    SimitNumericsLayout layout = layoutOf(storage);
+    Value rowptr, colidx;
+    int64_t perRow = 0;
+    if (layout == SIMIT_NUMERICS_PATTERN) {
+      rowptr = getPatternArray(BindingKind::PatternRowPtr, storage.edges,
+                               storage.rows, storage.cols);
+      colidx = getPatternArray(BindingKind::PatternColIdx, storage.edges,
+                               storage.rows, storage.cols);
+    } else if (layout == SIMIT_NUMERICS_FIXED_ROWS) {
+      // The edge set's endpoint array is the column index, row by row.
+      perRow = storage.cardinality;
+      ReassociationIndices both = {0, 1};
+      colidx = memref::CollapseShapeOp::create(
+          b, loc, getEndpoints(storage.edges, storage.cardinality),
+          ArrayRef<ReassociationIndices>{both});
+    } else if (layout == SIMIT_NUMERICS_STENCIL) {
+      perRow = storage.offsets.size();
+    }
+    if (!rowptr)
+      rowptr = emptyIndices();
+    if (!colidx)
+      colidx = emptyIndices();
+    StringAttr rowSet = storage.isMatrix() ? storage.rows : firstSet(type);
+    StringAttr colSet = storage.isMatrix() ? storage.cols : StringAttr();
+
+    Type component = type.getComponentType();
+    Type ptr = LLVM::LLVMPointerType::get(ctx);
+    auto values = UnrankedMemRefType::get(component, Attribute());
+    auto calleeType = FunctionType::get(
+        ctx,
+        {values, b.getI32Type(), b.getI64Type(), indexArray, indexArray, ptr,
+         ptr, ptr, ptr},
+        {});
+    StringRef calleeName = component.isF64() ? "simit_rt_check_numerics_f64"
+                                             : "simit_rt_check_numerics_f32";
+    func::FuncOp callee = declareRuntime(loc, calleeName, calleeType);
+    if (!callee)
+      return op->emitError("@") << calleeName
+                                << " is declared with another type";
+    auto name = index < names.size() ? cast<StringAttr>(names[index])
+                                     : StringAttr::get(ctx, "");
+    func::CallOp::create(
+        b, loc, callee,
+        ValueRange{memref::CastOp::create(b, loc, values, array),
+                   arith::ConstantIntOp::create(b, loc, b.getI32Type(),
+                                                layout),
+                   arith::ConstantIntOp::create(b, loc, b.getI64Type(),
+                                                perRow),
+                   rowptr, colidx, stringConstant(loc, what.getValue()),
+                   stringConstant(loc, name.getValue()),
+                   stringConstant(loc, rowSet ? rowSet.getValue() : ""),
+                   stringConstant(loc, colSet ? colSet.getValue() : "")});
+  }
+  return success();
+}

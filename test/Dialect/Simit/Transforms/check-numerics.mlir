@@ -1,0 +1,27 @@
+// simit-check-numerics marks the assemblies and solves of exported functions
+// whose results hold float system tensors, with the source construct and
+// position (from the .sim locations) and the names of the results (the
+// element function's result names, "solution" for solves). A solve of an
+// inlined function is marked where it was inlined; applies (no results),
+// factorisations (an opaque handle) and element functions are not marked.
+// RUN: simit-translate --import-sim %S/Inputs/check-numerics.sim --print-locations | simit-opt --simit-inline-functions --simit-check-numerics | FileCheck %s
+
+// CHECK-LABEL: func.func @spring(
+// CHECK-NOT: simit.check_numerics
+// CHECK-LABEL: func.func @shift(
+// CHECK-NOT: simit.check_numerics
+
+// CHECK-LABEL: func.func @step()
+// CHECK: simit.assemble @spring() to %{{.*}} reduce <add> {simit.check_numerics = {op = "map spring to springs (check-numerics.sim:26:10)", results = ["K", "f"]}}
+// CHECK: simit.solve %{{.*}}, %{{.*}} {simit.check_numerics = {op = "solve (check-numerics.sim:22:9)", results = ["solution"]}}
+// CHECK-NOT: simit.check_numerics
+// CHECK: simit.map @shift() to %{{[^ ]*}} : (
+// CHECK-NOT: simit.check_numerics
+// CHECK: return
+
+// CHECK-LABEL: func.func @direct()
+// CHECK: simit.assemble @spring() to %{{.*}} reduce <add> {simit.check_numerics = {op = "map spring to springs (check-numerics.sim:32:10)", results = ["K", "f"]}}
+// CHECK: call @simit_rt_lu(%{{[^)]*}}) : (
+// CHECK: call @simit_rt_lusolve(%{{.*}}) {simit.check_numerics = {op = "lusolve (check-numerics.sim:34:14)", results = ["solution"]}}
+// CHECK-NOT: simit.check_numerics
+// CHECK: return

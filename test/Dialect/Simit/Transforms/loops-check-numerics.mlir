@@ -1,0 +1,74 @@
+// convert-simit-to-loops calls the runtime's scan after each op that
+// simit-check-numerics marked, once per float system tensor result: the
+// array as memref<*xf64>, its layout (0 vector, 1 diagonal, 2 BCSR pattern,
+// 3 incidence rows of perRow blocks), perRow, the index arrays the layout
+// reads (the pattern's rowptr/colidx bindings, the edge set's endpoints
+// flattened; else an empty stack slot at the function entry), and the
+// strings: op, result name, row set, column set.
+// RUN: simit-translate --import-sim %S/Inputs/check-numerics.sim --print-locations | simit-opt --simit-inline-functions --simit-check-numerics --simit-linalg-to-index-expr --simit-fuse-index-expr --convert-simit-to-loops | FileCheck %s
+
+// CHECK-DAG: llvm.mlir.global internal constant @[[ASM:simit_str_[0-9A-F]+]]("map spring to springs (check-numerics.sim:26:10)\00")
+// CHECK-DAG: llvm.mlir.global internal constant @[[SOLVE:simit_str_[0-9A-F]+]]("solve (check-numerics.sim:22:9)\00")
+// CHECK-DAG: llvm.mlir.global internal constant @[[K:simit_str_[0-9A-F]+]]("K\00")
+// CHECK-DAG: llvm.mlir.global internal constant @[[F:simit_str_[0-9A-F]+]]("f\00")
+// CHECK-DAG: llvm.mlir.global internal constant @[[SOLUTION:simit_str_[0-9A-F]+]]("solution\00")
+// CHECK-DAG: llvm.mlir.global internal constant @[[POINTS:simit_str_[0-9A-F]+]]("points\00")
+// CHECK-DAG: llvm.mlir.global internal constant @[[NONE:simit_str_[0-9A-F]+]]("\00")
+
+// CHECK-LABEL: func.func @step(
+// CHECK-SAME: %[[ROWPTR:[^:]*]]: memref<?xi32>, %[[COLIDX:[^:]*]]: memref<?xi32>, %{{[^:]*}}: memref<?x4xi32>)
+// CHECK: %[[EMPTY_SOLVE:.*]] = memref.cast %{{.*}} : memref<0xi32> to memref<?xi32>
+// CHECK: %[[EMPTY_F:.*]] = memref.cast %{{.*}} : memref<0xi32> to memref<?xi32>
+// The assembly: K (BCSR), then f (vector).
+// CHECK: %[[KARRAY:.*]] = memref.cast %{{.*}} : memref<?xf64> to memref<*xf64>
+// CHECK-NEXT: %[[PATTERN:.*]] = arith.constant 2 : i32
+// CHECK-NEXT: %[[ZERO:.*]] = arith.constant 0 : i64
+// CHECK-NEXT: %[[WHAT:.*]] = llvm.mlir.addressof @[[ASM]]
+// CHECK-NEXT: %[[NAME:.*]] = llvm.mlir.addressof @[[K]]
+// CHECK-NEXT: %[[ROWS:.*]] = llvm.mlir.addressof @[[POINTS]]
+// CHECK-NEXT: %[[COLS:.*]] = llvm.mlir.addressof @[[POINTS]]
+// CHECK-NEXT: call @simit_rt_check_numerics_f64(%[[KARRAY]], %[[PATTERN]], %[[ZERO]], %[[ROWPTR]], %[[COLIDX]], %[[WHAT]], %[[NAME]], %[[ROWS]], %[[COLS]])
+// CHECK: %[[FARRAY:.*]] = memref.cast %{{.*}} : memref<?xf64> to memref<*xf64>
+// CHECK-NEXT: %[[VECTOR:.*]] = arith.constant 0 : i32
+// CHECK-NEXT: %[[ZERO:.*]] = arith.constant 0 : i64
+// CHECK-NEXT: %[[WHAT:.*]] = llvm.mlir.addressof @[[ASM]]
+// CHECK-NEXT: %[[NAME:.*]] = llvm.mlir.addressof @[[F]]
+// CHECK-NEXT: %[[ROWS:.*]] = llvm.mlir.addressof @[[POINTS]]
+// CHECK-NEXT: %[[COLS:.*]] = llvm.mlir.addressof @[[NONE]]
+// CHECK-NEXT: call @simit_rt_check_numerics_f64(%[[FARRAY]], %[[VECTOR]], %[[ZERO]], %[[EMPTY_F]], %[[EMPTY_F]], %[[WHAT]], %[[NAME]], %[[ROWS]], %[[COLS]])
+// The solve's result, after the CG call.
+// CHECK: call @simit_rt_cg_solve_bcsr(
+// CHECK-NEXT: %[[X:.*]] = memref.cast %{{.*}} : memref<?xf64> to memref<*xf64>
+// CHECK-NEXT: %[[VECTOR:.*]] = arith.constant 0 : i32
+// CHECK-NEXT: %[[ZERO:.*]] = arith.constant 0 : i64
+// CHECK-NEXT: %[[WHAT:.*]] = llvm.mlir.addressof @[[SOLVE]]
+// CHECK-NEXT: %[[NAME:.*]] = llvm.mlir.addressof @[[SOLUTION]]
+// CHECK-NEXT: %[[ROWS:.*]] = llvm.mlir.addressof @[[POINTS]]
+// CHECK-NEXT: %[[COLS:.*]] = llvm.mlir.addressof @[[NONE]]
+// CHECK-NEXT: call @simit_rt_check_numerics_f64(%[[X]], %[[VECTOR]], %[[ZERO]], %[[EMPTY_SOLVE]], %[[EMPTY_SOLVE]], %[[WHAT]], %[[NAME]], %[[ROWS]], %[[COLS]])
+// The apply of shift has no results.
+// CHECK-NOT: call @simit_rt_check_numerics
+// CHECK: return
+
+// A sparse solve is scanned after the runtime's solve writes its result.
+// CHECK-LABEL: func.func @direct(
+// CHECK: call @simit_rt_lu_bcsr(
+// CHECK-NOT: call @simit_rt_check_numerics
+// CHECK: call @simit_rt_lusolve_bcsr(
+// CHECK-NEXT: memref.cast %{{.*}} : memref<?xf64> to memref<*xf64>
+// CHECK: call @simit_rt_check_numerics_f64(
+
+// A diagonal matrix (layout 1) and an incidence matrix (layout 3, two
+// blocks a row, the endpoints as column indices).
+// CHECK-LABEL: func.func @storages(
+// CHECK-SAME: %[[ENDPOINTS:[^:]*]]: memref<?x2xi32>
+// CHECK: %[[DIAGONAL:.*]] = arith.constant 1 : i32
+// CHECK-NEXT: %[[ZERO:.*]] = arith.constant 0 : i64
+// CHECK: call @simit_rt_check_numerics_f64(%{{[^,]*}}, %[[DIAGONAL]], %[[ZERO]],
+// CHECK: %[[COLUMNS:.*]] = memref.collapse_shape %[[ENDPOINTS]] {{\[\[}}0, 1]] : memref<?x2xi32> into memref<?xi32>
+// CHECK-NEXT: memref.cast %{{.*}} : memref<?xf64> to memref<*xf64>
+// CHECK-NEXT: %[[INCIDENCE:.*]] = arith.constant 3 : i32
+// CHECK-NEXT: %[[TWO:.*]] = arith.constant 2 : i64
+// CHECK: call @simit_rt_check_numerics_f64(%{{[^,]*}}, %[[INCIDENCE]], %[[TWO]], %{{[^,]*}}, %[[COLUMNS]],
+
+// CHECK: func.func private @simit_rt_check_numerics_f64(memref<*xf64>, i32, i64, memref<?xi32>, memref<?xi32>, !llvm.ptr, !llvm.ptr, !llvm.ptr, !llvm.ptr) attributes {llvm.emit_c_interface}

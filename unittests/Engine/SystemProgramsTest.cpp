@@ -199,32 +199,24 @@ struct SpdScene {
   }
 };
 
-// A = [4 -2 0; -2 5 -3; 0 -3 3]: A x = (2, 0, 3) gives x = (2.5, 4, 5).
-TEST(SystemProgramsTest, Backslash) {
+/// Runs `main` of the System program `name` on the SPD scene, where
+/// A = [4 -2 0; -2 5 -3; 0 -3 3] and A x = (2, 0, 3) gives x = (2.5, 4, 5).
+static void expectSpdSolution(llvm::StringRef name) {
   Program program;
-  llvm::Expected<Function> compiled = compileSystemMain(program, "system_backslash");
+  llvm::Expected<Function> compiled = compileSystemMain(program, name);
   ASSERT_TRUE(!!compiled) << llvm::toString(compiled.takeError());
   SpdScene scene;
   ASSERT_EQ(bindAndRun(*compiled, {{"points", &scene.points},
-                               {"springs", &scene.springs}}),
+                                   {"springs", &scene.springs}}),
             "success");
   EXPECT_NEAR(scene.x.get(0), 2.5, 1e-12);
   EXPECT_NEAR(scene.x.get(1), 4.0, 1e-12);
   EXPECT_NEAR(scene.x.get(2), 5.0, 1e-12);
 }
 
-TEST(SystemProgramsTest, Cholesky) {
-  Program program;
-  llvm::Expected<Function> compiled = compileSystemMain(program, "system_cholesky");
-  ASSERT_TRUE(!!compiled) << llvm::toString(compiled.takeError());
-  SpdScene scene;
-  ASSERT_EQ(bindAndRun(*compiled, {{"points", &scene.points},
-                               {"springs", &scene.springs}}),
-            "success");
-  EXPECT_NEAR(scene.x.get(0), 2.5, 1e-12);
-  EXPECT_NEAR(scene.x.get(1), 4.0, 1e-12);
-  EXPECT_NEAR(scene.x.get(2), 5.0, 1e-12);
-}
+TEST(SystemProgramsTest, Backslash) { expectSpdSolution("system_backslash"); }
+
+TEST(SystemProgramsTest, Cholesky) { expectSpdSolution("system_cholesky"); }
 
 // m = 0 and k = -1 make A = [-1 1 0; 1 -2 1; 0 1 -1], not positive
 // definite (A(0,0) = -1 < 0): chol stops the program.

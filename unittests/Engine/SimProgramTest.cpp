@@ -151,28 +151,14 @@ TEST(SimProgramTest, UnexportedFunctionsAreNotCompiled) {
 }
 
 TEST(SimProgramTest, PhaseTimesSplitAssemblyFromSolve) {
-  const char *kSteps = R"sim(
-element Point
-  x : float;
-  y : float;
-end
-element Spring
-  k : float;
-end
-extern points  : set{Point};
-extern springs : set{Spring}(points, points);
-
-func stiffness(s : Spring, p : (Point*2)) -> (K : tensor[points,points](float))
-  K(p(0), p(0)) = s.k;
-  K(p(1), p(1)) = s.k;
-end
-
+  // kChain's forces (2, 4, -6), halved 200 times in a while loop.
+  std::string steps = std::string(kChain) + R"sim(
 export func step()
-  K = map stiffness to springs reduce +;
-  var r = points.x;
+  f = map force to springs reduce +;
+  var r = f;
   var i = 0;
   while i < 200
-    r = 0.5 * (K * r);
+    r = 0.5 * r;
     i = i + 1;
   end
   points.y = r;
@@ -183,7 +169,7 @@ end
     ProgramOptions options;
     options.timePhases = timed;
     Program program(options);
-    ASSERT_EQ(message(program.loadString(kSteps, "steps.sim")), "success");
+    ASSERT_EQ(message(program.loadString(steps, "steps.sim")), "success");
     llvm::Expected<Function> step = program.compile("step");
     ASSERT_TRUE(bool(step)) << llvm::toString(step.takeError());
     Chain chain;
@@ -205,10 +191,10 @@ end
       EXPECT_EQ(phases.assemblyMs, 0.0);
       EXPECT_EQ(phases.solveMs, 0.0);
     }
-    // K = diag(2, 5, 3); 200 halvings of K x leave y = (K/2)^200 x:
-    // point 0 (x = 0) stays 0; point 1 is 2.5^200 (x = 1).
-    EXPECT_EQ(chain.y.get(0), 0.0);
-    EXPECT_NEAR(chain.y.get(1) / std::pow(2.5, 200), 1.0, 1e-12);
+    // f = (2, 4, -6) times 2^-200, exact in binary.
+    EXPECT_EQ(chain.y.get(0), std::ldexp(2.0, -200));
+    EXPECT_EQ(chain.y.get(1), std::ldexp(4.0, -200));
+    EXPECT_EQ(chain.y.get(2), std::ldexp(-6.0, -200));
   }
 }
 

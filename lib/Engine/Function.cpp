@@ -10,17 +10,21 @@
 //===----------------------------------------------------------------------===//
 
 #include "simit/Engine/Function.h"
+#include "simit/Engine/RuntimeFunctions.h"
 
 #include "CompiledModule.h"
 
+#include "simit/Runtime/PatternUnion.h"
 #include "simit/Runtime/SparsityPattern.h"
 
 #include "llvm/ADT/STLExtras.h"
+#include "llvm/ADT/StringExtras.h"
 #include "llvm/ADT/StringMap.h"
 #include "llvm/Support/FormatVariadic.h"
 #include "llvm/Support/MathExtras.h"
 
 #include <cmath>
+#include <map>
 #include <cstring>
 
 using namespace simit;
@@ -140,6 +144,10 @@ struct Function::Impl {
   bool initialized = false;
   std::vector<std::pair<const Set *, uint64_t>> setVersions;
   std::vector<std::shared_ptr<const SparsityPattern>> patterns;
+  /// Unions of patterns by their union binding's "set" (the joined edge
+  /// sets), rows and cols, and the gather maps into them.
+  std::map<std::string, std::shared_ptr<const SparsityPattern>> unions;
+  std::vector<std::vector<int32_t>> gathers;
   /// Descriptors and scalar slots; args points into it, so it is sized once
   /// per init() and never reallocated afterwards.
   std::vector<int64_t> words;
@@ -167,6 +175,11 @@ struct Function::Impl {
   }
 
   llvm::Error init();
+  /// The union of the patterns of `edgeSets` over (rows, cols), built
+  /// once per init().
+  llvm::Expected<std::shared_ptr<const SparsityPattern>>
+  unionOf(const std::vector<std::string> &edgeSets, const std::string &rows,
+          const std::string &cols);
   llvm::Error prepareArgument(const ArgumentBinding &arg, size_t &word);
   void pushMemRef(size_t &word, const void *data,
                   llvm::ArrayRef<int64_t> sizes);
@@ -321,6 +334,30 @@ llvm::Error Function::Impl::prepareArgument(const ArgumentBinding &arg,
     }
     return llvm::Error::success();
   }
+  case Kind::UnionRowPtr:
+  case Kind::UnionColIdx:
+  case Kind::UnionGather: {
+    auto whole = unionOf(arg.edgeSets, arg.rows, arg.cols);
+    if (!whole)
+      return error(arg.describe() + ": " + llvm::toString(whole.takeError()));
+    const SparsityPattern &p = **whole;
+    if (arg.kind == Kind::UnionRowPtr) {
+      pushMemRef(word, p.rowPointers().data(), {p.numRows() + 1});
+    } else if (arg.kind == Kind::UnionColIdx) {
+      pushMemRef(word, p.columnIndices().data(), {p.numBlocks()});
+    } else {
+      // A part read transposed is over (cols, rows).
+      bool transposed = arg.partTransposed;
+      auto part = transposed ? unionOf(arg.partSets, arg.cols, arg.rows)
+                             : unionOf(arg.partSets, arg.rows, arg.cols);
+      if (!part)
+        return error(arg.describe() + ": " + llvm::toString(part.takeError()));
+      gathers.push_back(transposed ? gatherTransposedPositions(p, **part)
+                                   : gatherPositions(p, **part));
+      pushMemRef(word, gathers.back().data(), {p.numBlocks()});
+    }
+    return llvm::Error::success();
+  }
   case Kind::Extern:
   case Kind::Parameter: {
     auto it = buffers.find(arg.bufferKey());
@@ -372,10 +409,38 @@ llvm::Error Function::Impl::prepareArgument(const ArgumentBinding &arg,
   llvm_unreachable("unknown binding kind");
 }
 
+llvm::Expected<std::shared_ptr<const SparsityPattern>>
+Function::Impl::unionOf(const std::vector<std::string> &edgeSetNames,
+                        const std::string &rows, const std::string &cols) {
+  std::string key = llvm::join(edgeSetNames, "+") + ":" + rows + ":" + cols;
+  if (auto it = unions.find(key); it != unions.end())
+    return it->second;
+  std::vector<const Set *> edgeSets;
+  for (const std::string &name : edgeSetNames) {
+    llvm::Expected<Set *> edges = boundSet(name);
+    if (!edges)
+      return edges.takeError();
+    edgeSets.push_back(*edges);
+  }
+  llvm::Expected<Set *> rowSet = boundSet(rows);
+  if (!rowSet)
+    return rowSet.takeError();
+  llvm::Expected<Set *> colSet = boundSet(cols);
+  if (!colSet)
+    return colSet.takeError();
+  auto pattern = unionPattern(edgeSets, **rowSet, **colSet);
+  if (!pattern)
+    return pattern.takeError();
+  unions[key] = *pattern;
+  return *pattern;
+}
+
 llvm::Error Function::Impl::init() {
   initialized = false;
   setVersions.clear();
   patterns.clear();
+  unions.clear();
+  gathers.clear();
   args.clear();
   vectorCopies.clear();
   vectorBytes = 0;
@@ -485,6 +550,8 @@ std::vector<std::string> Function::requiredSets() const {
     add(arg.set);
     add(arg.rows);
     add(arg.cols);
+    for (const std::string &edges : arg.edgeSets)
+      add(edges);
   }
   return names;
 }
@@ -558,7 +625,9 @@ llvm::Error Function::run() {
   for (const VectorCopy &copy : impl->vectorCopies)
     std::memcpy(impl->vectorStorage.data() + copy.offset, copy.source,
                 copy.bytes);
-  impl->compiled->entry(impl->args.data());
+  if (llvm::Error err =
+          runGuarded(impl->compiled->entry, impl->args.data()))
+    return err;
   impl->decodeResults();
   return llvm::Error::success();
 }

@@ -7,6 +7,7 @@
 #include "mlir/IR/BuiltinAttributes.h"
 #include "mlir/IR/BuiltinTypes.h"
 
+#include "llvm/ADT/StringExtras.h"
 #include "llvm/ADT/StringSwitch.h"
 #include "llvm/Support/raw_ostream.h"
 
@@ -186,6 +187,16 @@ std::string ArgumentBinding::describe() const {
   case Kind::PatternLocations:
     return "sparsity pattern of set '" + set + "' over ('" + rows + "', '" +
            cols + "')";
+  case Kind::UnionRowPtr:
+  case Kind::UnionColIdx:
+    return "union of the sparsity patterns of '" +
+           llvm::join(edgeSets, "', '") + "' over ('" + rows + "', '" + cols +
+           "')";
+  case Kind::UnionGather:
+    return "gather map from the union of the sparsity patterns of '" +
+           llvm::join(edgeSets, "', '") + "' over ('" + rows + "', '" + cols +
+           "') to the pattern of '" + llvm::join(partSets, "', '") + "'" +
+           (partTransposed ? " read transposed" : "");
   case Kind::Extern:
     return "extern '" + name + "'";
   case Kind::Parameter:
@@ -199,6 +210,13 @@ std::string ArgumentBinding::bufferKey() const {
 }
 
 namespace {
+/// The names of a '+'-joined list of sets.
+std::vector<std::string> splitSets(llvm::StringRef joined) {
+  llvm::SmallVector<llvm::StringRef> names;
+  joined.split(names, '+');
+  return std::vector<std::string>(names.begin(), names.end());
+}
+
 /// Reads one DictionaryAttr of `simit.bindings`.
 class BindingReader {
 public:
@@ -233,6 +251,9 @@ public:
                       .Case("pattern_rowptr", Kind::PatternRowPtr)
                       .Case("pattern_colidx", Kind::PatternColIdx)
                       .Case("pattern_locations", Kind::PatternLocations)
+                      .Case("union_rowptr", Kind::UnionRowPtr)
+                      .Case("union_colidx", Kind::UnionColIdx)
+                      .Case("union_gather", Kind::UnionGather)
                       .Case("extern", Kind::Extern)
                       .Case("param", Kind::Parameter)
                       .Default(std::nullopt);
@@ -256,6 +277,26 @@ public:
       if (llvm::Error err = get("rows", binding.rows))
         return err;
       return get("cols", binding.cols);
+    case Kind::UnionRowPtr:
+    case Kind::UnionColIdx:
+    case Kind::UnionGather: {
+      std::string joined, part;
+      if (llvm::Error err = get("set", joined))
+        return err;
+      if (llvm::Error err = get("rows", binding.rows))
+        return err;
+      if (llvm::Error err = get("cols", binding.cols))
+        return err;
+      binding.edgeSets = splitSets(joined);
+      if (binding.kind != Kind::UnionGather)
+        return llvm::Error::success();
+      if (llvm::Error err = get("part", part))
+        return err;
+      binding.partTransposed = llvm::StringRef(part).consume_front("~");
+      binding.partSets = splitSets(binding.partTransposed ? part.substr(1)
+                                                          : part);
+      return llvm::Error::success();
+    }
     case Kind::Extern:
       return get("name", binding.name);
     case Kind::Parameter: {
@@ -310,6 +351,9 @@ static llvm::Error checkKindType(const HostSignature &signature,
     return llvm::Error::success();
   case Kind::PatternRowPtr:
   case Kind::PatternColIdx:
+  case Kind::UnionRowPtr:
+  case Kind::UnionColIdx:
+  case Kind::UnionGather:
     if (!type.isMemRef || type.rank() != 1 || type.scalar != ScalarKind::Int32)
       return fail("memref<?xi32>");
     return llvm::Error::success();

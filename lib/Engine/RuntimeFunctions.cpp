@@ -4,6 +4,8 @@
 
 #include "RuntimeSymbols.h"
 
+#include "simit/Runtime/Solvers.h"
+
 #include "llvm/ADT/SmallVector.h"
 #include "llvm/Support/ErrorHandling.h"
 #include "llvm/Support/Format.h"
@@ -20,6 +22,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csetjmp>
 #include <cstdlib>
 #include <cstring>
 
@@ -39,94 +42,143 @@ bool isContiguous(const StridedMemRefType<T, N> &m) {
   return true;
 }
 
-/// y = A p over the BCSR arrays, blocks of b x b.
-template <typename T>
-void multiply(int64_t rows, int64_t b, const int32_t *rowptr,
-              const int32_t *colidx, const T *values, const T *p, T *y) {
-  for (int64_t r = 0; r < rows; ++r) {
-    T *yr = y + r * b;
-    for (int64_t i = 0; i < b; ++i)
-      yr[i] = 0;
-    for (int32_t k = rowptr[r]; k < rowptr[r + 1]; ++k) {
-      const T *block = values + static_cast<int64_t>(k) * b * b;
-      const T *pc = p + static_cast<int64_t>(colidx[k]) * b;
-      for (int64_t i = 0; i < b; ++i)
-        for (int64_t j = 0; j < b; ++j)
-          yr[i] += block[i * b + j] * pc[j];
-    }
-  }
+/// The run in progress on this thread, where simit_rt_fail returns to, and
+/// the message of its failure.
+thread_local std::jmp_buf *activeRun = nullptr;
+thread_local std::string runFailure;
+
+/// Ends the run in progress with the message recorded in runFailure. The
+/// frames it unwinds are lowered code and the runtime function that failed,
+/// which holds no object with a destructor when it calls this.
+[[noreturn]] void abandonRun() {
+  if (!activeRun)
+    llvm::report_fatal_error(llvm::StringRef(runFailure));
+  std::longjmp(*activeRun, 1);
 }
 
-/// Dot products accumulate in double, also for float vectors.
+/// x = A \ b into x, or false with runFailure set; `where` names the
+/// statement.
 template <typename T>
-double dot(const std::vector<T> &u, const std::vector<T> &v) {
-  double sum = 0;
-  for (size_t i = 0; i < u.size(); ++i)
-    sum += static_cast<double>(u[i]) * v[i];
-  return sum;
+bool solveInto(const simit::SquareBCSRView<T> &a,
+               StridedMemRefType<T, 2> *b, StridedMemRefType<T, 2> *x,
+               const char *where) {
+  auto fail = [&](const llvm::Twine &message) {
+    runFailure = (llvm::Twine(where ? where : "solve") + ": " + message).str();
+    return false;
+  };
+  if (!isContiguous(*b) || !isContiguous(*x) ||
+      b->sizes[0] * b->sizes[1] != a.size() ||
+      x->sizes[0] * x->sizes[1] != a.size())
+    return fail("vector size does not match the matrix");
+  llvm::Expected<simit::SolveReport> report =
+      simit::solveChecked(a, b->data + b->offset, x->data + x->offset);
+  if (!report)
+    return fail(llvm::toString(report.takeError()));
+  return true;
 }
 
-/// Unpreconditioned CG on T components (see RuntimeFunctions.h).
+/// The view of BCSR arrays with square blocks (values memref<?xBxBxT>).
 template <typename T>
-int32_t cgSolve(StridedMemRefType<int32_t, 1> *rowptr,
-                StridedMemRefType<int32_t, 1> *colidx,
-                StridedMemRefType<T, 3> *values, StridedMemRefType<T, 2> *b,
-                StridedMemRefType<T, 2> *x, double tolerance,
-                int32_t maxIterations) {
+bool bcsrView(StridedMemRefType<int32_t, 1> *rowptr,
+              StridedMemRefType<int32_t, 1> *colidx,
+              StridedMemRefType<T, 3> *values, const char *where,
+              simit::SquareBCSRView<T> &view) {
   if (!isContiguous(*rowptr) || !isContiguous(*colidx) ||
-      !isContiguous(*values) || !isContiguous(*b) || !isContiguous(*x))
-    llvm::report_fatal_error("simit_rt_cg_solve_bcsr: operands must be "
-                             "contiguous row-major memrefs");
-  int64_t rows = rowptr->sizes[0] - 1;
-  int64_t block = values->sizes[1];
-  if (values->sizes[2] != block || b->sizes[1] != block ||
-      x->sizes[1] != block || b->sizes[0] != rows || x->sizes[0] != rows)
-    llvm::report_fatal_error("simit_rt_cg_solve_bcsr: operand shapes do not "
-                             "match the matrix");
-  const int32_t *rp = rowptr->data + rowptr->offset;
-  const int32_t *ci = colidx->data + colidx->offset;
-  const T *vals = values->data + values->offset;
-  const T *rhs = b->data + b->offset;
-  T *sol = x->data + x->offset;
-
-  size_t n = static_cast<size_t>(rows * block);
-  std::vector<T> r(n), p(n), ap(n);
-  multiply(rows, block, rp, ci, vals, sol, ap.data());
-  for (size_t i = 0; i < n; ++i)
-    r[i] = rhs[i] - ap[i];
-  p = r;
-  double rr = dot(r, r);
-  int32_t iteration = 0;
-  while (rr > tolerance && iteration < maxIterations) {
-    multiply(rows, block, rp, ci, vals, p.data(), ap.data());
-    T alpha = static_cast<T>(rr / dot(p, ap));
-    for (size_t i = 0; i < n; ++i) {
-      sol[i] += alpha * p[i];
-      r[i] -= alpha * ap[i];
-    }
-    double rrNew = dot(r, r);
-    T beta = static_cast<T>(rrNew / rr);
-    for (size_t i = 0; i < n; ++i)
-      p[i] = r[i] + beta * p[i];
-    rr = rrNew;
-    ++iteration;
+      !isContiguous(*values) || values->sizes[1] != values->sizes[2] ||
+      rowptr->sizes[0] < 1) {
+    runFailure = std::string(where ? where : "solve") +
+                 ": malformed BCSR arrays of a square matrix";
+    return false;
   }
-  return iteration;
+  view.rows = rowptr->sizes[0] - 1;
+  view.blockSize = values->sizes[1];
+  view.rowptr = rowptr->data + rowptr->offset;
+  view.colidx = colidx->data + colidx->offset;
+  view.values = values->data + values->offset;
+  return true;
+}
+
+template <typename T>
+void solveBCSR(StridedMemRefType<int32_t, 1> *rowptr,
+               StridedMemRefType<int32_t, 1> *colidx,
+               StridedMemRefType<T, 3> *values, StridedMemRefType<T, 2> *b,
+               StridedMemRefType<T, 2> *x, const char *where) {
+  simit::SquareBCSRView<T> view;
+  if (!bcsrView(rowptr, colidx, values, where, view) ||
+      !solveInto(view, b, x, where))
+    abandonRun();
+}
+
+/// A block diagonal matrix is the BCSR matrix of the identity pattern.
+template <typename T>
+bool solveDiagonalInto(StridedMemRefType<T, 3> *values,
+                       StridedMemRefType<T, 2> *b, StridedMemRefType<T, 2> *x,
+                       const char *where) {
+  int64_t rows = values->sizes[0];
+  std::vector<int32_t> rowptr(rows + 1), colidx(rows);
+  for (int64_t r = 0; r <= rows; ++r)
+    rowptr[r] = static_cast<int32_t>(r);
+  for (int64_t r = 0; r < rows; ++r)
+    colidx[r] = static_cast<int32_t>(r);
+  StridedMemRefType<int32_t, 1> ptr{rowptr.data(), rowptr.data(), 0,
+                                    {rows + 1}, {1}};
+  StridedMemRefType<int32_t, 1> idx{colidx.data(), colidx.data(), 0,
+                                    {rows}, {1}};
+  simit::SquareBCSRView<T> view;
+  return bcsrView(&ptr, &idx, values, where, view) &&
+         solveInto(view, b, x, where);
+}
+
+template <typename T>
+void solveDiagonal(StridedMemRefType<T, 3> *values, StridedMemRefType<T, 2> *b,
+                   StridedMemRefType<T, 2> *x, const char *where) {
+  if (!solveDiagonalInto(values, b, x, where))
+    abandonRun();
 }
 } // namespace
 
-extern "C" int32_t _mlir_ciface_simit_rt_cg_solve_bcsr(
-    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
-    StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *b,
-    StridedMemRefType<double, 2> *x, double tolerance, int32_t maxIterations) {
-  return cgSolve(rowptr, colidx, values, b, x, tolerance, maxIterations);
+extern "C" void simit_rt_fail(const char *message) {
+  runFailure = message ? message : "the program failed";
+  abandonRun();
 }
 
-extern "C" int32_t _mlir_ciface_simit_rt_cg_solve_bcsr_f32(
+llvm::Error simit::runGuarded(void (*entry)(void **), void **args) {
+  std::jmp_buf buffer;
+  std::jmp_buf *outer = activeRun;
+  activeRun = &buffer;
+  if (setjmp(buffer)) {
+    activeRun = outer;
+    return llvm::createStringError(runFailure);
+  }
+  entry(args);
+  activeRun = outer;
+  return llvm::Error::success();
+}
+
+extern "C" void _mlir_ciface_simit_rt_solve_bcsr(
+    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
+    StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *b,
+    StridedMemRefType<double, 2> *x, const char *where) {
+  solveBCSR(rowptr, colidx, values, b, x, where);
+}
+
+extern "C" void _mlir_ciface_simit_rt_solve_bcsr_f32(
     StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
     StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *b,
-    StridedMemRefType<float, 2> *x, double tolerance, int32_t maxIterations) {
-  return cgSolve(rowptr, colidx, values, b, x, tolerance, maxIterations);
+    StridedMemRefType<float, 2> *x, const char *where) {
+  solveBCSR(rowptr, colidx, values, b, x, where);
+}
+
+extern "C" void _mlir_ciface_simit_rt_solve_diag(
+    StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *b,
+    StridedMemRefType<double, 2> *x, const char *where) {
+  solveDiagonal(values, b, x, where);
+}
+
+extern "C" void _mlir_ciface_simit_rt_solve_diag_f32(
+    StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *b,
+    StridedMemRefType<float, 2> *x, const char *where) {
+  solveDiagonal(values, b, x, where);
 }
 
 // print/println: through llvm::outs() so the output interleaves with the
@@ -535,10 +587,15 @@ simit::runtimeSymbolMap(llvm::orc::MangleAndInterner interner) {
     symbols[interner(name)] = {llvm::orc::ExecutorAddr::fromPtr(address),
                                llvm::JITSymbolFlags::Exported};
   };
-  add("_mlir_ciface_simit_rt_cg_solve_bcsr",
-      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_cg_solve_bcsr));
-  add("_mlir_ciface_simit_rt_cg_solve_bcsr_f32",
-      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_cg_solve_bcsr_f32));
+  add("simit_rt_fail", reinterpret_cast<void *>(&simit_rt_fail));
+  add("_mlir_ciface_simit_rt_solve_bcsr",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_solve_bcsr));
+  add("_mlir_ciface_simit_rt_solve_bcsr_f32",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_solve_bcsr_f32));
+  add("_mlir_ciface_simit_rt_solve_diag",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_solve_diag));
+  add("_mlir_ciface_simit_rt_solve_diag_f32",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_solve_diag_f32));
   add("simit_rt_print_f64", reinterpret_cast<void *>(&simit_rt_print_f64));
   add("simit_rt_print_i64", reinterpret_cast<void *>(&simit_rt_print_i64));
   add("simit_rt_print_str", reinterpret_cast<void *>(&simit_rt_print_str));

@@ -1,36 +1,43 @@
-//===--- Solvers.cpp - Iterative solvers on BCSR matrices -----------------===//
+//===--- Solvers.cpp - Conjugate gradients on BCSR matrices ---------------===//
 
 #include "simit/Runtime/Solvers.h"
 
 #include "llvm/Support/FormatVariadic.h"
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 using namespace simit;
 
 namespace {
 
-double dot(const std::vector<double> &a, const std::vector<double> &b) {
+/// Dot products accumulate in double, also for float vectors.
+template <typename T>
+double dot(const std::vector<T> &u, const std::vector<T> &v) {
   double sum = 0;
-  for (size_t i = 0; i < a.size(); ++i)
-    sum += a[i] * b[i];
+  for (size_t i = 0; i < u.size(); ++i)
+    sum += static_cast<double>(u[i]) * v[i];
   return sum;
 }
 
 /// 1 / A(i, i) for every scalar row i.
-llvm::Expected<std::vector<double>> inverseDiagonal(const BCSRMatrix &a) {
-  const SparsityPattern &p = *a.pattern;
-  int b = a.blockRows;
-  std::vector<double> inverse(static_cast<size_t>(p.numRows()) * b, 0.0);
-  for (int r = 0; r < p.numRows(); ++r) {
-    int k = p.findBlock(r, r);
-    for (int i = 0; i < b; ++i) {
-      double d = k < 0 ? 0.0 : a.block(k)[i * b + i];
-      if (d == 0.0)
+template <typename T>
+llvm::Expected<std::vector<T>> inverseDiagonal(const SquareBCSRView<T> &a) {
+  int64_t b = a.blockSize;
+  std::vector<T> inverse(static_cast<size_t>(a.size()), T(0));
+  for (int64_t r = 0; r < a.rows; ++r) {
+    const int32_t *begin = a.colidx + a.rowptr[r];
+    const int32_t *end = a.colidx + a.rowptr[r + 1];
+    const int32_t *k = std::lower_bound(begin, end, r);
+    for (int64_t i = 0; i < b; ++i) {
+      T d = k != end && *k == r ? a.values[((k - a.colidx) * b + i) * b + i]
+                                : T(0);
+      if (d == T(0))
         return llvm::createStringError(
             "Jacobi preconditioner: the diagonal entry of row " +
             llvm::Twine(r * b + i) + " is zero");
-      inverse[static_cast<size_t>(r) * b + i] = 1.0 / d;
+      inverse[r * b + i] = T(1) / d;
     }
   }
   return inverse;
@@ -38,19 +45,75 @@ llvm::Expected<std::vector<double>> inverseDiagonal(const BCSRMatrix &a) {
 
 } // namespace
 
-llvm::Expected<SolverResult>
-simit::conjugateGradient(const BCSRMatrix &a, const double *bIn, double *x,
-                         const SolverOptions &options) {
+llvm::Expected<SquareBCSRView<double>> simit::squareView(const BCSRMatrix &a) {
   const SparsityPattern &p = *a.pattern;
   if (a.blockRows != a.blockCols || p.numRows() != p.numCols())
     return llvm::createStringError(
-        "conjugate gradients: expected a square matrix, found " +
-        llvm::Twine(p.numRows()) + "x" + llvm::Twine(p.numCols()) +
-        " blocks of " + llvm::Twine(a.blockRows) + "x" +
-        llvm::Twine(a.blockCols));
-  size_t n = static_cast<size_t>(p.numRows()) * a.blockRows;
+        "expected a square matrix, found " + llvm::Twine(p.numRows()) + "x" +
+        llvm::Twine(p.numCols()) + " blocks of " + llvm::Twine(a.blockRows) +
+        "x" + llvm::Twine(a.blockCols));
+  SquareBCSRView<double> view;
+  view.rows = p.numRows();
+  view.blockSize = a.blockRows;
+  view.rowptr = p.rowPointers().data();
+  view.colidx = p.columnIndices().data();
+  view.values = a.values.data();
+  return view;
+}
 
-  std::vector<double> inverseDiag;
+template <typename T>
+void simit::multiply(const SquareBCSRView<T> &a, const T *x, T *y) {
+  int64_t b = a.blockSize;
+  for (int64_t r = 0; r < a.rows; ++r) {
+    T *yr = y + r * b;
+    std::fill(yr, yr + b, T(0));
+    for (int32_t k = a.rowptr[r]; k < a.rowptr[r + 1]; ++k) {
+      const T *block = a.values + static_cast<int64_t>(k) * b * b;
+      const T *xc = x + static_cast<int64_t>(a.colidx[k]) * b;
+      for (int64_t i = 0; i < b; ++i) {
+        T sum = 0;
+        for (int64_t j = 0; j < b; ++j)
+          sum += block[i * b + j] * xc[j];
+        yr[i] += sum;
+      }
+    }
+  }
+}
+
+template <typename T>
+bool simit::isSymmetric(const SquareBCSRView<T> &a, double relativeTolerance) {
+  int64_t b = a.blockSize, blocks = a.rows ? a.rowptr[a.rows] : 0;
+  double largest = 0;
+  for (int64_t i = 0; i < blocks * b * b; ++i)
+    largest = std::max(largest, std::abs(static_cast<double>(a.values[i])));
+  double tolerance = relativeTolerance * largest;
+  auto block = [&](int64_t k) { return a.values + k * b * b; };
+  for (int64_t r = 0; r < a.rows; ++r) {
+    for (int32_t k = a.rowptr[r]; k < a.rowptr[r + 1]; ++k) {
+      int64_t c = a.colidx[k];
+      const int32_t *begin = a.colidx + a.rowptr[c];
+      const int32_t *end = a.colidx + a.rowptr[c + 1];
+      const int32_t *mirror = std::lower_bound(begin, end, r);
+      bool present = mirror != end && *mirror == r;
+      const T *rc = block(k);
+      const T *cr = present ? block(mirror - a.colidx) : nullptr;
+      for (int64_t i = 0; i < b; ++i)
+        for (int64_t j = 0; j < b; ++j) {
+          double other = present ? cr[j * b + i] : 0.0;
+          if (std::abs(rc[i * b + j] - other) > tolerance)
+            return false;
+        }
+    }
+  }
+  return true;
+}
+
+template <typename T>
+llvm::Expected<SolverResult>
+simit::conjugateGradient(const SquareBCSRView<T> &a, const T *bIn, T *x,
+                         const SolverOptions &options) {
+  size_t n = static_cast<size_t>(a.size());
+  std::vector<T> inverseDiag;
   bool jacobi = options.preconditioner == Preconditioner::Jacobi;
   if (jacobi) {
     auto d = inverseDiagonal(a);
@@ -59,12 +122,11 @@ simit::conjugateGradient(const BCSRMatrix &a, const double *bIn, double *x,
     inverseDiag = std::move(*d);
   }
 
-  std::vector<double> r(n), z, dir(n), ad(n);
+  std::vector<T> r(n), z, dir(n), ad(n);
   multiply(a, x, ad.data());
   for (size_t i = 0; i < n; ++i)
     r[i] = bIn[i] - ad[i];
-  auto precondition = [&](const std::vector<double> &res,
-                          std::vector<double> &out) {
+  auto precondition = [&](const std::vector<T> &res, std::vector<T> &out) {
     out.resize(n);
     for (size_t i = 0; i < n; ++i)
       out[i] = jacobi ? inverseDiag[i] * res[i] : res[i];
@@ -84,14 +146,14 @@ simit::conjugateGradient(const BCSRMatrix &a, const double *bIn, double *x,
           "conjugate gradients: p.Ap = " + llvm::formatv("{0:g}", curvature) +
           " at iteration " + llvm::Twine(result.iterations) +
           "; the matrix is not positive definite");
-    double alpha = rz / curvature;
+    T alpha = static_cast<T>(rz / curvature);
     for (size_t i = 0; i < n; ++i) {
       x[i] += alpha * dir[i];
       r[i] -= alpha * ad[i];
     }
     precondition(r, z);
     double rzNext = dot(r, z);
-    double beta = rzNext / rz;
+    T beta = static_cast<T>(rzNext / rz);
     rz = rzNext;
     for (size_t i = 0; i < n; ++i)
       dir[i] = z[i] + beta * dir[i];
@@ -101,3 +163,21 @@ simit::conjugateGradient(const BCSRMatrix &a, const double *bIn, double *x,
   result.converged = result.residualNormSquared <= options.tolerance;
   return result;
 }
+
+llvm::Expected<SolverResult>
+simit::conjugateGradient(const BCSRMatrix &a, const double *b, double *x,
+                         const SolverOptions &options) {
+  auto view = squareView(a);
+  if (!view)
+    return llvm::createStringError("conjugate gradients: " +
+                                   llvm::toString(view.takeError()));
+  return conjugateGradient(*view, b, x, options);
+}
+
+#define SIMIT_INSTANTIATE_SOLVERS(T)                                           \
+  template void simit::multiply(const SquareBCSRView<T> &, const T *, T *);    \
+  template bool simit::isSymmetric(const SquareBCSRView<T> &, double);         \
+  template llvm::Expected<SolverResult> simit::conjugateGradient(              \
+      const SquareBCSRView<T> &, const T *, T *, const SolverOptions &);
+SIMIT_INSTANTIATE_SOLVERS(double)
+SIMIT_INSTANTIATE_SOLVERS(float)

@@ -140,15 +140,16 @@ llvm::Error bindFromScene(const SceneDescription &scene, SetRegistry &registry,
 llvm::Error runAll(std::vector<NamedFunction> &group, bool checkNumerics,
                    int frame) {
   for (NamedFunction &named : group) {
+    std::string where =
+        "function '" + named.name + "' (frame " + std::to_string(frame) + ")";
     if (llvm::Error err = named.function.run())
-      return err;
+      return llvm::createStringError(where + ": " +
+                                     llvm::toString(std::move(err)));
     if (!checkNumerics)
       continue;
     // First the assembly or solve that produced a NaN or infinity, then
     // what the function left in the fields and externs (from work that is
     // neither, e.g. a solver written in Simit).
-    std::string where =
-        "function '" + named.name + "' (frame " + std::to_string(frame) + ")";
     if (std::optional<std::string> problem = takeNumericsProblem())
       return llvm::createStringError("check-numerics: " + where + ": " +
                                      *problem);

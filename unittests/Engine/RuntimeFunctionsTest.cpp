@@ -25,74 +25,96 @@ StridedMemRefType<T, N> describe(T *data, std::array<int64_t, N> sizes) {
   }
   return m;
 }
-} // namespace
 
-// A random SPD matrix of 4 x 4 blocks of 3 x 3, stored densely in BCSR
-// (every block present), solved to convergence and compared with Eigen.
-TEST(RuntimeFunctionsTest, CGSolveMatchesADenseSolve) {
-  const int rows = 4, b = 3, n = rows * b;
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> dist(-1.0, 1.0);
-  Eigen::MatrixXd m(n, n);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      m(i, j) = dist(rng);
-  Eigen::MatrixXd a = m * m.transpose() + n * Eigen::MatrixXd::Identity(n, n);
-  Eigen::VectorXd rhs(n);
-  for (int i = 0; i < n; ++i)
-    rhs(i) = dist(rng);
-
+/// A dense matrix of rows x rows blocks of 3 x 3 as BCSR arrays in which
+/// every block is present, with memref descriptors of them and of b and x.
+struct DenseBCSR {
+  static constexpr int rows = 4, b = 3, n = rows * b;
   std::vector<int32_t> rowptr, colidx;
-  std::vector<double> values;
-  for (int r = 0; r < rows; ++r) {
-    rowptr.push_back(static_cast<int32_t>(colidx.size()));
-    for (int c = 0; c < rows; ++c) {
-      colidx.push_back(c);
-      for (int i = 0; i < b; ++i)
-        for (int j = 0; j < b; ++j)
-          values.push_back(a(r * b + i, c * b + j));
+  std::vector<double> values, rhs, x = std::vector<double>(n, 0.0);
+  StridedMemRefType<int32_t, 1> rp, ci;
+  StridedMemRefType<double, 3> vals;
+  StridedMemRefType<double, 2> bm, xm;
+
+  DenseBCSR(const Eigen::MatrixXd &a, const Eigen::VectorXd &bv)
+      : rhs(bv.data(), bv.data() + n) {
+    for (int r = 0; r < rows; ++r) {
+      rowptr.push_back(static_cast<int32_t>(colidx.size()));
+      for (int c = 0; c < rows; ++c) {
+        colidx.push_back(c);
+        for (int i = 0; i < b; ++i)
+          for (int j = 0; j < b; ++j)
+            values.push_back(a(r * b + i, c * b + j));
+      }
     }
+    rowptr.push_back(static_cast<int32_t>(colidx.size()));
+    rp = describe<int32_t, 1>(rowptr.data(), {rows + 1});
+    ci = describe<int32_t, 1>(colidx.data(), {int64_t(colidx.size())});
+    vals = describe<double, 3>(values.data(), {int64_t(colidx.size()), b, b});
+    bm = describe<double, 2>(rhs.data(), {rows, b});
+    xm = describe<double, 2>(x.data(), {rows, b});
   }
-  rowptr.push_back(static_cast<int32_t>(colidx.size()));
-  std::vector<double> bv(rhs.data(), rhs.data() + n), x(n, 0.0);
+};
 
-  auto rp = describe<int32_t, 1>(rowptr.data(), {rows + 1});
-  auto ci = describe<int32_t, 1>(colidx.data(), {int64_t(colidx.size())});
-  auto vals = describe<double, 3>(values.data(), {int64_t(colidx.size()), b, b});
-  auto bm = describe<double, 2>(bv.data(), {rows, b});
-  auto xm = describe<double, 2>(x.data(), {rows, b});
-  int32_t iterations = _mlir_ciface_simit_rt_cg_solve_bcsr(
-      &rp, &ci, &vals, &bm, &xm, 1e-24, 100);
-  EXPECT_GT(iterations, 0);
-  EXPECT_LE(iterations, 100);
-
-  Eigen::VectorXd exact = a.ldlt().solve(rhs);
-  for (int i = 0; i < n; ++i)
-    EXPECT_NEAR(x[i], exact(i), 1e-9) << "component " << i;
+Eigen::MatrixXd randomMatrix(unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> dist(-1.0, 1.0);
+  return Eigen::MatrixXd::NullaryExpr(DenseBCSR::n, DenseBCSR::n,
+                                      [&] { return dist(rng); });
 }
 
-TEST(RuntimeFunctionsTest, CGStopsAtTheIterationCap) {
-  // diag(1, 2): from x = 0, one CG step cannot reach the solution.
-  std::vector<int32_t> rowptr{0, 1, 2}, colidx{0, 1};
-  std::vector<double> values{1.0, 2.0}, bv{1.0, 1.0}, x{0.0, 0.0};
-  auto rp = describe<int32_t, 1>(rowptr.data(), {3});
-  auto ci = describe<int32_t, 1>(colidx.data(), {2});
-  auto vals = describe<double, 3>(values.data(), {2, 1, 1});
-  auto bm = describe<double, 2>(bv.data(), {2, 1});
-  auto xm = describe<double, 2>(x.data(), {2, 1});
-  EXPECT_EQ(_mlir_ciface_simit_rt_cg_solve_bcsr(&rp, &ci, &vals, &bm, &xm,
-                                                1e-30, 1),
-            1);
-  // The first step is x = alpha r with r = b, alpha = (r.r) / (r.Ar) = 2/3.
-  EXPECT_NEAR(x[0], 2.0 / 3.0, 1e-15);
-  EXPECT_NEAR(x[1], 2.0 / 3.0, 1e-15);
-  // Restarted from there, the residual (1/3, -1/3) spans both eigenvectors:
-  // two more steps reach the solution and r.r falls below the tolerance.
-  EXPECT_EQ(_mlir_ciface_simit_rt_cg_solve_bcsr(&rp, &ci, &vals, &bm, &xm,
-                                                1e-20, 5),
-            2);
-  EXPECT_NEAR(x[0], 1.0, 1e-12);
-  EXPECT_NEAR(x[1], 0.5, 1e-12);
+/// The packed entry point of a "program" that solves the system of args[0]
+/// (a DenseBCSR), as lowered code calls the runtime.
+void solveEntry(void **args) {
+  auto *s = static_cast<DenseBCSR *>(args[0]);
+  _mlir_ciface_simit_rt_solve_bcsr(&s->rp, &s->ci, &s->vals, &s->bm, &s->xm,
+                                   "solve (program.sim:7:9)");
+}
+
+void expectSolvesLike(const Eigen::MatrixXd &a, unsigned seed) {
+  Eigen::VectorXd rhs = randomMatrix(seed).col(0);
+  DenseBCSR system(a, rhs);
+  void *args[] = {&system};
+  llvm::Error err = simit::runGuarded(solveEntry, args);
+  ASSERT_FALSE(bool(err)) << llvm::toString(std::move(err));
+  Eigen::VectorXd exact = a.fullPivLu().solve(rhs);
+  for (int i = 0; i < DenseBCSR::n; ++i)
+    EXPECT_NEAR(system.x[i], exact(i), 1e-9 * exact.norm()) << i;
+}
+
+} // namespace
+
+// x = A \ b matches a dense solve for a symmetric positive definite A (the
+// CG path), a non-symmetric A and a symmetric indefinite A (the LU paths).
+TEST(RuntimeFunctionsTest, SolveMatchesADenseSolve) {
+  Eigen::MatrixXd m = randomMatrix(7);
+  int n = DenseBCSR::n;
+  expectSolvesLike(m * m.transpose() + n * Eigen::MatrixXd::Identity(n, n),
+                   1);
+  expectSolvesLike(m + n * Eigen::MatrixXd::Identity(n, n), 2);
+  Eigen::MatrixXd indefinite = m + m.transpose();
+  expectSolvesLike(indefinite, 3);
+}
+
+// A singular system ends the run with the statement's position; the host
+// goes on.
+TEST(RuntimeFunctionsTest, SingularSolveEndsTheRunWithItsPosition) {
+  Eigen::MatrixXd a = randomMatrix(9);
+  a.row(4) = a.row(2); // rank deficient
+  DenseBCSR system(a, randomMatrix(10).col(0));
+  void *args[] = {&system};
+  llvm::Error err = simit::runGuarded(solveEntry, args);
+  ASSERT_TRUE(bool(err));
+  std::string message = llvm::toString(std::move(err));
+  EXPECT_NE(message.find("solve (program.sim:7:9): "), std::string::npos)
+      << message;
+  EXPECT_TRUE(message.find("singular") != std::string::npos) << message;
+  // A later run on this thread is unaffected.
+  DenseBCSR fine(Eigen::MatrixXd::Identity(DenseBCSR::n, DenseBCSR::n),
+                 randomMatrix(11).col(0));
+  void *fineArgs[] = {&fine};
+  EXPECT_FALSE(bool(simit::runGuarded(solveEntry, fineArgs)));
+  EXPECT_EQ(fine.x, fine.rhs);
 }
 
 TEST(RuntimeFunctionsTest, LargeFreedBlocksAreReusedBySize) {

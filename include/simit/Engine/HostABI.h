@@ -94,11 +94,23 @@ struct ArgumentBinding {
     PatternRowPtr,    // memref<?xi32>: BCSR row pointers of (set; rows, cols)
     PatternColIdx,    // memref<?xi32>: BCSR block columns
     PatternLocations, // memref<?x(c*c)xi32>: per-edge block locations
+    UnionRowPtr,      // memref<?xi32>: BCSR row pointers of the union of the
+                      // patterns of `edgeSets` over (rows, cols)
+    UnionColIdx,      // memref<?xi32>: its block columns
+    UnionGather,      // memref<?xi32>: per union block, its position in the
+                      // pattern (or union) of `partSets`, or -1; with
+                      // `partTransposed`, of the mirrored block in theirs
+                      // over (cols, rows)
     Extern,           // an extern tensor `name`
     Parameter,        // the function's own parameter number `index`
   };
   Kind kind = Kind::Parameter;
   std::string set, field, rows, cols, name;
+  /// Union bindings: the edge sets of the union and of the gathered part
+  /// (written '+'-joined in `simit.bindings`, the part prefixed by '~' when
+  /// read transposed).
+  std::vector<std::string> edgeSets, partSets;
+  bool partTransposed = false;
   /// Parameter: its position among the Simit function's parameters.
   int64_t index = -1;
   ValueType type;

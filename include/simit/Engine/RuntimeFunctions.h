@@ -12,6 +12,8 @@
 
 #include "mlir/ExecutionEngine/CRunnerUtils.h"
 
+#include "llvm/Support/Error.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -19,25 +21,42 @@
 
 extern "C" {
 
-/// Solves A x = b by unpreconditioned conjugate gradients, in place, for a
-/// BCSR matrix with square blocks of B x B doubles:
+/// x = A \ b of the language (simit::solveChecked: CG for symmetric A,
+/// sparse LU otherwise or when CG fails, the true residual checked) for a
+/// BCSR matrix with square blocks of B x B:
 ///   rowptr: memref<?xi32> (rows + 1), colidx: memref<?xi32> (blocks),
-///   values: memref<?xBxBxf64>, b and x: memref<?xBxf64> (x holds the
-///   initial guess and receives the solution). Stops after maxIterations or
-///   once r.r <= tolerance. Returns the iterations done.
-/// MLIR: func.func private @simit_rt_cg_solve_bcsr(memref<?xi32>,
+///   values: memref<?xBxBxf64>, b and x: memref<?xBxf64>, `where` the
+///   statement's "file:line:col: x = A \ b" (a C string).
+/// A failure (singular matrix, residual too large) ends the run with an
+/// error naming `where` (simit_rt_fail).
+/// MLIR: func.func private @simit_rt_solve_bcsr(memref<?xi32>,
 ///   memref<?xi32>, memref<?x?x?xf64>, memref<?x?xf64>, memref<?x?xf64>,
-///   f64, i32) -> i32 attributes {llvm.emit_c_interface}
-int32_t _mlir_ciface_simit_rt_cg_solve_bcsr(
+///   !llvm.ptr) attributes {llvm.emit_c_interface}
+void _mlir_ciface_simit_rt_solve_bcsr(
     StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
     StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *b,
-    StridedMemRefType<double, 2> *x, double tolerance, int32_t maxIterations);
-/// The same on f32 components (dot products in double); MLIR:
-/// @simit_rt_cg_solve_bcsr_f32 with f32 memrefs and the same scalars.
-int32_t _mlir_ciface_simit_rt_cg_solve_bcsr_f32(
+    StridedMemRefType<double, 2> *x, const char *where);
+/// The same on f32 components (@simit_rt_solve_bcsr_f32).
+void _mlir_ciface_simit_rt_solve_bcsr_f32(
     StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
     StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *b,
-    StridedMemRefType<float, 2> *x, double tolerance, int32_t maxIterations);
+    StridedMemRefType<float, 2> *x, const char *where);
+/// x = A \ b for a block diagonal A (values memref<?xBxBxT>, block r at
+/// (r, r)): @simit_rt_solve_diag(memref<?x?x?xf64>, memref<?x?xf64>,
+/// memref<?x?xf64>, !llvm.ptr), and @simit_rt_solve_diag_f32.
+void _mlir_ciface_simit_rt_solve_diag(StridedMemRefType<double, 3> *values,
+                                      StridedMemRefType<double, 2> *b,
+                                      StridedMemRefType<double, 2> *x,
+                                      const char *where);
+void _mlir_ciface_simit_rt_solve_diag_f32(StridedMemRefType<float, 3> *values,
+                                          StridedMemRefType<float, 2> *b,
+                                          StridedMemRefType<float, 2> *x,
+                                          const char *where);
+
+/// Ends the run of the exported function in progress (simit::runGuarded)
+/// with `message` as its error; outside a guarded run, a fatal error.
+/// MLIR: func.func private @simit_rt_fail(!llvm.ptr)
+[[noreturn]] void simit_rt_fail(const char *message);
 
 /// print/println of scalars and strings (lowered simit.print).
 void simit_rt_print_f64(double value);
@@ -176,6 +195,11 @@ void resetPhaseTimes();
 /// (the message of simit_rt_check_numerics_*), and forgets it; nullopt when
 /// there was none.
 std::optional<std::string> takeNumericsProblem();
+
+/// Calls the packed entry point `entry(args)` of lowered code; a runtime
+/// failure inside it (simit_rt_fail) returns here as the error instead of
+/// ending the process. What the failed run wrote stays as it was.
+llvm::Error runGuarded(void (*entry)(void **), void **args);
 
 } // namespace simit
 

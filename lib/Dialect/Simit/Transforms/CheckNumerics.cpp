@@ -8,9 +8,9 @@
 //
 //===----------------------------------------------------------------------===//
 
-#include "simit/Dialect/Simit/Transforms/Passes.h"
+#include "SourcePosition.h"
 
-#include "llvm/Support/Path.h"
+#include "simit/Dialect/Simit/Transforms/Passes.h"
 
 namespace mlir {
 namespace simit {
@@ -29,16 +29,6 @@ bool isScanned(Type type) {
   auto system = dyn_cast<SystemTensorType>(type);
   return system && system.isSystem() &&
          isa<FloatType>(system.getComponentType());
-}
-
-/// " (<file>:<line>:<col>)" for an op at a source position, else "".
-std::string positionOf(Operation *op) {
-  auto file = op->getLoc()->findInstanceOf<FileLineColLoc>();
-  if (!file)
-    return "";
-  return (" (" + llvm::sys::path::filename(file.getFilename().getValue()) +
-          ":" + Twine(file.getLine()) + ":" + Twine(file.getColumn()) + ")")
-      .str();
 }
 
 /// The name of result `index` of element function `callee`: the name its
@@ -70,12 +60,12 @@ describe(Operation *op, ModuleOp module) {
       names.push_back(resultName(callee, i));
     return std::make_pair(("map " + calleeName.getValue() + " to " +
                            cast<SetType>(set.getType()).getName().getValue() +
-                           positionOf(op))
+                           sourcePositionSuffix(op))
                               .str(),
                           names);
   }
   if (isa<SolveOp>(op))
-    return std::make_pair("solve" + positionOf(op),
+    return std::make_pair("solve" + sourcePositionSuffix(op),
                           SmallVector<std::string>{"solution"});
   auto call = dyn_cast<func::CallOp>(op);
   if (!call)
@@ -87,7 +77,7 @@ describe(Operation *op, ModuleOp module) {
   if (!simitName || !simitName.getValue().contains_insensitive("solve"))
     return std::nullopt;
   names.assign(call.getNumResults(), "solution");
-  return std::make_pair((simitName.getValue() + positionOf(op)).str(), names);
+  return std::make_pair((simitName.getValue() + sourcePositionSuffix(op)).str(), names);
 }
 
 struct CheckNumerics

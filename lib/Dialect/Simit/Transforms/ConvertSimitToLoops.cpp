@@ -10,6 +10,7 @@
 //===----------------------------------------------------------------------===//
 
 #include "LoopsLowering.h"
+#include "SourcePosition.h"
 
 #include "mlir/IR/IRMapping.h"
 #include "llvm/ADT/StringExtras.h"
@@ -34,13 +35,74 @@ using namespace mlir::simit::loops;
 // Storage
 //===----------------------------------------------------------------------===//
 
+Storage Storage::unionOf(ArrayRef<StringAttr> edgeSets, StringAttr rows,
+                         StringAttr cols) {
+  SmallVector<StringAttr, 2> sorted(edgeSets);
+  llvm::sort(sorted, [](StringAttr a, StringAttr b) {
+    return a.getValue() < b.getValue();
+  });
+  sorted.erase(llvm::unique(sorted), sorted.end());
+  if (sorted.size() == 1)
+    return pattern(sorted.front(), rows, cols);
+  Storage result{Kind::Union, nullptr, rows, cols};
+  result.members = std::move(sorted);
+  return result;
+}
+
+SmallVector<StringAttr, 2> Storage::patternSets() const {
+  if (kind == Kind::Pattern)
+    return {edges};
+  return members;
+}
+
 bool Storage::contains(const Storage &o) const {
   if (*this == o)
     return true;
-  // An edge pattern over (V, V) holds every diagonal block of V, and so does
-  // a stencil (it always stores offset 0).
-  return (kind == Kind::Pattern || kind == Kind::Stencil) &&
-         o.kind == Kind::Diagonal && rows == cols && rows == o.rows;
+  // An edge pattern over (V, V) holds every diagonal block of V, and so do
+  // a stencil (it always stores offset 0) and a union of patterns.
+  if (o.kind == Kind::Diagonal)
+    return (kind == Kind::Pattern || kind == Kind::Stencil ||
+            kind == Kind::Union) &&
+           rows == cols && rows == o.rows;
+  // A union holds the patterns of its members over its sets.
+  return kind == Kind::Union && o.isBCSR() && rows == o.rows &&
+         cols == o.cols && llvm::all_of(o.patternSets(), [&](StringAttr e) {
+           return llvm::is_contained(members, e);
+         });
+}
+
+std::optional<Storage> mlir::simit::loops::transposedStorage(const Storage &s) {
+  switch (s.kind) {
+  case Storage::Kind::Dense:
+  case Storage::Kind::Diagonal:
+    return s;
+  case Storage::Kind::Pattern:
+    return Storage::pattern(s.edges, s.cols, s.rows);
+  case Storage::Kind::Union:
+    return Storage::unionOf(s.members, s.cols, s.rows);
+  case Storage::Kind::Stencil:
+  case Storage::Kind::Incidence:
+    return std::nullopt;
+  }
+  llvm_unreachable("storage kind");
+}
+
+std::optional<Storage> mlir::simit::loops::joinStorages(const Storage &a,
+                                                        const Storage &b) {
+  if (a.contains(b))
+    return a;
+  if (b.contains(a))
+    return b;
+  // Patterns over the same sets join into their union; a diagonal joins
+  // into any square one.
+  auto combinable = [&](const Storage &s) {
+    return s.isBCSR() || (s.kind == Storage::Kind::Diagonal && s.rows == s.cols);
+  };
+  if (!combinable(a) || !combinable(b) || a.rows != b.rows || a.cols != b.cols)
+    return std::nullopt;
+  SmallVector<StringAttr, 4> sets(a.patternSets());
+  llvm::append_range(sets, b.patternSets());
+  return Storage::unionOf(sets, a.rows, a.cols);
 }
 
 std::string Storage::describe() const {
@@ -61,6 +123,14 @@ std::string Storage::describe() const {
     return ("incidence of '" + edges.getValue() + "' over ('" +
             rows.getValue() + "', '" + cols.getValue() + "')")
         .str();
+  case Kind::Union: {
+    std::string names;
+    for (StringAttr member : members)
+      names += (names.empty() ? "'" : ", '") + member.getValue().str() + "'";
+    return ("union of the patterns of " + names + " over ('" +
+            rows.getValue() + "', '" + cols.getValue() + "')")
+        .str();
+  }
   }
   llvm_unreachable("storage kind");
 }
@@ -193,6 +263,12 @@ static StringRef bindingKindName(BindingKind kind) {
     return "pattern_colidx";
   case BindingKind::PatternLocations:
     return "pattern_locations";
+  case BindingKind::UnionRowPtr:
+    return "union_rowptr";
+  case BindingKind::UnionColIdx:
+    return "union_colidx";
+  case BindingKind::UnionGather:
+    return "union_gather";
   case BindingKind::Extern:
     return "extern";
   }
@@ -212,7 +288,7 @@ Value FunctionLowering::getBinding(BindingKind kind, ArrayRef<StringRef> names,
   SmallVector<NamedAttribute> entries;
   entries.emplace_back(StringAttr::get(ctx, "kind"),
                        StringAttr::get(ctx, bindingKindName(kind)));
-  static const char *const setKeys[] = {"set", "rows", "cols"};
+  static const char *const setKeys[] = {"set", "rows", "cols", "part"};
   switch (kind) {
   case BindingKind::Extern:
     entries.emplace_back(StringAttr::get(ctx, "name"),
@@ -271,6 +347,44 @@ Value FunctionLowering::getPatternArray(BindingKind kind, StringAttr edges,
                     type);
 }
 
+/// The '+'-joined edge sets of a pattern or union storage (a union
+/// binding's "set").
+static std::string unionKey(const Storage &storage) {
+  std::string key;
+  for (StringAttr member : storage.patternSets())
+    key += (key.empty() ? "" : "+") + member.getValue().str();
+  return key;
+}
+
+Value FunctionLowering::rowPointers(const Storage &storage) {
+  if (storage.kind == Storage::Kind::Union)
+    return getBinding(BindingKind::UnionRowPtr,
+                      {unionKey(storage), storage.rows.getValue(),
+                       storage.cols.getValue()},
+                      MemRefType::get({ShapedType::kDynamic}, b.getI32Type()));
+  return getPatternArray(BindingKind::PatternRowPtr, storage.edges,
+                         storage.rows, storage.cols);
+}
+
+Value FunctionLowering::columnIndices(const Storage &storage) {
+  if (storage.kind == Storage::Kind::Union)
+    return getBinding(BindingKind::UnionColIdx,
+                      {unionKey(storage), storage.rows.getValue(),
+                       storage.cols.getValue()},
+                      MemRefType::get({ShapedType::kDynamic}, b.getI32Type()));
+  return getPatternArray(BindingKind::PatternColIdx, storage.edges,
+                         storage.rows, storage.cols);
+}
+
+Value FunctionLowering::gatherMap(const Storage &storage, const Storage &part,
+                                  bool transposed) {
+  return getBinding(BindingKind::UnionGather,
+                    {unionKey(storage), storage.rows.getValue(),
+                     storage.cols.getValue(),
+                     (transposed ? "~" : "") + unionKey(part)},
+                    MemRefType::get({ShapedType::kDynamic}, b.getI32Type()));
+}
+
 Value FunctionLowering::getExtern(ExternOp global) {
   Type type = global.getType();
   Type memref = isa<FloatType, IntegerType>(type)
@@ -309,9 +423,9 @@ Value FunctionLowering::numBlocks(const Storage &storage,
     return getSetSize(denseSet);
   case Storage::Kind::Diagonal:
     return getSetSize(storage.rows);
-  case Storage::Kind::Pattern: {
-    Value rowPtr = getPatternArray(BindingKind::PatternRowPtr, storage.edges,
-                                   storage.rows, storage.cols);
+  case Storage::Kind::Pattern:
+  case Storage::Kind::Union: {
+    Value rowPtr = rowPointers(storage);
     Value last = memref::LoadOp::create(b, loc, rowPtr,
                                         ValueRange{getSetSize(storage.rows)});
     return arith::IndexCastOp::create(b, loc, b.getIndexType(), last);
@@ -886,17 +1000,14 @@ Value FunctionLowering::asRuntimeBlocks(Location loc, Value array,
 }
 
 /// The runtime's conjugate gradient solvers (lib/Engine/RuntimeFunctions).
-static constexpr llvm::StringLiteral kCgSolve = "simit_rt_cg_solve_bcsr";
-static constexpr llvm::StringLiteral kCgSolveF32 =
-    "simit_rt_cg_solve_bcsr_f32";
-
 LogicalResult FunctionLowering::lowerSolve(SolveOp op) {
   Location loc = op.getLoc();
   Storage storage = storages.lookup(op.getMatrix());
   auto matrixType = cast<SystemTensorType>(op.getMatrix().getType());
-  if (storage.kind != Storage::Kind::Pattern || storage.rows != storage.cols)
+  bool diagonal = storage.kind == Storage::Kind::Diagonal;
+  if (!diagonal && (!storage.isBCSR() || storage.rows != storage.cols))
     return op.emitError("solves are supported for square matrices assembled "
-                        "from an edge set; this matrix is stored as ")
+                        "from a set; this matrix is stored as ")
            << storage.describe();
   SmallVector<int64_t> block = matrixType.getBlockShape();
   // Scalar blocks are 1x1 blocks to the runtime.
@@ -909,43 +1020,36 @@ LogicalResult FunctionLowering::lowerSolve(SolveOp op) {
     return op.emitError("the runtime solver takes matrices of scalars or of "
                         "square blocks");
 
-  // func.func private @simit_rt_cg_solve_bcsr[_f32](rowptr, colidx, values,
-  //     b, x, tolerance, maxIterations) -> iterations, declared once.
+  // func.func private @simit_rt_solve_{bcsr,diag}[_f32]([rowptr, colidx,]
+  //     values, b, x, where), declared once. The runtime picks the method
+  // and ends the run with `where` in its message when the solve fails.
   MLIRContext *ctx = b.getContext();
-  Type f64 = b.getF64Type();
   int64_t dyn = ShapedType::kDynamic;
   Type indexArray = MemRefType::get({dyn}, b.getI32Type());
   auto values = MemRefType::get({dyn, dyn, dyn}, component);
   auto vector = MemRefType::get({dyn, dyn}, component);
-  auto type = FunctionType::get(
-      ctx, {indexArray, indexArray, values, vector, vector, f64, b.getI32Type()},
-      {b.getI32Type()});
-  StringRef solver = component.isF64() ? kCgSolve : kCgSolveF32;
-  func::FuncOp callee = declareRuntime(loc, solver, type);
+  SmallVector<Type> argTypes;
+  if (!diagonal)
+    argTypes.append({indexArray, indexArray});
+  argTypes.append({values, vector, vector, LLVM::LLVMPointerType::get(ctx)});
+  std::string solver = diagonal ? "simit_rt_solve_diag" : "simit_rt_solve_bcsr";
+  if (component.isF32())
+    solver += "_f32";
+  func::FuncOp callee =
+      declareRuntime(loc, solver, FunctionType::get(ctx, argTypes, {}));
   if (!callee)
     return op.emitError("@") << solver << " is declared with another type";
 
-  // x starts at zero; CG stops when r.r <= 1e-20 (f32: 1e-10, above its
-  // rounding floor) or after 2 n iterations (n unknowns: exact arithmetic
-  // needs at most n).
-  Value x = allocSystem(loc, op.getType(), Storage::dense());
-  Value rows = getSetSize(storage.rows);
-  Value unknowns = arith::MulIOp::create(b, loc, rows, indexConstant(block[0]));
-  Value limit = arith::IndexCastOp::create(
-      b, loc, b.getI32Type(),
-      arith::MulIOp::create(b, loc, unknowns, indexConstant(2)));
-  Value tolerance = arith::ConstantOp::create(
-      b, loc, b.getF64FloatAttr(component.isF64() ? 1e-20 : 1e-10));
-  func::CallOp::create(
-      b, loc, callee,
-      ValueRange{getPatternArray(BindingKind::PatternRowPtr, storage.edges,
-                                 storage.rows, storage.cols),
-                 getPatternArray(BindingKind::PatternColIdx, storage.edges,
-                                 storage.rows, storage.cols),
-                 asRuntimeBlocks(loc, lookup(op.getMatrix()), values),
-                 asRuntimeBlocks(loc, lookup(op.getRhs()), vector),
-                 asRuntimeBlocks(loc, x, vector), tolerance,
-                 limit});
+  Value x = allocSystem(loc, op.getType(), Storage::dense(),
+                        /*zeroFill=*/false);
+  SmallVector<Value> args;
+  if (!diagonal)
+    args.append({rowPointers(storage), columnIndices(storage)});
+  args.append({asRuntimeBlocks(loc, lookup(op.getMatrix()), values),
+               asRuntimeBlocks(loc, lookup(op.getRhs()), vector),
+               asRuntimeBlocks(loc, x, vector),
+               stringConstant(loc, "solve" + sourcePositionSuffix(op))});
+  func::CallOp::create(b, loc, callee, args);
   storages[op] = Storage::dense();
   map(op, x);
   return success();
@@ -980,8 +1084,7 @@ LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
                              block[0] == block[1]) ||
            (order == 1 && block.size() == 1);
   };
-  if (factorise && !(f64Blocks(matrix.getType(), 2) &&
-                     storage.kind == Storage::Kind::Pattern &&
+  if (factorise && !(f64Blocks(matrix.getType(), 2) && storage.isBCSR() &&
                      storage.rows == storage.cols))
     return call.emitError("'@")
            << name
@@ -1017,10 +1120,7 @@ LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
                                  << " is declared with another type";
     auto lowered = func::CallOp::create(
         b, loc, callee,
-        ValueRange{getPatternArray(BindingKind::PatternRowPtr, storage.edges,
-                                   storage.rows, storage.cols),
-                   getPatternArray(BindingKind::PatternColIdx, storage.edges,
-                                   storage.rows, storage.cols),
+        ValueRange{rowPointers(storage), columnIndices(storage),
                    asRuntimeBlocks(loc, lookup(matrix), values)});
     map(call.getResult(0), lowered.getResult(0));
     return success();

@@ -21,6 +21,7 @@
 #include "llvm/ADT/StringMap.h"
 
 #include <functional>
+#include <optional>
 #include <tuple>
 
 namespace mlir {
@@ -43,7 +44,12 @@ struct Storage {
     /// A matrix over (edges, endpoint set) assembled from the edge set:
     /// row e holds one block per endpoint, block e * c + k at column
     /// endpoint_k(e) (the edge set's endpoint array is the column index).
-    Incidence
+    Incidence,
+    /// A BCSR matrix over (rows, cols) on the union of the patterns of
+    /// several edge sets (`members`): a sum of matrices assembled from
+    /// different edge sets. Built once per binding by the runtime
+    /// (simit::PatternUnion), with a gather map per member.
+    Union
   };
   Kind kind = Kind::Dense;
   /// Diagonal: rows == cols == the set. Pattern: the edge set and the two
@@ -55,6 +61,8 @@ struct Storage {
   ArrayAttr offsets;
   /// Incidence: the edge set's cardinality (blocks per row).
   int64_t cardinality = 0;
+  /// Union: the member edge sets, sorted by name, at least two.
+  SmallVector<StringAttr, 2> members;
 
   static Storage dense() { return Storage(); }
   static Storage diagonal(StringAttr set) {
@@ -71,11 +79,20 @@ struct Storage {
                            int64_t cardinality) {
     return Storage{Kind::Incidence, edges, edges, cols, nullptr, cardinality};
   }
+  /// The union of the patterns of `edgeSets` over (rows, cols): a pattern
+  /// for one edge set.
+  static Storage unionOf(ArrayRef<StringAttr> edgeSets, StringAttr rows,
+                         StringAttr cols);
   bool isMatrix() const { return kind != Kind::Dense; }
+  /// Whether the matrix is a BCSR array with row pointers and column
+  /// indices (rowPointers/columnIndices of FunctionLowering).
+  bool isBCSR() const { return kind == Kind::Pattern || kind == Kind::Union; }
+  /// The edge sets whose patterns this storage holds (pattern or union).
+  SmallVector<StringAttr, 2> patternSets() const;
   bool operator==(const Storage &o) const {
     return kind == o.kind && edges == o.edges && rows == o.rows &&
            cols == o.cols && offsets == o.offsets &&
-           cardinality == o.cardinality;
+           cardinality == o.cardinality && members == o.members;
   }
   bool operator!=(const Storage &o) const { return !(*this == o); }
   /// Whether every block of `o` is a block of this storage (an edge pattern
@@ -83,6 +100,16 @@ struct Storage {
   bool contains(const Storage &o) const;
   std::string describe() const;
 };
+
+/// The storage of the transpose of a matrix stored as `s` (a pattern over
+/// (C, R) for one over (R, C): the same endpoint pairs, swapped); none for
+/// stencils and incidences.
+std::optional<Storage> transposedStorage(const Storage &s);
+
+/// The smallest storage holding the blocks of both `a` and `b`: the one
+/// that contains the other, or the union of their patterns over the same
+/// sets; none when neither holds and they do not combine.
+std::optional<Storage> joinStorages(const Storage &a, const Storage &b);
 
 /// The kinds of function arguments of a lowered exported function.
 enum class BindingKind {
@@ -93,6 +120,9 @@ enum class BindingKind {
   PatternRowPtr,
   PatternColIdx,
   PatternLocations,
+  UnionRowPtr,
+  UnionColIdx,
+  UnionGather,
   Extern
 };
 
@@ -156,6 +186,17 @@ public:
   /// needs the edge set's cardinality.
   Value getPatternArray(BindingKind kind, StringAttr edges, StringAttr rows,
                         StringAttr cols, int64_t cardinality = 0);
+  /// The row pointers and column indices of a BCSR storage (pattern or
+  /// union; Storage::isBCSR).
+  Value rowPointers(const Storage &storage);
+  Value columnIndices(const Storage &storage);
+  /// The gather map from a union storage to a BCSR storage it contains
+  /// (`part`: one member's pattern or a smaller union): per union block
+  /// position, the part's position of the block or -1 (memref<?xi32>).
+  /// With `transposed`, the position of block (c, r) of `part` for each
+  /// block (r, c) of `storage` (the part is read transposed).
+  Value gatherMap(const Storage &storage, const Storage &part,
+                  bool transposed = false);
   Value getExtern(ExternOp global);
   /// The extents of grid `grid` (memref<rank x i32>).
   Value getGridDims(StringAttr grid, unsigned rank);
@@ -246,6 +287,9 @@ public:
   Block *allocaBlock = nullptr;
 
 private:
+  /// The function argument of binding `kind` of the named sets (for union
+  /// bindings, the member sets joined by '+'; a union gather map names
+  /// its part as a fourth, "part").
   Value getBinding(BindingKind kind, ArrayRef<StringRef> names, Type type);
   LogicalResult lowerFunctionReturn(func::ReturnOp op);
   /// Solves with a pattern matrix call the runtime's CG solver.

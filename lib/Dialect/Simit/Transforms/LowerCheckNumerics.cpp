@@ -35,6 +35,7 @@ SimitNumericsLayout layoutOf(const Storage &storage) {
   case Storage::Kind::Diagonal:
     return SIMIT_NUMERICS_DIAGONAL;
   case Storage::Kind::Pattern:
+  case Storage::Kind::Union:
     return SIMIT_NUMERICS_PATTERN;
   case Storage::Kind::Incidence:
     return SIMIT_NUMERICS_FIXED_ROWS;
@@ -80,10 +81,8 @@ LogicalResult FunctionLowering::scanForNonFinite(Operation *op) {
     Value rowptr, colidx;
     int64_t perRow = 0;
     if (layout == SIMIT_NUMERICS_PATTERN) {
-      rowptr = getPatternArray(BindingKind::PatternRowPtr, storage.edges,
-                               storage.rows, storage.cols);
-      colidx = getPatternArray(BindingKind::PatternColIdx, storage.edges,
-                               storage.rows, storage.cols);
+      rowptr = rowPointers(storage);
+      colidx = columnIndices(storage);
     } else if (layout == SIMIT_NUMERICS_FIXED_ROWS) {
       // The edge set's endpoint array is the column index, row by row.
       perRow = storage.cardinality;

@@ -68,8 +68,11 @@ private:
   struct Choice {
     unsigned var;
     unsigned levelIndex;
-    int coupledBy = -1; // operand whose sparsity the loop follows
+    int coupledBy = -1; // an operand that couples the variable
     unsigned partner = 0;
+    /// The sparsity the loop follows: the coupling operands' join (a
+    /// union of their patterns when none holds the others).
+    Storage storage;
   };
   std::optional<Choice> choose(ArrayRef<unsigned> vars);
   /// Emits the loop for `choice`, calls `inner` inside it with the builder
@@ -99,6 +102,9 @@ private:
   DenseMap<unsigned, SmallVector<Value>> bound;
   /// Block positions of matrix operands bound by a pattern loop.
   DenseMap<unsigned, Value> positions;
+  /// The operands whose position comes from a union's gather map, so may
+  /// be -1 (no block there).
+  llvm::SmallDenseSet<unsigned> gathered;
   /// Variables summed by a simit.index_sum in the body.
   llvm::SmallDenseSet<unsigned> nestedVars;
   bool failedInside = false;
@@ -157,8 +163,20 @@ FailureOr<Value> IndexExprLowering::access(unsigned i) {
   Value row = indices[0], col = indices[1];
   SmallVector<Value> inner(indices.begin() + 2, indices.end());
   if (Value position = positions.lookup(i)) {
-    inner.insert(inner.begin(), position);
-    return memref::LoadOp::create(b, loc, lowered, inner).getResult();
+    if (!gathered.contains(i)) {
+      inner.insert(inner.begin(), position);
+      return memref::LoadOp::create(b, loc, lowered, inner).getResult();
+    }
+    // A union member without this block reads zero (at a valid position).
+    Value present = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::sge,
+                                          position, l.indexConstant(0));
+    inner.insert(inner.begin(),
+                 arith::SelectOp::create(b, loc, present, position,
+                                         l.indexConstant(0)));
+    Value value = memref::LoadOp::create(b, loc, lowered, inner);
+    return arith::SelectOp::create(b, loc, present, value,
+                                   l.zeroOf(scalarType))
+        .getResult();
   }
   if (storage.kind == Storage::Kind::Diagonal) {
     // Off the diagonal the block is zero; rows are in range either way.
@@ -185,18 +203,39 @@ IndexExprLowering::choose(ArrayRef<unsigned> vars) {
     if (isSetBound(v) || !isa<StringAttr>(level(v, 0)))
       continue;
     int best = -1;
+    unsigned partner = 0;
+    std::optional<Storage> joined;
     for (unsigned o = 0; o < numMatrixOperands(); ++o) {
       Storage storage = storageOf(o);
       ArrayRef<int64_t> list = indexList(o);
-      if (!storage.isMatrix() || list.size() != 2 || list[1] != v ||
-          list[0] == v || !isSetBound(list[0]))
+      if (!storage.isMatrix() || list.size() != 2 || list[0] == list[1])
         continue;
-      if (best < 0 || (storage != storageOf(best) &&
-                       storage.contains(storageOf(best))))
+      // A(u, v) couples v along its rows; A(v, u), read transposed, along
+      // the rows of its transpose.
+      bool transposed = list[0] == v;
+      if ((!transposed && list[1] != v) ||
+          !isSetBound(transposed ? list[1] : list[0]))
+        continue;
+      unsigned u = transposed ? list[1] : list[0];
+      if (best >= 0 && u != partner)
+        continue;
+      std::optional<Storage> own =
+          transposed ? transposedStorage(storage) : storage;
+      if (!own)
+        continue;
+      if (best < 0) {
         best = o;
+        partner = u;
+        joined = own;
+        continue;
+      }
+      // Operands that do not combine are read by search-free means only
+      // when the loop's storage holds them; access() says otherwise.
+      if (std::optional<Storage> both = joinStorages(*joined, *own))
+        joined = both;
     }
     if (best >= 0)
-      return Choice{v, 0, best, static_cast<unsigned>(indexList(best)[0])};
+      return Choice{v, 0, best, partner, *joined};
   }
   for (unsigned v : vars)
     if (!isSetBound(v) && isa<StringAttr>(level(v, 0)))
@@ -212,8 +251,11 @@ void IndexExprLowering::unbind(const Choice &choice) {
   bound[choice.var][choice.levelIndex] = Value();
   if (choice.coupledBy >= 0)
     for (unsigned o = 0; o < numMatrixOperands(); ++o)
-      if (indexList(o).size() == 2 && indexList(o)[1] == choice.var)
+      if (indexList(o).size() == 2 &&
+          llvm::is_contained(indexList(o), choice.var)) {
         positions.erase(o);
+        gathered.erase(o);
+      }
 }
 
 SmallVector<Value>
@@ -226,7 +268,7 @@ IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
   Value lb = l.indexConstant(0), ub = extent(v, choice.levelIndex);
   Value rowPtr, colIdx, row;
   if (choice.coupledBy >= 0) {
-    Storage storage = storageOf(choice.coupledBy);
+    const Storage &storage = choice.storage;
     row = bound[choice.partner][0];
     if (storage.kind == Storage::Kind::Diagonal) {
       // v = u: no loop, the diagonal block is the row's.
@@ -248,10 +290,8 @@ IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
       colIdx = l.getEndpoints(storage.edges, storage.cardinality);
       ub = l.indexConstant(storage.cardinality);
     } else {
-      rowPtr = l.getPatternArray(BindingKind::PatternRowPtr, storage.edges,
-                                 storage.rows, storage.cols);
-      colIdx = l.getPatternArray(BindingKind::PatternColIdx, storage.edges,
-                                 storage.rows, storage.cols);
+      rowPtr = l.rowPointers(storage);
+      colIdx = l.columnIndices(storage);
       Value next = arith::AddIOp::create(b, loc, row, l.indexConstant(1));
       lb = arith::IndexCastOp::create(
           b, loc, b.getIndexType(),
@@ -268,7 +308,7 @@ IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
       return;
     }
     b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
-    Storage storage = storageOf(choice.coupledBy);
+    const Storage &storage = choice.storage;
     Value position = iv;
     if (storage.kind == Storage::Kind::Stencil) {
       bound[v][0] = l.stencilColumn(storage, row, iv);
@@ -287,11 +327,31 @@ IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
           b, loc, b.getIndexType(),
           memref::LoadOp::create(b, loc, colIdx, ValueRange{iv}));
     }
-    nb.setInsertionPoint(b.getInsertionBlock(), b.getInsertionPoint());
-    for (unsigned o = 0; o < numMatrixOperands(); ++o)
-      if (indexList(o).size() == 2 && indexList(o)[1] == v &&
-          storageOf(o) == storage)
+    for (unsigned o = 0; o < numMatrixOperands(); ++o) {
+      ArrayRef<int64_t> list = indexList(o);
+      if (list.size() != 2 || list[0] == list[1] ||
+          !llvm::is_contained(list, v))
+        continue;
+      bool transposed = list[0] == v;
+      Storage own = storageOf(o);
+      if (!transposed && own == storage) {
         positions[o] = position;
+        continue;
+      }
+      std::optional<Storage> read = transposed ? transposedStorage(own) : own;
+      if (!storage.isBCSR() || !own.isBCSR() || !read ||
+          !storage.contains(*read))
+        continue;
+      // Part of the loop's pattern: its block at this position (for a
+      // transposed read, the block at the mirrored position), or -1.
+      positions[o] = arith::IndexCastOp::create(
+          b, loc, b.getIndexType(),
+          memref::LoadOp::create(b, loc,
+                                 l.gatherMap(storage, own, transposed),
+                                 ValueRange{iv}));
+      gathered.insert(o);
+    }
+    nb.setInsertionPoint(b.getInsertionBlock(), b.getInsertionPoint());
   };
   Value step = l.indexConstant(1);
   if (parallel) {
@@ -566,16 +626,26 @@ LogicalResult IndexExprLowering::lower() {
       Storage s = l.storages.lookup(input);
       if (!s.isMatrix())
         continue;
-      if (op.getInputIndexList(i) != resultVars)
-        return op.emitError("input #")
-               << i << " is read transposed; the loop lowering needs "
-                       "matrices read in the result's orientation";
-      if (!storage || s.contains(*storage))
-        storage = s;
-      else if (!storage->contains(s))
+      ArrayRef<int64_t> list = op.getInputIndexList(i);
+      std::optional<Storage> read = s;
+      if (list != resultVars) {
+        read = transposedStorage(s);
+        if (list.size() != 2 || list[0] != resultVars[1] ||
+            list[1] != resultVars[0] || !read)
+          return op.emitError("input #")
+                 << i << " (" << s.describe()
+                 << ") is read in an orientation the loop lowering does not "
+                    "support";
+      }
+      s = *read;
+      std::optional<Storage> joined =
+          storage ? joinStorages(*storage, s) : std::optional<Storage>(s);
+      if (!joined)
         return op.emitError("cannot combine matrices stored as ")
                << storage->describe() << " and " << s.describe()
-               << "; neither sparsity contains the other";
+               << "; neither sparsity contains the other and their sets "
+                  "differ";
+      storage = *joined;
     }
     if (!storage)
       return op.emitError("a system matrix result needs a sparse input");

@@ -183,6 +183,9 @@ static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
         k));
     break;
   }
+  case Storage::Kind::Union:
+    return insert.emitError("a map result cannot be stored as ")
+           << storage.describe();
   }
   Value value = l.lookup(insert.getValue());
   auto type = cast<MemRefType>(output.getType());

@@ -43,10 +43,8 @@ static Value findBlock(FunctionLowering &l, Location loc,
         arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq, row, col);
     return arith::SelectOp::create(b, loc, onDiagonal, row, none);
   }
-  Value rowPtr = l.getPatternArray(BindingKind::PatternRowPtr, storage.edges,
-                                   storage.rows, storage.cols);
-  Value colIdx = l.getPatternArray(BindingKind::PatternColIdx, storage.edges,
-                                   storage.rows, storage.cols);
+  Value rowPtr = l.rowPointers(storage);
+  Value colIdx = l.columnIndices(storage);
   auto load = [&](Value array, Value index) -> Value {
     return arith::IndexCastOp::create(
         b, loc, b.getIndexType(),

@@ -36,8 +36,8 @@
 // CHECK-NEXT: %[[ROWS:.*]] = llvm.mlir.addressof @[[POINTS]]
 // CHECK-NEXT: %[[COLS:.*]] = llvm.mlir.addressof @[[NONE]]
 // CHECK-NEXT: call @simit_rt_check_numerics_f64(%[[FARRAY]], %[[VECTOR]], %[[ZERO]], %[[EMPTY_F]], %[[EMPTY_F]], %[[WHAT]], %[[NAME]], %[[ROWS]], %[[COLS]])
-// The solve's result, after the CG call.
-// CHECK: call @simit_rt_cg_solve_bcsr(
+// The solve's result, after the call of the solver.
+// CHECK: call @simit_rt_solve_bcsr(
 // CHECK-NEXT: %[[X:.*]] = memref.cast %{{.*}} : memref<?xf64> to memref<*xf64>
 // CHECK-NEXT: %[[VECTOR:.*]] = arith.constant 0 : i32
 // CHECK-NEXT: %[[ZERO:.*]] = arith.constant 0 : i64

@@ -54,7 +54,7 @@ func.func private @simit_rt_cholfree(!simit.opaque) attributes {simit.runtime_fu
 // CHECK-LABEL: func.func @backslash(
 // CHECK: %[[AE:.*]] = memref.expand_shape %{{.*}} {{\[\[}}0, 1, 2]]
 // CHECK: %[[AC:.*]] = memref.cast %[[AE]] : memref<?x1x1xf64> to memref<?x?x?xf64>
-// CHECK: call @simit_rt_cg_solve_bcsr(%{{.*}}, %{{.*}}, %[[AC]], %{{.*}}, %{{.*}}, %{{.*}}, %{{.*}})
+// CHECK: call @simit_rt_solve_bcsr(%{{.*}}, %{{.*}}, %[[AC]], %{{.*}}, %{{.*}}, %{{.*}}) : (memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>, memref<?x?xf64>, memref<?x?xf64>, !llvm.ptr) -> ()
 // CHECK-DAG: func.func private @simit_rt_chol_bcsr(memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>) -> !llvm.ptr attributes {llvm.emit_c_interface}
 // CHECK-DAG: func.func private @simit_rt_lltsolve_bcsr(!llvm.ptr, memref<?x?xf64>, memref<?x?xf64>) attributes {llvm.emit_c_interface}
 func.func @backslash() -> !V attributes {simit.export} {
@@ -90,3 +90,33 @@ func.func @diagonal() attributes {simit.export} {
 }
 func.func private @simit_rt_lu(!A) -> !simit.opaque attributes {simit.runtime_function = "lu"}
 func.func private @simit_rt_lufree(!simit.opaque) attributes {simit.runtime_function = "lufree"}
+
+// -----
+
+// A solve with a block diagonal matrix (a vertex-set assembly) calls the
+// runtime's diagonal form with the statement's position.
+
+!Point = !simit.element<"Point", {m : f64, b : f64}>
+!M = !simit.tensor<["points", "points"] x f64>
+!V = !simit.tensor<["points"] x f64>
+!Points = !simit.set<"points", !Point>
+simit.extern @points : !Points
+
+func.func @mass(%p : !Point) -> !M {
+  %m = simit.elem_read %p["m"] : !Point -> f64
+  %M0 = simit.zeros : !M
+  %M1 = simit.insert %m into %M0[%p, %p] : f64 into !M, (!Point, !Point)
+  return %M1 : !M
+}
+
+// CHECK: llvm.mlir.global internal constant @[[STR:.*]]("solve (loops-system-solvers.mlir:[[@LINE+8]]:8)\00")
+// CHECK-LABEL: func.func @backslash_diagonal(
+// CHECK: %[[WHERE:.*]] = llvm.mlir.addressof @[[STR]] : !llvm.ptr
+// CHECK: call @simit_rt_solve_diag(%{{.*}}, %{{.*}}, %{{.*}}, %[[WHERE]]) : (memref<?x?x?xf64>, memref<?x?xf64>, memref<?x?xf64>, !llvm.ptr) -> ()
+func.func @backslash_diagonal() -> !V attributes {simit.export} {
+  %points = simit.get_set @points : !Points
+  %M = simit.assemble @mass() to %points reduce <add> : (!Points) -> !M
+  %b = simit.field_read %points["b"] : !Points -> !V
+  %x = simit.solve %M, %b : !M, !V -> !V
+  return %x : !V
+}

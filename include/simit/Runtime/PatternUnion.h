@@ -1,0 +1,51 @@
+//===--- PatternUnion.h - Sparsity of sums over several edge sets -*- C++ -*-===//
+//
+// `A + B` where A and B are assembled from different edge sets over the same
+// (rows, cols) is stored on the union of their patterns. The patterns are
+// fixed per set binding, so the union is built once per binding together
+// with gather maps: for every block position p of the union, the position
+// of the same (row, col) block in a part (a member's pattern, or a smaller
+// union), or -1 where the part has none. Lowered code then reads every part
+// along the union's rows with one load and a select, without searching or
+// merging columns in each frame.
+//
+//===----------------------------------------------------------------------===//
+
+#ifndef SIMIT_RUNTIME_PATTERNUNION_H
+#define SIMIT_RUNTIME_PATTERNUNION_H
+
+#include "simit/Runtime/SparsityPattern.h"
+
+#include "llvm/ADT/ArrayRef.h"
+#include "llvm/Support/Error.h"
+
+#include <memory>
+#include <vector>
+
+namespace simit {
+
+/// The union of the patterns of the matrices over (rows, cols) assembled
+/// from each of `edgeSets` (each must have rows and cols among its endpoint
+/// sets); the pattern itself for one edge set.
+llvm::Expected<std::shared_ptr<const SparsityPattern>>
+unionPattern(llvm::ArrayRef<const Set *> edgeSets, const Set &rows,
+             const Set &cols);
+
+/// The union of explicit patterns with the same numbers of rows and columns.
+std::shared_ptr<const SparsityPattern>
+unionPattern(llvm::ArrayRef<const SparsityPattern *> members);
+
+/// For each block position of `whole`, the position of the same block in
+/// `part`, or -1; `part` has whole's rows and columns.
+std::vector<int32_t> gatherPositions(const SparsityPattern &whole,
+                                     const SparsityPattern &part);
+
+/// For each block (r, c) of `whole`, the position of block (c, r) in
+/// `part`, or -1; `part` has whole's columns as rows and rows as columns
+/// (it is read transposed).
+std::vector<int32_t> gatherTransposedPositions(const SparsityPattern &whole,
+                                               const SparsityPattern &part);
+
+} // namespace simit
+
+#endif // SIMIT_RUNTIME_PATTERNUNION_H

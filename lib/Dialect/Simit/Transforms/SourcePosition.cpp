@@ -1,0 +1,17 @@
+//===- SourcePosition.cpp - Source positions in run-time messages ---------===//
+
+#include "SourcePosition.h"
+
+#include "mlir/IR/Location.h"
+#include "llvm/Support/Path.h"
+
+using namespace mlir;
+
+std::string simit::sourcePositionSuffix(Operation *op) {
+  auto file = op->getLoc()->findInstanceOf<FileLineColLoc>();
+  if (!file)
+    return "";
+  return (" (" + llvm::sys::path::filename(file.getFilename().getValue()) +
+          ":" + Twine(file.getLine()) + ":" + Twine(file.getColumn()) + ")")
+      .str();
+}

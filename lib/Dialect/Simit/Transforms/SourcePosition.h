@@ -1,0 +1,25 @@
+//===- SourcePosition.h - Source positions in run-time messages -*- C++ -*-===//
+//
+// Messages that lowered code reports at run time (--check-numerics, failed
+// solves) name the statement by its source position.
+//
+//===----------------------------------------------------------------------===//
+
+#ifndef SIMIT_LIB_DIALECT_SIMIT_TRANSFORMS_SOURCEPOSITION_H
+#define SIMIT_LIB_DIALECT_SIMIT_TRANSFORMS_SOURCEPOSITION_H
+
+#include "mlir/IR/Operation.h"
+
+#include <string>
+
+namespace mlir {
+namespace simit {
+
+/// " (<file>:<line>:<col>)" for an op at a source position (the file's
+/// name without its folder), else "".
+std::string sourcePositionSuffix(Operation *op);
+
+} // namespace simit
+} // namespace mlir
+
+#endif // SIMIT_LIB_DIALECT_SIMIT_TRANSFORMS_SOURCEPOSITION_H

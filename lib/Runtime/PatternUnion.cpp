@@ -1,0 +1,85 @@
+//===--- PatternUnion.cpp - Sparsity of sums over several edge sets -------===//
+
+#include "simit/Runtime/PatternUnion.h"
+
+#include <algorithm>
+#include <cstdint>
+
+using namespace simit;
+
+llvm::Expected<std::shared_ptr<const SparsityPattern>>
+simit::unionPattern(llvm::ArrayRef<const Set *> edgeSets, const Set &rows,
+                    const Set &cols) {
+  std::vector<std::shared_ptr<const SparsityPattern>> owned;
+  std::vector<const SparsityPattern *> members;
+  for (const Set *edges : edgeSets) {
+    auto pattern = SparsityPattern::get(*edges, rows, cols);
+    if (!pattern)
+      return pattern.takeError();
+    owned.push_back(*pattern);
+    members.push_back(pattern->get());
+  }
+  if (owned.size() == 1)
+    return owned.front();
+  return unionPattern(members);
+}
+
+std::shared_ptr<const SparsityPattern>
+simit::unionPattern(llvm::ArrayRef<const SparsityPattern *> members) {
+  int rows = members.front()->numRows(), cols = members.front()->numCols();
+  std::vector<int32_t> rowPtr{0}, colIdx;
+  // Row by row, merge the members' sorted columns.
+  std::vector<int32_t> cursor(members.size());
+  for (int r = 0; r < rows; ++r) {
+    for (size_t m = 0; m < members.size(); ++m)
+      cursor[m] = members[m]->rowPointers()[r];
+    while (true) {
+      int32_t next = INT32_MAX;
+      for (size_t m = 0; m < members.size(); ++m)
+        if (cursor[m] < members[m]->rowPointers()[r + 1])
+          next = std::min(next, members[m]->columnIndices()[cursor[m]]);
+      if (next == INT32_MAX)
+        break;
+      colIdx.push_back(next);
+      for (size_t m = 0; m < members.size(); ++m)
+        if (cursor[m] < members[m]->rowPointers()[r + 1] &&
+            members[m]->columnIndices()[cursor[m]] == next)
+          ++cursor[m];
+    }
+    rowPtr.push_back(static_cast<int32_t>(colIdx.size()));
+  }
+  return SparsityPattern::fromArrays(rows, cols, std::move(rowPtr),
+                                     std::move(colIdx));
+}
+
+std::vector<int32_t> simit::gatherPositions(const SparsityPattern &whole,
+                                            const SparsityPattern &part) {
+  std::vector<int32_t> positions(whole.numBlocks(), -1);
+  llvm::ArrayRef<int32_t> wholePtr = whole.rowPointers(),
+                          wholeCols = whole.columnIndices(),
+                          partPtr = part.rowPointers(),
+                          partCols = part.columnIndices();
+  // Both rows are sorted: one merge per row.
+  for (int r = 0; r < whole.numRows(); ++r) {
+    int32_t k = partPtr[r];
+    for (int32_t p = wholePtr[r]; p < wholePtr[r + 1]; ++p) {
+      while (k < partPtr[r + 1] && partCols[k] < wholeCols[p])
+        ++k;
+      if (k < partPtr[r + 1] && partCols[k] == wholeCols[p])
+        positions[p] = k;
+    }
+  }
+  return positions;
+}
+
+std::vector<int32_t>
+simit::gatherTransposedPositions(const SparsityPattern &whole,
+                                 const SparsityPattern &part) {
+  std::vector<int32_t> positions(whole.numBlocks(), -1);
+  llvm::ArrayRef<int32_t> rowPtr = whole.rowPointers(),
+                          cols = whole.columnIndices();
+  for (int r = 0; r < whole.numRows(); ++r)
+    for (int32_t p = rowPtr[r]; p < rowPtr[r + 1]; ++p)
+      positions[p] = part.findBlock(cols[p], r);
+  return positions;
+}

@@ -275,7 +275,7 @@ IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
       bound[v][0] = row;
       for (unsigned o = 0; o < numMatrixOperands(); ++o)
         if (indexList(o).size() == 2 && indexList(o)[1] == v &&
-            storageOf(o) == storage)
+            indexList(o)[0] == choice.partner && storageOf(o) == storage)
           positions[o] = row;
       // Without a loop the results are the inner values themselves.
       SmallVector<Value> results = inner(inits);
@@ -332,7 +332,11 @@ IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
       if (list.size() != 2 || list[0] == list[1] ||
           !llvm::is_contained(list, v))
         continue;
+      // Only a matrix that pairs v with the loop's row variable is read at
+      // this row's blocks.
       bool transposed = list[0] == v;
+      if ((transposed ? list[1] : list[0]) != choice.partner)
+        continue;
       Storage own = storageOf(o);
       if (!transposed && own == storage) {
         positions[o] = position;

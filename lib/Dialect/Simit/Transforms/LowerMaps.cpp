@@ -116,6 +116,41 @@ static Value combine(OpBuilder &b, Location loc, ReductionKind kind, Value old,
   llvm_unreachable("reduction kind");
 }
 
+/// The component writes of `K(i, j)(a, b) = v` (or `f(i)(a) = v`), which
+/// arrives as insert(insert(v, extract(K, i, j), a, b), K, i, j): the inner
+/// inserts, outermost first; empty when `insert` writes a whole block.
+static SmallVector<InsertOp> componentWrites(InsertOp insert) {
+  SmallVector<InsertOp> writes;
+  Value block = insert.getValue();
+  while (auto inner = block.getDefiningOp<InsertOp>()) {
+    writes.push_back(inner);
+    block = inner.getTensor();
+  }
+  auto read = block.getDefiningOp<ExtractOp>();
+  if (!read || read.getTensor() != insert.getTensor() ||
+      read.getIndices() != insert.getIndices())
+    return {};
+  return writes;
+}
+
+/// Whether `read` reads a block of a map result only to have components
+/// written into it and the block written back (componentWrites): no other
+/// use sees its value.
+static bool feedsComponentWrites(ExtractOp read) {
+  Value block = read.getResult();
+  while (block.hasOneUse()) {
+    auto insert = dyn_cast<InsertOp>(*block.getUsers().begin());
+    if (!insert)
+      return false;
+    if (insert.getValue() == block)
+      return !componentWrites(insert).empty();
+    if (insert.getTensor() != block)
+      return false;
+    block = insert.getResult();
+  }
+  return false;
+}
+
 /// Lowers an insert into result slot `r` of the element function: the
 /// block is combined into (or stored to) its place in the output.
 static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
@@ -187,17 +222,38 @@ static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
     return insert.emitError("a map result cannot be stored as ")
            << storage.describe();
   }
-  Value value = l.lookup(insert.getValue());
   auto type = cast<MemRefType>(output.getType());
-  int64_t n = numComponents(insert.getValue().getType());
-  for (int64_t c = 0; c < n; ++c) {
-    SmallVector<Value> indices = l.blockIndices(type, prefix, c);
-    Value component = l.component(insert.getValue().getType(), value, c);
+  auto combineInto = [&](ArrayRef<Value> indices, Value component) {
     if (ctx.accumulate) {
       Value old = memref::LoadOp::create(b, loc, output, indices);
       component = combine(b, loc, ctx.reduction, old, component);
     }
     memref::StoreOp::create(b, loc, component, output, indices);
+  };
+  // Component writes combine only the written components; the last write
+  // of a component in the chain is the one that counts.
+  SmallVector<InsertOp> writes = componentWrites(insert);
+  if (!writes.empty()) {
+    SmallVector<SmallVector<Value>> done;
+    for (InsertOp write : writes) {
+      if (!isa<FloatType, IntegerType>(write.getValue().getType()))
+        return write.emitError("a component write into a map result must "
+                               "write one scalar component");
+      SmallVector<Value> indices(prefix);
+      for (Value index : write.getIndices())
+        indices.push_back(l.lookup(index));
+      if (llvm::is_contained(done, indices))
+        continue;
+      combineInto(indices, l.lookup(write.getValue()));
+      done.push_back(indices);
+    }
+    return success();
+  }
+  Value value = l.lookup(insert.getValue());
+  int64_t n = numComponents(insert.getValue().getType());
+  for (int64_t c = 0; c < n; ++c) {
+    combineInto(l.blockIndices(type, prefix, c),
+                l.component(insert.getValue().getType(), value, c));
   }
   return success();
 }
@@ -232,6 +288,16 @@ LogicalResult FunctionLowering::lowerElementAccess(Operation *op,
       return failure();
     if (scatters)
       element->scatters = true;
+    return success();
+  }
+  // The block a component write starts from is not read: it stands for
+  // zeros, into which the written components go (see scatter).
+  if (auto read = dyn_cast<ExtractOp>(op);
+      read && isSink(read.getTensor()) && feedsComponentWrites(read)) {
+    Type blockType = convertType(read.getType());
+    SmallVector<Value> zeros(numComponents(read.getType()),
+                             zeroOf(getComponentType(read.getType())));
+    map(read, fromComponents(blockType, zeros));
     return success();
   }
   if (element && !isa<StoreOp, scf::YieldOp, func::ReturnOp>(op))

@@ -14,7 +14,7 @@
 
 #include "CompiledModule.h"
 
-#include "simit/Runtime/PatternUnion.h"
+#include "simit/Runtime/PatternAlgebra.h"
 #include "simit/Runtime/SparsityPattern.h"
 
 #include "llvm/ADT/STLExtras.h"
@@ -180,6 +180,10 @@ struct Function::Impl {
   llvm::Expected<std::shared_ptr<const SparsityPattern>>
   unionOf(const std::vector<std::string> &edgeSets, const std::string &rows,
           const std::string &cols);
+  /// The pattern of the product of the unions of `left` over (rows, mid)
+  /// and `right` over (mid, cols), built once per init().
+  llvm::Expected<std::shared_ptr<const SparsityPattern>>
+  productOf(const ArgumentBinding &arg);
   llvm::Error prepareArgument(const ArgumentBinding &arg, size_t &word);
   void pushMemRef(size_t &word, const void *data,
                   llvm::ArrayRef<int64_t> sizes);
@@ -358,6 +362,19 @@ llvm::Error Function::Impl::prepareArgument(const ArgumentBinding &arg,
     }
     return llvm::Error::success();
   }
+  case Kind::ProductRowPtr:
+  case Kind::ProductColIdx: {
+    auto product = productOf(arg);
+    if (!product)
+      return error(arg.describe() + ": " +
+                   llvm::toString(product.takeError()));
+    const SparsityPattern &p = **product;
+    if (arg.kind == Kind::ProductRowPtr)
+      pushMemRef(word, p.rowPointers().data(), {p.numRows() + 1});
+    else
+      pushMemRef(word, p.columnIndices().data(), {p.numBlocks()});
+    return llvm::Error::success();
+  }
   case Kind::Extern:
   case Kind::Parameter: {
     auto it = buffers.find(arg.bufferKey());
@@ -433,6 +450,24 @@ Function::Impl::unionOf(const std::vector<std::string> &edgeSetNames,
     return pattern.takeError();
   unions[key] = *pattern;
   return *pattern;
+}
+
+llvm::Expected<std::shared_ptr<const SparsityPattern>>
+Function::Impl::productOf(const ArgumentBinding &arg) {
+  std::string key = llvm::join(arg.edgeSets, "+") + "*" +
+                    llvm::join(arg.rightSets, "+") + ":" + arg.rows + ":" +
+                    arg.mid + ":" + arg.cols;
+  if (auto it = unions.find(key); it != unions.end())
+    return it->second;
+  auto left = unionOf(arg.edgeSets, arg.rows, arg.mid);
+  if (!left)
+    return left.takeError();
+  auto right = unionOf(arg.rightSets, arg.mid, arg.cols);
+  if (!right)
+    return right.takeError();
+  auto product = productPattern(**left, **right, arg.rows == arg.cols);
+  unions[key] = product;
+  return product;
 }
 
 llvm::Error Function::Impl::init() {
@@ -550,7 +585,10 @@ std::vector<std::string> Function::requiredSets() const {
     add(arg.set);
     add(arg.rows);
     add(arg.cols);
+    add(arg.mid);
     for (const std::string &edges : arg.edgeSets)
+      add(edges);
+    for (const std::string &edges : arg.rightSets)
       add(edges);
   }
   return names;

@@ -192,6 +192,12 @@ std::string ArgumentBinding::describe() const {
     return "union of the sparsity patterns of '" +
            llvm::join(edgeSets, "', '") + "' over ('" + rows + "', '" + cols +
            "')";
+  case Kind::ProductRowPtr:
+  case Kind::ProductColIdx:
+    return "product of the sparsity patterns of '" +
+           llvm::join(edgeSets, "', '") + "' over ('" + rows + "', '" + mid +
+           "') and '" + llvm::join(rightSets, "', '") + "' over ('" + mid +
+           "', '" + cols + "')";
   case Kind::UnionGather:
     return "gather map from the union of the sparsity patterns of '" +
            llvm::join(edgeSets, "', '") + "' over ('" + rows + "', '" + cols +
@@ -254,6 +260,8 @@ public:
                       .Case("union_rowptr", Kind::UnionRowPtr)
                       .Case("union_colidx", Kind::UnionColIdx)
                       .Case("union_gather", Kind::UnionGather)
+                      .Case("product_rowptr", Kind::ProductRowPtr)
+                      .Case("product_colidx", Kind::ProductColIdx)
                       .Case("extern", Kind::Extern)
                       .Case("param", Kind::Parameter)
                       .Default(std::nullopt);
@@ -296,6 +304,22 @@ public:
       binding.partSets = splitSets(binding.partTransposed ? part.substr(1)
                                                           : part);
       return llvm::Error::success();
+    }
+    case Kind::ProductRowPtr:
+    case Kind::ProductColIdx: {
+      std::string factors;
+      if (llvm::Error err = get("set", factors))
+        return err;
+      auto [left, right] = llvm::StringRef(factors).split('*');
+      if (left.empty() || right.empty())
+        return error("expected 'set' of the form \"L*R\"");
+      binding.edgeSets = splitSets(left);
+      binding.rightSets = splitSets(right);
+      if (llvm::Error err = get("rows", binding.rows))
+        return err;
+      if (llvm::Error err = get("cols", binding.cols))
+        return err;
+      return get("mid", binding.mid);
     }
     case Kind::Extern:
       return get("name", binding.name);
@@ -354,6 +378,8 @@ static llvm::Error checkKindType(const HostSignature &signature,
   case Kind::UnionRowPtr:
   case Kind::UnionColIdx:
   case Kind::UnionGather:
+  case Kind::ProductRowPtr:
+  case Kind::ProductColIdx:
     if (!type.isMemRef || type.rank() != 1 || type.scalar != ScalarKind::Int32)
       return fail("memref<?xi32>");
     return llvm::Error::success();

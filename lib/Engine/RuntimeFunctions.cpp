@@ -5,6 +5,7 @@
 #include "RuntimeSymbols.h"
 
 #include "simit/Runtime/Solvers.h"
+#include "simit/Runtime/SparseProduct.h"
 
 #include "llvm/ADT/SmallVector.h"
 #include "llvm/Support/ErrorHandling.h"
@@ -56,24 +57,26 @@ thread_local std::string runFailure;
   std::longjmp(*activeRun, 1);
 }
 
+/// Records the failure of the statement `where` and returns false.
+bool fail(const char *where, const llvm::Twine &message) {
+  runFailure = (llvm::Twine(where ? where : "runtime") + ": " + message).str();
+  return false;
+}
+
 /// x = A \ b into x, or false with runFailure set; `where` names the
 /// statement.
 template <typename T>
 bool solveInto(const simit::SquareBCSRView<T> &a,
                StridedMemRefType<T, 2> *b, StridedMemRefType<T, 2> *x,
                const char *where) {
-  auto fail = [&](const llvm::Twine &message) {
-    runFailure = (llvm::Twine(where ? where : "solve") + ": " + message).str();
-    return false;
-  };
   if (!isContiguous(*b) || !isContiguous(*x) ||
       b->sizes[0] * b->sizes[1] != a.size() ||
       x->sizes[0] * x->sizes[1] != a.size())
-    return fail("vector size does not match the matrix");
+    return fail(where, "vector size does not match the matrix");
   llvm::Expected<simit::SolveReport> report =
       simit::solveChecked(a, b->data + b->offset, x->data + x->offset);
   if (!report)
-    return fail(llvm::toString(report.takeError()));
+    return fail(where, llvm::toString(report.takeError()));
   return true;
 }
 
@@ -85,11 +88,8 @@ bool bcsrView(StridedMemRefType<int32_t, 1> *rowptr,
               simit::SquareBCSRView<T> &view) {
   if (!isContiguous(*rowptr) || !isContiguous(*colidx) ||
       !isContiguous(*values) || values->sizes[1] != values->sizes[2] ||
-      rowptr->sizes[0] < 1) {
-    runFailure = std::string(where ? where : "solve") +
-                 ": malformed BCSR arrays of a square matrix";
-    return false;
-  }
+      rowptr->sizes[0] < 1)
+    return fail(where, "malformed BCSR arrays of a square matrix");
   view.rows = rowptr->sizes[0] - 1;
   view.blockSize = values->sizes[1];
   view.rowptr = rowptr->data + rowptr->offset;
@@ -135,6 +135,53 @@ void solveDiagonal(StridedMemRefType<T, 3> *values, StridedMemRefType<T, 2> *b,
   if (!solveDiagonalInto(values, b, x, where))
     abandonRun();
 }
+/// The BlockMatrixView of lowered arrays: BCSR (layout 0) or block
+/// diagonal (layout 1, index arrays unused).
+template <typename T>
+simit::BlockMatrixView<T> blockMatrix(int32_t layout,
+                                      StridedMemRefType<int32_t, 1> *rowptr,
+                                      StridedMemRefType<int32_t, 1> *colidx,
+                                      StridedMemRefType<T, 3> *values) {
+  simit::BlockMatrixView<T> view;
+  view.blockRows = values->sizes[1];
+  view.blockCols = values->sizes[2];
+  view.values = values->data + values->offset;
+  if (layout == 1) {
+    view.rows = view.cols = values->sizes[0];
+    return view;
+  }
+  view.rows = rowptr->sizes[0] - 1;
+  view.rowptr = rowptr->data + rowptr->offset;
+  view.colidx = colidx->data + colidx->offset;
+  return view;
+}
+
+template <typename T>
+bool multiplyMatrices(int32_t layoutA, StridedMemRefType<int32_t, 1> *rowptrA,
+                      StridedMemRefType<int32_t, 1> *colidxA,
+                      StridedMemRefType<T, 3> *a, int32_t layoutB,
+                      StridedMemRefType<int32_t, 1> *rowptrB,
+                      StridedMemRefType<int32_t, 1> *colidxB,
+                      StridedMemRefType<T, 3> *b, int32_t layoutC,
+                      StridedMemRefType<int32_t, 1> *rowptrC,
+                      StridedMemRefType<int32_t, 1> *colidxC,
+                      StridedMemRefType<T, 3> *c, int64_t cols,
+                      const char *where) {
+  for (auto *m : {rowptrA, colidxA, rowptrB, colidxB, rowptrC, colidxC})
+    if (!isContiguous(*m))
+      return fail(where, "index arrays must be contiguous");
+  if (!isContiguous(*a) || !isContiguous(*b) || !isContiguous(*c))
+    return fail(where, "value arrays must be contiguous");
+  simit::BlockMatrixView<T> left = blockMatrix(layoutA, rowptrA, colidxA, a);
+  simit::BlockMatrixView<T> right = blockMatrix(layoutB, rowptrB, colidxB, b);
+  simit::BlockMatrixView<T> result =
+      blockMatrix(layoutC, rowptrC, colidxC, c);
+  left.cols = right.rows;
+  right.cols = result.cols = cols;
+  if (llvm::Error err = simit::multiplyInto(left, right, result))
+    return fail(where, llvm::toString(std::move(err)));
+  return true;
+}
 } // namespace
 
 extern "C" void simit_rt_fail(const char *message) {
@@ -167,6 +214,34 @@ extern "C" void _mlir_ciface_simit_rt_solve_bcsr_f32(
     StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *b,
     StridedMemRefType<float, 2> *x, const char *where) {
   solveBCSR(rowptr, colidx, values, b, x, where);
+}
+
+extern "C" void _mlir_ciface_simit_rt_matmul_bcsr(
+    int32_t layoutA, StridedMemRefType<int32_t, 1> *rowptrA,
+    StridedMemRefType<int32_t, 1> *colidxA, StridedMemRefType<double, 3> *a,
+    int32_t layoutB, StridedMemRefType<int32_t, 1> *rowptrB,
+    StridedMemRefType<int32_t, 1> *colidxB, StridedMemRefType<double, 3> *b,
+    int32_t layoutC, StridedMemRefType<int32_t, 1> *rowptrC,
+    StridedMemRefType<int32_t, 1> *colidxC, StridedMemRefType<double, 3> *c,
+    int64_t cols, const char *where) {
+  if (!multiplyMatrices(layoutA, rowptrA, colidxA, a, layoutB, rowptrB,
+                        colidxB, b, layoutC, rowptrC, colidxC, c, cols,
+                        where))
+    abandonRun();
+}
+
+extern "C" void _mlir_ciface_simit_rt_matmul_bcsr_f32(
+    int32_t layoutA, StridedMemRefType<int32_t, 1> *rowptrA,
+    StridedMemRefType<int32_t, 1> *colidxA, StridedMemRefType<float, 3> *a,
+    int32_t layoutB, StridedMemRefType<int32_t, 1> *rowptrB,
+    StridedMemRefType<int32_t, 1> *colidxB, StridedMemRefType<float, 3> *b,
+    int32_t layoutC, StridedMemRefType<int32_t, 1> *rowptrC,
+    StridedMemRefType<int32_t, 1> *colidxC, StridedMemRefType<float, 3> *c,
+    int64_t cols, const char *where) {
+  if (!multiplyMatrices(layoutA, rowptrA, colidxA, a, layoutB, rowptrB,
+                        colidxB, b, layoutC, rowptrC, colidxC, c, cols,
+                        where))
+    abandonRun();
 }
 
 extern "C" void _mlir_ciface_simit_rt_solve_diag(
@@ -592,6 +667,10 @@ simit::runtimeSymbolMap(llvm::orc::MangleAndInterner interner) {
       reinterpret_cast<void *>(&_mlir_ciface_simit_rt_solve_bcsr));
   add("_mlir_ciface_simit_rt_solve_bcsr_f32",
       reinterpret_cast<void *>(&_mlir_ciface_simit_rt_solve_bcsr_f32));
+  add("_mlir_ciface_simit_rt_matmul_bcsr",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_matmul_bcsr));
+  add("_mlir_ciface_simit_rt_matmul_bcsr_f32",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_matmul_bcsr_f32));
   add("_mlir_ciface_simit_rt_solve_diag",
       reinterpret_cast<void *>(&_mlir_ciface_simit_rt_solve_diag));
   add("_mlir_ciface_simit_rt_solve_diag_f32",

@@ -101,6 +101,11 @@ struct ArgumentBinding {
                       // pattern (or union) of `partSets`, or -1; with
                       // `partTransposed`, of the mirrored block in theirs
                       // over (cols, rows)
+    ProductRowPtr,    // memref<?xi32>: BCSR row pointers of the pattern of
+                      // the product of the patterns (or unions) of
+                      // `edgeSets` over (rows, mid) and `rightSets` over
+                      // (mid, cols)
+    ProductColIdx,    // memref<?xi32>: its block columns
     Extern,           // an extern tensor `name`
     Parameter,        // the function's own parameter number `index`
   };
@@ -111,6 +116,10 @@ struct ArgumentBinding {
   /// read transposed).
   std::vector<std::string> edgeSets, partSets;
   bool partTransposed = false;
+  /// Product bindings: the right factor's edge sets (the left's are
+  /// `edgeSets`; written "L*R" in `simit.bindings`) and the shared set.
+  std::vector<std::string> rightSets;
+  std::string mid;
   /// Parameter: its position among the Simit function's parameters.
   int64_t index = -1;
   ValueType type;

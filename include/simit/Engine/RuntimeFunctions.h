@@ -53,6 +53,32 @@ void _mlir_ciface_simit_rt_solve_diag_f32(StridedMemRefType<float, 3> *values,
                                           StridedMemRefType<float, 2> *x,
                                           const char *where);
 
+/// C = A B for system matrices: each of A, B and C BCSR (layout 0: rowptr,
+/// colidx, values memref<?xBrxBcxT>) or block diagonal (layout 1: index
+/// arrays unused); C's pattern holds the product (simit::productPattern),
+/// `cols` is its number of block columns. A block of the product outside
+/// C's pattern ends the run with `where`.
+/// MLIR: @simit_rt_matmul_bcsr(i32, memref<?xi32>, memref<?xi32>,
+///   memref<?x?x?xf64>, i32, memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>,
+///   i32, memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>, i64, !llvm.ptr),
+///   and @simit_rt_matmul_bcsr_f32.
+void _mlir_ciface_simit_rt_matmul_bcsr(
+    int32_t layoutA, StridedMemRefType<int32_t, 1> *rowptrA,
+    StridedMemRefType<int32_t, 1> *colidxA, StridedMemRefType<double, 3> *a,
+    int32_t layoutB, StridedMemRefType<int32_t, 1> *rowptrB,
+    StridedMemRefType<int32_t, 1> *colidxB, StridedMemRefType<double, 3> *b,
+    int32_t layoutC, StridedMemRefType<int32_t, 1> *rowptrC,
+    StridedMemRefType<int32_t, 1> *colidxC, StridedMemRefType<double, 3> *c,
+    int64_t cols, const char *where);
+void _mlir_ciface_simit_rt_matmul_bcsr_f32(
+    int32_t layoutA, StridedMemRefType<int32_t, 1> *rowptrA,
+    StridedMemRefType<int32_t, 1> *colidxA, StridedMemRefType<float, 3> *a,
+    int32_t layoutB, StridedMemRefType<int32_t, 1> *rowptrB,
+    StridedMemRefType<int32_t, 1> *colidxB, StridedMemRefType<float, 3> *b,
+    int32_t layoutC, StridedMemRefType<int32_t, 1> *rowptrC,
+    StridedMemRefType<int32_t, 1> *colidxC, StridedMemRefType<float, 3> *c,
+    int64_t cols, const char *where);
+
 /// Ends the run of the exported function in progress (simit::runGuarded)
 /// with `message` as its error; outside a guarded run, a fatal error.
 /// MLIR: func.func private @simit_rt_fail(!llvm.ptr)

@@ -62,10 +62,11 @@ bool Storage::contains(const Storage &o) const {
   // a stencil (it always stores offset 0) and a union of patterns.
   if (o.kind == Kind::Diagonal)
     return (kind == Kind::Pattern || kind == Kind::Stencil ||
-            kind == Kind::Union) &&
+            kind == Kind::Union || kind == Kind::Product) &&
            rows == cols && rows == o.rows;
   // A union holds the patterns of its members over its sets.
-  return kind == Kind::Union && o.isBCSR() && rows == o.rows &&
+  return kind == Kind::Union &&
+         (o.kind == Kind::Pattern || o.kind == Kind::Union) && rows == o.rows &&
          cols == o.cols && llvm::all_of(o.patternSets(), [&](StringAttr e) {
            return llvm::is_contained(members, e);
          });
@@ -80,6 +81,7 @@ std::optional<Storage> mlir::simit::loops::transposedStorage(const Storage &s) {
     return Storage::pattern(s.edges, s.cols, s.rows);
   case Storage::Kind::Union:
     return Storage::unionOf(s.members, s.cols, s.rows);
+  case Storage::Kind::Product:
   case Storage::Kind::Stencil:
   case Storage::Kind::Incidence:
     return std::nullopt;
@@ -96,7 +98,8 @@ std::optional<Storage> mlir::simit::loops::joinStorages(const Storage &a,
   // Patterns over the same sets join into their union; a diagonal joins
   // into any square one.
   auto combinable = [&](const Storage &s) {
-    return s.isBCSR() || (s.kind == Storage::Kind::Diagonal && s.rows == s.cols);
+    return s.kind == Storage::Kind::Pattern || s.kind == Storage::Kind::Union ||
+           (s.kind == Storage::Kind::Diagonal && s.rows == s.cols);
   };
   if (!combinable(a) || !combinable(b) || a.rows != b.rows || a.cols != b.cols)
     return std::nullopt;
@@ -131,6 +134,11 @@ std::string Storage::describe() const {
             rows.getValue() + "', '" + cols.getValue() + "')")
         .str();
   }
+  case Kind::Product:
+    return ("product of matrices over ('" + rows.getValue() + "', '" +
+            mid.getValue() + "') and ('" + mid.getValue() + "', '" +
+            cols.getValue() + "')")
+        .str();
   }
   llvm_unreachable("storage kind");
 }
@@ -269,6 +277,10 @@ static StringRef bindingKindName(BindingKind kind) {
     return "union_colidx";
   case BindingKind::UnionGather:
     return "union_gather";
+  case BindingKind::ProductRowPtr:
+    return "product_rowptr";
+  case BindingKind::ProductColIdx:
+    return "product_colidx";
   case BindingKind::Extern:
     return "extern";
   }
@@ -288,7 +300,10 @@ Value FunctionLowering::getBinding(BindingKind kind, ArrayRef<StringRef> names,
   SmallVector<NamedAttribute> entries;
   entries.emplace_back(StringAttr::get(ctx, "kind"),
                        StringAttr::get(ctx, bindingKindName(kind)));
-  static const char *const setKeys[] = {"set", "rows", "cols", "part"};
+  // A union gather map names its part, a product its factors' shared set.
+  const char *const setKeys[] = {
+      "set", "rows", "cols",
+      kind == BindingKind::UnionGather ? "part" : "mid"};
   switch (kind) {
   case BindingKind::Extern:
     entries.emplace_back(StringAttr::get(ctx, "name"),
@@ -347,16 +362,31 @@ Value FunctionLowering::getPatternArray(BindingKind kind, StringAttr edges,
                     type);
 }
 
-/// The '+'-joined edge sets of a pattern or union storage (a union
-/// binding's "set").
-static std::string unionKey(const Storage &storage) {
+/// Set names joined by '+', as union and product bindings name them.
+static std::string joinSetNames(ArrayRef<StringAttr> sets) {
   std::string key;
-  for (StringAttr member : storage.patternSets())
-    key += (key.empty() ? "" : "+") + member.getValue().str();
+  for (StringAttr set : sets)
+    key += (key.empty() ? "" : "+") + set.getValue().str();
   return key;
 }
 
+/// A union binding's "set": the edge sets of a pattern or union storage.
+static std::string unionKey(const Storage &storage) {
+  return joinSetNames(storage.patternSets());
+}
+
+/// A product binding's "set": the factors' edge sets, '*'-separated.
+static std::string productKey(const Storage &storage) {
+  return joinSetNames(storage.members) + "*" +
+         joinSetNames(storage.rightMembers);
+}
+
 Value FunctionLowering::rowPointers(const Storage &storage) {
+  if (storage.kind == Storage::Kind::Product)
+    return getBinding(BindingKind::ProductRowPtr,
+                      {productKey(storage), storage.rows.getValue(),
+                       storage.cols.getValue(), storage.mid.getValue()},
+                      MemRefType::get({ShapedType::kDynamic}, b.getI32Type()));
   if (storage.kind == Storage::Kind::Union)
     return getBinding(BindingKind::UnionRowPtr,
                       {unionKey(storage), storage.rows.getValue(),
@@ -367,6 +397,11 @@ Value FunctionLowering::rowPointers(const Storage &storage) {
 }
 
 Value FunctionLowering::columnIndices(const Storage &storage) {
+  if (storage.kind == Storage::Kind::Product)
+    return getBinding(BindingKind::ProductColIdx,
+                      {productKey(storage), storage.rows.getValue(),
+                       storage.cols.getValue(), storage.mid.getValue()},
+                      MemRefType::get({ShapedType::kDynamic}, b.getI32Type()));
   if (storage.kind == Storage::Kind::Union)
     return getBinding(BindingKind::UnionColIdx,
                       {unionKey(storage), storage.rows.getValue(),
@@ -383,6 +418,20 @@ Value FunctionLowering::gatherMap(const Storage &storage, const Storage &part,
                      storage.cols.getValue(),
                      (transposed ? "~" : "") + unionKey(part)},
                     MemRefType::get({ShapedType::kDynamic}, b.getI32Type()));
+}
+
+Value FunctionLowering::emptyIndexArray() {
+  // One stack slot at the function entry, so loops do not grow the stack.
+  if (!noIndices) {
+    OpBuilder::InsertionGuard guard(b);
+    b.setInsertionPointToStart(&function.front());
+    Location loc = function.getLoc();
+    noIndices = memref::CastOp::create(
+        b, loc, MemRefType::get({ShapedType::kDynamic}, b.getI32Type()),
+        memref::AllocaOp::create(b, loc,
+                                 MemRefType::get({0}, b.getI32Type())));
+  }
+  return noIndices;
 }
 
 Value FunctionLowering::getExtern(ExternOp global) {
@@ -424,7 +473,8 @@ Value FunctionLowering::numBlocks(const Storage &storage,
   case Storage::Kind::Diagonal:
     return getSetSize(storage.rows);
   case Storage::Kind::Pattern:
-  case Storage::Kind::Union: {
+  case Storage::Kind::Union:
+  case Storage::Kind::Product: {
     Value rowPtr = rowPointers(storage);
     Value last = memref::LoadOp::create(b, loc, rowPtr,
                                         ValueRange{getSetSize(storage.rows)});
@@ -958,6 +1008,8 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
     return lowerIndexExpr(indexExpr);
   if (auto solve = dyn_cast<SolveOp>(op))
     return lowerSolve(solve);
+  if (auto matmul = dyn_cast<MatMulOp>(op))
+    return lowerMatMul(matmul);
   if (isa<AddOp, SubOp, MulOp, DivOp, NegOp, ScaleOp, MatVecOp, MatMulOp,
           TransposeOp, DotOp, OuterOp, NormOp>(op))
     return op->emitError("linear algebra on system tensors must be rewritten "

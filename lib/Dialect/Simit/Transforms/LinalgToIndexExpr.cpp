@@ -75,6 +75,14 @@ Value buildIndexExpr(OpBuilder &b, Location loc, Type resultType,
   return op.getResult();
 }
 
+/// Whether `type` is a matrix over two sets.
+bool isSystemMatrix(Type type) {
+  auto tensor = dyn_cast<SystemTensorType>(type);
+  return tensor && tensor.getOrder() == 2 &&
+         isa<StringAttr>(tensor.getDims()[0]) &&
+         isa<StringAttr>(tensor.getDims()[1]);
+}
+
 ArrayAttr hierarchy(Type type, unsigned dim) {
   return ArrayAttr::get(type.getContext(), getDimensionHierarchy(type, dim));
 }
@@ -125,6 +133,10 @@ Value rewrite(OpBuilder &b, Operation *op) {
   }
   if (auto matmul = dyn_cast<MatMulOp>(op)) {
     Type a = matmul.getLhs().getType(), c = matmul.getRhs().getType();
+    // Products of system matrices keep their op: the loop lowering stores
+    // them on the product's pattern (LowerProducts.cpp).
+    if (isSystemMatrix(a) && isSystemMatrix(c))
+      return nullptr;
     return buildIndexExpr(b, loc, resultType, op->getOperands(),
                           {hierarchy(a, 0), hierarchy(c, 1), hierarchy(a, 1)},
                           {0, 1}, {{0, 2}, {2, 1}}, BodyKind::Mul);

@@ -48,8 +48,13 @@ struct Storage {
     /// A BCSR matrix over (rows, cols) on the union of the patterns of
     /// several edge sets (`members`): a sum of matrices assembled from
     /// different edge sets. Built once per binding by the runtime
-    /// (simit::PatternUnion), with a gather map per member.
-    Union
+    /// (simit::unionPattern), with gather maps from it to its parts.
+    Union,
+    /// A BCSR matrix over (rows, cols) on the pattern of the product of a
+    /// pattern or union over (rows, mid) (edge sets `members`) and one over
+    /// (mid, cols) (`rightMembers`), with the diagonal when square. Built
+    /// once per binding (simit::productPattern).
+    Product
   };
   Kind kind = Kind::Dense;
   /// Diagonal: rows == cols == the set. Pattern: the edge set and the two
@@ -61,8 +66,12 @@ struct Storage {
   ArrayAttr offsets;
   /// Incidence: the edge set's cardinality (blocks per row).
   int64_t cardinality = 0;
-  /// Union: the member edge sets, sorted by name, at least two.
+  /// Union: the member edge sets, sorted by name, at least two. Product:
+  /// the left factor's edge sets.
   SmallVector<StringAttr, 2> members;
+  /// Product: the right factor's edge sets and the factors' shared set.
+  SmallVector<StringAttr, 2> rightMembers;
+  StringAttr mid;
 
   static Storage dense() { return Storage(); }
   static Storage diagonal(StringAttr set) {
@@ -86,13 +95,18 @@ struct Storage {
   bool isMatrix() const { return kind != Kind::Dense; }
   /// Whether the matrix is a BCSR array with row pointers and column
   /// indices (rowPointers/columnIndices of FunctionLowering).
-  bool isBCSR() const { return kind == Kind::Pattern || kind == Kind::Union; }
-  /// The edge sets whose patterns this storage holds (pattern or union).
+  bool isBCSR() const {
+    return kind == Kind::Pattern || kind == Kind::Union ||
+           kind == Kind::Product;
+  }
+  /// The edge sets whose patterns this storage is the union of (pattern or
+  /// union).
   SmallVector<StringAttr, 2> patternSets() const;
   bool operator==(const Storage &o) const {
     return kind == o.kind && edges == o.edges && rows == o.rows &&
            cols == o.cols && offsets == o.offsets &&
-           cardinality == o.cardinality && members == o.members;
+           cardinality == o.cardinality && members == o.members &&
+           rightMembers == o.rightMembers && mid == o.mid;
   }
   bool operator!=(const Storage &o) const { return !(*this == o); }
   /// Whether every block of `o` is a block of this storage (an edge pattern
@@ -123,6 +137,8 @@ enum class BindingKind {
   UnionRowPtr,
   UnionColIdx,
   UnionGather,
+  ProductRowPtr,
+  ProductColIdx,
   Extern
 };
 
@@ -190,6 +206,9 @@ public:
   /// union; Storage::isBCSR).
   Value rowPointers(const Storage &storage);
   Value columnIndices(const Storage &storage);
+  /// An empty memref<?xi32> for runtime functions whose index arrays a
+  /// layout does not use.
+  Value emptyIndexArray();
   /// The gather map from a union storage to a BCSR storage it contains
   /// (`part`: one member's pattern or a smaller union): per union block
   /// position, the part's position of the block or -1 (memref<?xi32>).
@@ -292,8 +311,11 @@ private:
   /// its part as a fourth, "part").
   Value getBinding(BindingKind kind, ArrayRef<StringRef> names, Type type);
   LogicalResult lowerFunctionReturn(func::ReturnOp op);
-  /// Solves with a pattern matrix call the runtime's CG solver.
+  /// Solves call the runtime's checked solver (CG or sparse LU).
   LogicalResult lowerSolve(SolveOp op);
+  /// Products of system matrices (LowerProducts.cpp): the runtime's
+  /// numeric SpGEMM on the bind-time product pattern.
+  LogicalResult lowerMatMul(MatMulOp op);
   /// Calls of the dense solver runtime functions (lu, chol, lusolve, ...):
   /// local tensors go through memref<?xf64>, handles are !llvm.ptr.
   LogicalResult lowerSolverCall(func::CallOp call, func::FuncOp callee);
@@ -328,6 +350,7 @@ private:
 
   /// The bindings in argument order, and their positions by key.
   SmallVector<std::pair<DictionaryAttr, Value>> bindings;
+  Value noIndices;
   llvm::StringMap<unsigned> bindingPositions;
   SmallVector<Type> resultTypes;
 };

@@ -36,6 +36,7 @@ SimitNumericsLayout layoutOf(const Storage &storage) {
     return SIMIT_NUMERICS_DIAGONAL;
   case Storage::Kind::Pattern:
   case Storage::Kind::Union:
+  case Storage::Kind::Product:
     return SIMIT_NUMERICS_PATTERN;
   case Storage::Kind::Incidence:
     return SIMIT_NUMERICS_FIXED_ROWS;
@@ -54,21 +55,6 @@ LogicalResult FunctionLowering::scanForNonFinite(Operation *op) {
   MLIRContext *ctx = b.getContext();
   int64_t dyn = ShapedType::kDynamic;
   auto indexArray = MemRefType::get({dyn}, b.getI32Type());
-
-  // Layouts without index arrays get an empty one (a single stack slot at
-  // the function entry, so loops do not grow the stack).
-  Value noIndices;
-  auto emptyIndices = [&] {
-    if (!noIndices) {
-      OpBuilder::InsertionGuard guard(b);
-      b.setInsertionPointToStart(&function.front());
-      noIndices = memref::CastOp::create(
-          b, loc, indexArray,
-          memref::AllocaOp::create(b, loc,
-                                   MemRefType::get({0}, b.getI32Type())));
-    }
-    return noIndices;
-  };
 
   for (auto [index, result] : llvm::enumerate(op->getResults())) {
     auto type = dyn_cast<SystemTensorType>(result.getType());
@@ -94,9 +80,9 @@ LogicalResult FunctionLowering::scanForNonFinite(Operation *op) {
       perRow = storage.offsets.size();
     }
     if (!rowptr)
-      rowptr = emptyIndices();
+      rowptr = emptyIndexArray();
     if (!colidx)
-      colidx = emptyIndices();
+      colidx = emptyIndexArray();
     StringAttr rowSet = storage.isMatrix() ? storage.rows : firstSet(type);
     StringAttr colSet = storage.isMatrix() ? storage.cols : StringAttr();
 

@@ -1,6 +1,6 @@
-//===--- PatternUnion.cpp - Sparsity of sums over several edge sets -------===//
+//===--- PatternAlgebra.cpp - Sparsity of sums and products ---------------===//
 
-#include "simit/Runtime/PatternUnion.h"
+#include "simit/Runtime/PatternAlgebra.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -82,4 +82,35 @@ simit::gatherTransposedPositions(const SparsityPattern &whole,
     for (int32_t p = rowPtr[r]; p < rowPtr[r + 1]; ++p)
       positions[p] = part.findBlock(cols[p], r);
   return positions;
+}
+
+std::shared_ptr<const SparsityPattern>
+simit::productPattern(const SparsityPattern &a, const SparsityPattern &b,
+                      bool withDiagonal) {
+  std::vector<int32_t> rowPtr{0}, colIdx, columns;
+  // Whether column c is already in the row being built.
+  std::vector<bool> present(b.numCols(), false);
+  for (int r = 0; r < a.numRows(); ++r) {
+    columns.clear();
+    auto add = [&](int32_t c) {
+      if (!present[c]) {
+        present[c] = true;
+        columns.push_back(c);
+      }
+    };
+    if (withDiagonal)
+      add(r);
+    for (int32_t ka = a.rowPointers()[r]; ka < a.rowPointers()[r + 1]; ++ka) {
+      int32_t m = a.columnIndices()[ka];
+      for (int32_t kb = b.rowPointers()[m]; kb < b.rowPointers()[m + 1]; ++kb)
+        add(b.columnIndices()[kb]);
+    }
+    std::sort(columns.begin(), columns.end());
+    for (int32_t c : columns)
+      present[c] = false;
+    colIdx.insert(colIdx.end(), columns.begin(), columns.end());
+    rowPtr.push_back(static_cast<int32_t>(colIdx.size()));
+  }
+  return SparsityPattern::fromArrays(a.numRows(), b.numCols(),
+                                     std::move(rowPtr), std::move(colIdx));
 }

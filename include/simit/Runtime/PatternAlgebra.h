@@ -1,18 +1,20 @@
-//===--- PatternUnion.h - Sparsity of sums over several edge sets -*- C++ -*-===//
+//===--- PatternAlgebra.h - Sparsity of sums and products -------*- C++ -*-===//
 //
-// `A + B` where A and B are assembled from different edge sets over the same
-// (rows, cols) is stored on the union of their patterns. The patterns are
-// fixed per set binding, so the union is built once per binding together
-// with gather maps: for every block position p of the union, the position
-// of the same (row, col) block in a part (a member's pattern, or a smaller
-// union), or -1 where the part has none. Lowered code then reads every part
-// along the union's rows with one load and a select, without searching or
-// merging columns in each frame.
+// Assembled patterns are fixed per set binding, and so are the patterns of
+// sums and products of assembled matrices: they are built once per binding.
+//  - `A + B`, with A and B assembled from different edge sets over the same
+//    (rows, cols), is stored on the union of their patterns, with gather
+//    maps: for every block position p of the union, the position of the same
+//    (row, col) block in a part (a member's pattern, or a smaller union), or
+//    -1 where the part has none. Lowered code reads every part along the
+//    union's rows with one load and a select, without searching or merging
+//    columns in each frame.
+//  - `A * B` is stored on the pattern of the product (symbolic SpGEMM).
 //
 //===----------------------------------------------------------------------===//
 
-#ifndef SIMIT_RUNTIME_PATTERNUNION_H
-#define SIMIT_RUNTIME_PATTERNUNION_H
+#ifndef SIMIT_RUNTIME_PATTERNALGEBRA_H
+#define SIMIT_RUNTIME_PATTERNALGEBRA_H
 
 #include "simit/Runtime/SparsityPattern.h"
 
@@ -46,6 +48,13 @@ std::vector<int32_t> gatherPositions(const SparsityPattern &whole,
 std::vector<int32_t> gatherTransposedPositions(const SparsityPattern &whole,
                                                const SparsityPattern &part);
 
+/// The pattern of A * B for A over (R, M) and B over (M, C): block (r, c)
+/// where some m has (r, m) in A and (m, c) in B; with `withDiagonal` (R and
+/// C are one set) every (r, r) too, as assembled square patterns have.
+std::shared_ptr<const SparsityPattern>
+productPattern(const SparsityPattern &a, const SparsityPattern &b,
+               bool withDiagonal);
+
 } // namespace simit
 
-#endif // SIMIT_RUNTIME_PATTERNUNION_H
+#endif // SIMIT_RUNTIME_PATTERNALGEBRA_H

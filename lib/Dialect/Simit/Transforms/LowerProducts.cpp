@@ -1,0 +1,100 @@
+//===- LowerProducts.cpp - Products of system matrices --------------------===//
+//
+// C = A B of two system matrices (simit.matmul, which simit-linalg-to-index-
+// expr keeps) is stored on the pattern of the product, built once per
+// binding by the runtime (symbolic SpGEMM, the product_rowptr/colidx
+// bindings); each call computes the values with the runtime's numeric
+// product. A block diagonal factor keeps the other factor's pattern.
+//
+//===----------------------------------------------------------------------===//
+
+#include "LoopsLowering.h"
+#include "SourcePosition.h"
+
+using namespace mlir;
+using namespace mlir::simit;
+using namespace mlir::simit::loops;
+
+/// The storage of A B, or failure with an error on `op`.
+static FailureOr<Storage> productStorage(MatMulOp op, const Storage &a,
+                                         const Storage &b) {
+  auto supported = [](const Storage &s) {
+    return s.kind == Storage::Kind::Diagonal ||
+           s.kind == Storage::Kind::Pattern || s.kind == Storage::Kind::Union;
+  };
+  if (!supported(a) || !supported(b))
+    return op.emitError("products are supported of matrices assembled from "
+                        "sets and their sums; these are stored as ")
+           << a.describe() << " and " << b.describe();
+  if (a.cols != b.rows)
+    return op.emitError("the factors' inner sets differ: ")
+           << a.describe() << " and " << b.describe();
+  if (a.kind == Storage::Kind::Diagonal)
+    return b;
+  if (b.kind == Storage::Kind::Diagonal)
+    return a;
+  Storage product;
+  product.kind = Storage::Kind::Product;
+  product.rows = a.rows;
+  product.cols = b.cols;
+  product.mid = a.cols;
+  product.members = a.patternSets();
+  product.rightMembers = b.patternSets();
+  return product;
+}
+
+LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
+  Location loc = op.getLoc();
+  auto type = dyn_cast<SystemTensorType>(op.getType());
+  if (!type || type.getOrder() != 2)
+    return op.emitError("products of system tensors are supported for "
+                        "matrices");
+  Storage a = storages.lookup(op.getLhs()), b2 = storages.lookup(op.getRhs());
+  FailureOr<Storage> storage = productStorage(op, a, b2);
+  if (failed(storage))
+    return failure();
+  Type component = type.getComponentType();
+  if (!component.isF64() && !component.isF32())
+    return op.emitError("products of system matrices take f64 or f32 "
+                        "components");
+
+  MLIRContext *ctx = b.getContext();
+  int64_t dyn = ShapedType::kDynamic;
+  Type i32 = b.getI32Type();
+  Type indexArray = MemRefType::get({dyn}, i32);
+  auto values = MemRefType::get({dyn, dyn, dyn}, component);
+  auto calleeType = FunctionType::get(
+      ctx,
+      {i32, indexArray, indexArray, values, i32, indexArray, indexArray,
+       values, i32, indexArray, indexArray, values, b.getI64Type(),
+       LLVM::LLVMPointerType::get(ctx)},
+      {});
+  std::string name = "simit_rt_matmul_bcsr";
+  if (component.isF32())
+    name += "_f32";
+  func::FuncOp callee = declareRuntime(loc, name, calleeType);
+  if (!callee)
+    return op.emitError("@") << name << " is declared with another type";
+
+  // Each matrix: its layout (0 BCSR, 1 block diagonal), index arrays and
+  // values.
+  SmallVector<Value> args;
+  auto addMatrix = [&](const Storage &s, Value array) {
+    bool diagonal = s.kind == Storage::Kind::Diagonal;
+    args.push_back(arith::ConstantIntOp::create(b, loc, i32, diagonal));
+    args.push_back(diagonal ? emptyIndexArray() : rowPointers(s));
+    args.push_back(diagonal ? emptyIndexArray() : columnIndices(s));
+    args.push_back(asRuntimeBlocks(loc, array, values));
+  };
+  addMatrix(a, lookup(op.getLhs()));
+  addMatrix(b2, lookup(op.getRhs()));
+  Value result = allocSystem(loc, type, *storage, /*zeroFill=*/false);
+  addMatrix(*storage, result);
+  args.push_back(arith::IndexCastOp::create(b, loc, b.getI64Type(),
+                                            getSetSize(storage->cols)));
+  args.push_back(stringConstant(loc, "product" + sourcePositionSuffix(op)));
+  func::CallOp::create(b, loc, callee, args);
+  storages[op] = *storage;
+  map(op, result);
+  return success();
+}

@@ -123,8 +123,9 @@ std::string Storage::describe() const {
             Twine(offsets.size()) + " offsets")
         .str();
   case Kind::Incidence:
-    return ("incidence of '" + edges.getValue() + "' over ('" +
-            rows.getValue() + "', '" + cols.getValue() + "')")
+    return ((transposed ? "transposed incidence of '" : "incidence of '") +
+            edges.getValue() + "' over ('" + rows.getValue() + "', '" +
+            cols.getValue() + "')")
         .str();
   case Kind::Union: {
     std::string names;

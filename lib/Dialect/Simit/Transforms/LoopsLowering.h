@@ -44,6 +44,8 @@ struct Storage {
     /// A matrix over (edges, endpoint set) assembled from the edge set:
     /// row e holds one block per endpoint, block e * c + k at column
     /// endpoint_k(e) (the edge set's endpoint array is the column index).
+    /// Transposed (`transposed`): over (endpoint set, edges), block e * c + k
+    /// is (endpoint_k(e), e), still written edge by edge without conflicts.
     Incidence,
     /// A BCSR matrix over (rows, cols) on the union of the patterns of
     /// several edge sets (`members`): a sum of matrices assembled from
@@ -66,6 +68,8 @@ struct Storage {
   ArrayAttr offsets;
   /// Incidence: the edge set's cardinality (blocks per row).
   int64_t cardinality = 0;
+  /// Incidence: stored over (endpoint set, edges).
+  bool transposed = false;
   /// Union: the member edge sets, sorted by name, at least two. Product:
   /// the left factor's edge sets.
   SmallVector<StringAttr, 2> members;
@@ -88,6 +92,14 @@ struct Storage {
                            int64_t cardinality) {
     return Storage{Kind::Incidence, edges, edges, cols, nullptr, cardinality};
   }
+  /// The incidence over (rows, edges): the transpose of incidence(edges,
+  /// rows) in the same layout.
+  static Storage incidenceTransposed(StringAttr edges, StringAttr rows,
+                                     int64_t cardinality) {
+    Storage s{Kind::Incidence, edges, rows, edges, nullptr, cardinality};
+    s.transposed = true;
+    return s;
+  }
   /// The union of the patterns of `edgeSets` over (rows, cols): a pattern
   /// for one edge set.
   static Storage unionOf(ArrayRef<StringAttr> edgeSets, StringAttr rows,
@@ -105,7 +117,8 @@ struct Storage {
   bool operator==(const Storage &o) const {
     return kind == o.kind && edges == o.edges && rows == o.rows &&
            cols == o.cols && offsets == o.offsets &&
-           cardinality == o.cardinality && members == o.members &&
+           cardinality == o.cardinality && transposed == o.transposed &&
+           members == o.members &&
            rightMembers == o.rightMembers && mid == o.mid;
   }
   bool operator!=(const Storage &o) const { return !(*this == o); }

@@ -44,13 +44,23 @@ private:
     auto it = bound.find(v);
     return it != bound.end() && it->second[0];
   }
-  /// The storage of input `i` (or of the result for i == number of inputs).
+  /// The storage of input `i` (or of the result for i == number of inputs)
+  /// as the loops follow it: a transposed incidence H(v, e) is followed as
+  /// the incidence G(e, v) it is stored as (indexList swaps its variables;
+  /// access() still reads each block in H's orientation).
   Storage storageOf(unsigned i) {
-    if (i == op.getInputs().size())
-      return resultStorage;
-    return l.storages.lookup(op.getInputs()[i]);
+    Storage storage = i == op.getInputs().size()
+                          ? resultStorage
+                          : l.storages.lookup(op.getInputs()[i]);
+    if (storage.kind == Storage::Kind::Incidence && storage.transposed)
+      return Storage::incidence(storage.edges, storage.rows,
+                                storage.cardinality);
+    return storage;
   }
+  /// The variables of input `i` (or of the result) in storageOf's order.
   ArrayRef<int64_t> indexList(unsigned i) {
+    if (i < swappedLists.size() && !swappedLists[i].empty())
+      return swappedLists[i];
     if (i == op.getInputs().size())
       return op.getResultIndices();
     return op.getInputIndexList(i);
@@ -105,6 +115,8 @@ private:
   /// The operands whose position comes from a union's gather map, so may
   /// be -1 (no block there).
   llvm::SmallDenseSet<unsigned> gathered;
+  /// The swapped variable lists of transposed incidence inputs, by input.
+  SmallVector<SmallVector<int64_t, 2>> swappedLists;
   /// Variables summed by a simit.index_sum in the body.
   llvm::SmallDenseSet<unsigned> nestedVars;
   bool failedInside = false;
@@ -475,6 +487,13 @@ LogicalResult IndexExprLowering::lowerLocal() {
   for (unsigned v = 0; v < numVars; ++v)
     for (Attribute lvl : op.getDomain(v))
       extents[v] *= cast<IntegerAttr>(lvl).getInt();
+  swappedLists.resize(op.getInputs().size());
+  for (auto [i, input] : llvm::enumerate(op.getInputs())) {
+    Storage s = l.storages.lookup(input);
+    if (s.kind == Storage::Kind::Incidence && s.transposed)
+      swappedLists[i] = {op.getInputIndexList(i)[1], op.getInputIndexList(i)[0]};
+  }
+
   ArrayRef<int64_t> resultVars = op.getResultIndices();
   SmallVector<unsigned> summed;
   for (unsigned v = 0; v < numVars; ++v)
@@ -598,6 +617,13 @@ LogicalResult IndexExprLowering::lower() {
              << i << " is a system matrix of unknown sparsity";
   }
 
+  swappedLists.resize(op.getInputs().size());
+  for (auto [i, input] : llvm::enumerate(op.getInputs())) {
+    Storage s = l.storages.lookup(input);
+    if (s.kind == Storage::Kind::Incidence && s.transposed)
+      swappedLists[i] = {op.getInputIndexList(i)[1], op.getInputIndexList(i)[0]};
+  }
+
   ArrayRef<int64_t> resultVars = op.getResultIndices();
   SmallVector<unsigned> summed;
   for (unsigned v = 0; v < numVars; ++v)
@@ -653,6 +679,10 @@ LogicalResult IndexExprLowering::lower() {
     }
     if (!storage)
       return op.emitError("a system matrix result needs a sparse input");
+    if (storage->kind == Storage::Kind::Incidence && storage->transposed)
+      return op.emitError("a matrix result stored as ")
+             << storage->describe()
+             << " is not supported by the loop lowering yet";
     resultStorage = *storage;
   }
   SmallVector<unsigned> free(resultVars.begin(), resultVars.end());

@@ -204,13 +204,15 @@ static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
     break;
   }
   case Storage::Kind::Incidence: {
-    // (the edge, its endpoint k): block e * c + k, written by this edge
-    // only.
-    Value k = l.endpointPositions.lookup(insert.getIndices()[1]);
-    if (l.lookup(insert.getIndices()[0]) != ctx.element || !k)
-      return insert.emitError("a matrix over (edges, endpoints) can only be "
-                              "written at the edge and one of its "
-                              "endpoints");
+    // (the edge, its endpoint k), or (endpoint k, the edge) when
+    // transposed: block e * c + k, written by this edge only.
+    Value edge = insert.getIndices()[storage.transposed ? 1 : 0];
+    Value k = l.endpointPositions.lookup(
+        insert.getIndices()[storage.transposed ? 0 : 1]);
+    if (l.lookup(edge) != ctx.element || !k)
+      return insert.emitError("a matrix over (edges, endpoints) or "
+                              "(endpoints, edges) can only be written at "
+                              "the edge and one of its endpoints");
     prefix.push_back(arith::AddIOp::create(
         b, loc,
         arith::MulIOp::create(b, loc, ctx.element,
@@ -431,6 +433,16 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
         } else {
           storage = Storage::diagonal(rows);
         }
+      } else if (cols == set.getName() && rows != cols) {
+        // The transposed incidence matrix: a row per endpoint of each edge.
+        if (!llvm::all_of(set.getEndpoints(),
+                          [&](Attribute e) { return e == rows; }))
+          return op->emitError("a matrix over (endpoint set, edge set '")
+                 << set.getName().getValue()
+                 << "') assembled from the edges needs every endpoint in "
+                    "its row set";
+        storage = Storage::incidenceTransposed(cols, rows,
+                                               set.getCardinality());
       } else if (rows == set.getName()) {
         // The incidence matrix: a column per endpoint of each edge.
         if (!llvm::all_of(set.getEndpoints(),

@@ -109,6 +109,28 @@ void solveBCSR(StridedMemRefType<int32_t, 1> *rowptr,
     abandonRun();
 }
 
+template <typename T>
+void triangularSolveBCSR(StridedMemRefType<int32_t, 1> *rowptr,
+                         StridedMemRefType<int32_t, 1> *colidx,
+                         StridedMemRefType<T, 3> *values,
+                         StridedMemRefType<T, 2> *b, StridedMemRefType<T, 2> *x,
+                         const char *where) {
+  simit::SquareBCSRView<T> view;
+  if (!bcsrView(rowptr, colidx, values, where, view))
+    abandonRun();
+  if (!isContiguous(*b) || !isContiguous(*x) ||
+      b->sizes[0] * b->sizes[1] != view.size() ||
+      x->sizes[0] * x->sizes[1] != view.size()) {
+    fail(where, "vector size does not match the matrix");
+    abandonRun();
+  }
+  if (llvm::Error err = simit::solveLowerTriangular(
+          view, b->data + b->offset, x->data + x->offset)) {
+    fail(where, llvm::toString(std::move(err)));
+    abandonRun();
+  }
+}
+
 /// A block diagonal matrix is the BCSR matrix of the identity pattern.
 template <typename T>
 bool solveDiagonalInto(StridedMemRefType<T, 3> *values,
@@ -242,6 +264,20 @@ extern "C" void _mlir_ciface_simit_rt_matmul_bcsr_f32(
                         colidxB, b, layoutC, rowptrC, colidxC, c, cols,
                         where))
     abandonRun();
+}
+
+extern "C" void _mlir_ciface_simit_rt_triangular_solve_bcsr(
+    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
+    StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *b,
+    StridedMemRefType<double, 2> *x, const char *where) {
+  triangularSolveBCSR(rowptr, colidx, values, b, x, where);
+}
+
+extern "C" void _mlir_ciface_simit_rt_triangular_solve_bcsr_f32(
+    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
+    StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *b,
+    StridedMemRefType<float, 2> *x, const char *where) {
+  triangularSolveBCSR(rowptr, colidx, values, b, x, where);
 }
 
 extern "C" void _mlir_ciface_simit_rt_solve_diag(
@@ -671,6 +707,11 @@ simit::runtimeSymbolMap(llvm::orc::MangleAndInterner interner) {
       reinterpret_cast<void *>(&_mlir_ciface_simit_rt_matmul_bcsr));
   add("_mlir_ciface_simit_rt_matmul_bcsr_f32",
       reinterpret_cast<void *>(&_mlir_ciface_simit_rt_matmul_bcsr_f32));
+  add("_mlir_ciface_simit_rt_triangular_solve_bcsr",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_triangular_solve_bcsr));
+  add("_mlir_ciface_simit_rt_triangular_solve_bcsr_f32",
+      reinterpret_cast<void *>(
+          &_mlir_ciface_simit_rt_triangular_solve_bcsr_f32));
   add("_mlir_ciface_simit_rt_solve_diag",
       reinterpret_cast<void *>(&_mlir_ciface_simit_rt_solve_diag));
   add("_mlir_ciface_simit_rt_solve_diag_f32",

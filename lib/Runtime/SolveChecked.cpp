@@ -1,4 +1,4 @@
-//===--- SolveChecked.cpp - x = A \ b that cannot be silently wrong -------===//
+//===--- SolveChecked.cpp - Direct solves that cannot be silently wrong ---===//
 //
 // Conjugate gradients is right only for symmetric positive definite
 // matrices; on anything else it returns a vector with no warning. So the
@@ -136,3 +136,41 @@ template llvm::Expected<SolveReport>
 simit::solveChecked(const SquareBCSRView<double> &, const double *, double *);
 template llvm::Expected<SolveReport>
 simit::solveChecked(const SquareBCSRView<float> &, const float *, float *);
+
+template <typename T>
+llvm::Error simit::solveLowerTriangular(const SquareBCSRView<T> &a,
+                                        const T *b, T *x) {
+  int64_t bs = a.blockSize;
+  for (int64_t r = 0; r < a.rows; ++r) {
+    for (int64_t i = 0; i < bs; ++i) {
+      int64_t row = r * bs + i;
+      double sum = b[row], diagonal = 0;
+      for (int32_t k = a.rowptr[r]; k < a.rowptr[r + 1]; ++k) {
+        int64_t c = a.colidx[k];
+        if (c > r)
+          break; // columns are sorted: the rest is above the diagonal
+        const T *block = a.values + (static_cast<int64_t>(k) * bs + i) * bs;
+        for (int64_t j = 0; j < bs; ++j) {
+          int64_t col = c * bs + j;
+          if (col < row)
+            sum -= static_cast<double>(block[j]) * x[col];
+          else if (col == row)
+            diagonal = block[j];
+        }
+      }
+      if (diagonal == 0)
+        return llvm::createStringError(
+            "the lower triangle is singular: its diagonal entry of row " +
+            llvm::Twine(row) + " is zero");
+      x[row] = static_cast<T>(sum / diagonal);
+    }
+  }
+  return llvm::Error::success();
+}
+
+template llvm::Error
+simit::solveLowerTriangular(const SquareBCSRView<double> &, const double *,
+                            double *);
+template llvm::Error
+simit::solveLowerTriangular(const SquareBCSRView<float> &, const float *,
+                            float *);

@@ -41,6 +41,18 @@ void _mlir_ciface_simit_rt_solve_bcsr_f32(
     StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
     StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *b,
     StridedMemRefType<float, 2> *x, const char *where);
+/// triangularSolve(A, b) on a square BCSR system matrix (arguments as for
+/// @simit_rt_solve_bcsr): forward substitution with A's lower triangle; a
+/// zero diagonal entry ends the run with `where`.
+/// MLIR: @simit_rt_triangular_solve_bcsr(...), and _f32.
+void _mlir_ciface_simit_rt_triangular_solve_bcsr(
+    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
+    StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *b,
+    StridedMemRefType<double, 2> *x, const char *where);
+void _mlir_ciface_simit_rt_triangular_solve_bcsr_f32(
+    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
+    StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *b,
+    StridedMemRefType<float, 2> *x, const char *where);
 /// x = A \ b for a block diagonal A (values memref<?xBxBxT>, block r at
 /// (r, r)): @simit_rt_solve_diag(memref<?x?x?xf64>, memref<?x?xf64>,
 /// memref<?x?xf64>, !llvm.ptr), and @simit_rt_solve_diag_f32.

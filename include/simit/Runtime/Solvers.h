@@ -98,6 +98,12 @@ template <typename T>
 llvm::Expected<SolveReport> solveChecked(const SquareBCSRView<T> &a,
                                          const T *b, T *x);
 
+/// x = L^-1 b for L the lower triangle of A (scalar entries on and below
+/// the diagonal, within blocks too), by forward substitution. A zero
+/// diagonal entry is an error naming its row.
+template <typename T>
+llvm::Error solveLowerTriangular(const SquareBCSRView<T> &a, const T *b, T *x);
+
 } // namespace simit
 
 #endif // SIMIT_RUNTIME_SOLVERS_H

@@ -289,6 +289,9 @@ public:
   // Blocks of system matrices outside maps (LowerMatrixBlocks.cpp):
   // simit.extract / simit.insert at (row, col).
   LogicalResult lowerMatrixBlockAccess(Operation *op);
+  /// simit.slice of a system matrix: a row A(p, :) or column A(:, q) as a
+  /// system vector.
+  LogicalResult lowerMatrixSlice(SliceOp op);
   /// The positions of blocks (row, col) of pattern matrices found so far.
   SmallVector<std::tuple<Storage, Value, Value, Value>> blockPositions;
 
@@ -326,6 +329,11 @@ private:
   LogicalResult lowerFunctionReturn(func::ReturnOp op);
   /// Solves call the runtime's checked solver (CG or sparse LU).
   LogicalResult lowerSolve(SolveOp op);
+  /// `op`'s result = the solve `method` ("solve": A \ b; "triangular_solve":
+  /// with A's lower triangle) of system matrix `matrix` and vector `rhs`,
+  /// by the runtime function @simit_rt_<method>_{bcsr,diag}[_f32].
+  LogicalResult lowerSystemSolve(Operation *op, Value matrix, Value rhs,
+                                 StringRef method);
   /// Products of system matrices (LowerProducts.cpp): the runtime's
   /// numeric SpGEMM on the bind-time product pattern.
   LogicalResult lowerMatMul(MatMulOp op);
@@ -370,6 +378,14 @@ private:
 
 /// Flat component count of a builtin tensor type (1 for a scalar).
 int64_t numComponents(Type type);
+/// The shape of a local tensor's components: the builtin shape, or the
+/// integer dimensions of a `!simit.tensor` followed by its block's.
+SmallVector<int64_t> localShape(Type type);
+/// Whether a type is a tensor with a set dimension (a system tensor).
+bool isSystem(Type type);
+/// Whether `name` is a solver runtime function (lu, chol, their solves and
+/// frees, triangularSolve).
+bool isSolverFunction(StringRef name);
 
 } // namespace loops
 } // namespace simit

@@ -139,3 +139,91 @@ LogicalResult FunctionLowering::lowerMatrixBlockAccess(Operation *op) {
   map(insert, target);
   return success();
 }
+
+LogicalResult FunctionLowering::lowerMatrixSlice(SliceOp op) {
+  Location loc = op.getLoc();
+  auto type = dyn_cast<SystemTensorType>(op.getTensor().getType());
+  ArrayRef<bool> kept = op.getKept();
+  if (!type || type.getOrder() != 2 || kept.size() != 2 || kept[0] == kept[1])
+    return op.emitError("slices of system tensors are supported as rows "
+                        "A(p, :) and columns A(:, q) of matrices");
+  Storage storage = storages.lookup(op.getTensor());
+  Value matrix = lookup(op.getTensor());
+  Value index = lookup(op.getIndices()[0]);
+  bool row = kept[1];
+  // The result: a zero-filled vector over the kept dimension's set.
+  Value result = allocSystem(loc, op.getType(), Storage::dense());
+  Type scalar = type.getComponentType();
+  auto copy = [&](Value from, Value to, bool add) {
+    Value value = memref::LoadOp::create(b, loc, matrix, ValueRange{from});
+    if (add)
+      value = arith::AddFOp::create(
+          b, loc, memref::LoadOp::create(b, loc, result, ValueRange{to}),
+          value);
+    memref::StoreOp::create(b, loc, value, result, ValueRange{to});
+  };
+  auto forEach = [&](Value lb, Value ub, function_ref<void(Value)> body) {
+    scf::ForOp::create(b, loc, lb, ub, indexConstant(1), ValueRange{},
+                       [&](OpBuilder &nb, Location, Value iv, ValueRange) {
+                         OpBuilder::InsertionGuard guard(b);
+                         b.setInsertionPoint(nb.getInsertionBlock(),
+                                             nb.getInsertionPoint());
+                         body(iv);
+                         scf::YieldOp::create(b, loc);
+                       });
+  };
+  auto asIndex = [&](Value v) -> Value {
+    return arith::IndexCastOp::create(b, loc, b.getIndexType(), v);
+  };
+  if (!isa<FloatType>(scalar) ||
+      !(storage.kind == Storage::Kind::Diagonal || storage.isBCSR() ||
+        (row && storage.kind == Storage::Kind::Incidence &&
+         !storage.transposed)))
+    return op.emitError("this slice of a matrix stored as ")
+           << storage.describe() << " is not supported by the loop lowering";
+
+  if (storage.kind == Storage::Kind::Diagonal) {
+    copy(index, index, /*add=*/false);
+  } else if (storage.kind == Storage::Kind::Incidence) {
+    // Row e: a block per endpoint k, at column endpoints[e, k]; an edge
+    // may name one endpoint twice.
+    Value ends = getEndpoints(storage.edges, storage.cardinality);
+    forEach(indexConstant(0), indexConstant(storage.cardinality),
+            [&](Value k) {
+              Value col = asIndex(
+                  memref::LoadOp::create(b, loc, ends, ValueRange{index, k}));
+              Value block = arith::AddIOp::create(
+                  b, loc,
+                  arith::MulIOp::create(b, loc, index,
+                                        indexConstant(storage.cardinality)),
+                  k);
+              copy(block, col, /*add=*/true);
+            });
+  } else if (row) {
+    Value rowPtr = rowPointers(storage), colIdx = columnIndices(storage);
+    Value next = arith::AddIOp::create(b, loc, index, indexConstant(1));
+    forEach(asIndex(memref::LoadOp::create(b, loc, rowPtr, ValueRange{index})),
+            asIndex(memref::LoadOp::create(b, loc, rowPtr, ValueRange{next})),
+            [&](Value k) {
+              copy(k,
+                   asIndex(memref::LoadOp::create(b, loc, colIdx,
+                                                  ValueRange{k})),
+                   /*add=*/false);
+            });
+  } else {
+    // Column q: row r's block (r, q), found in its row, or zero.
+    forEach(indexConstant(0), getSetSize(storage.rows), [&](Value r) {
+      Value position = findBlock(*this, loc, storage, r, index);
+      Value found = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::sge,
+                                          position, indexConstant(0));
+      auto branch = scf::IfOp::create(b, loc, TypeRange{}, found,
+                                      /*withElseRegion=*/false);
+      OpBuilder::InsertionGuard guard(b);
+      b.setInsertionPointToStart(branch.thenBlock());
+      copy(position, r, /*add=*/false);
+    });
+  }
+  storages[op] = Storage::dense();
+  map(op, result);
+  return success();
+}

@@ -1,0 +1,201 @@
+//===- LoopBindings.cpp - Arguments of lowered functions ------------------===//
+//
+// The data a lowered function touches becomes its arguments as the lowering
+// first needs it: one `simit.bindings` entry per argument (docs/lowering.md,
+// "Host ABI of an entry point").
+//
+//===----------------------------------------------------------------------===//
+
+#include "LoopsLowering.h"
+
+using namespace mlir;
+using namespace mlir::simit;
+using namespace mlir::simit::loops;
+
+static StringRef bindingKindName(BindingKind kind) {
+  switch (kind) {
+  case BindingKind::SetSize:
+    return "set_size";
+  case BindingKind::GridDims:
+    return "grid_dims";
+  case BindingKind::Field:
+    return "field";
+  case BindingKind::Endpoints:
+    return "endpoints";
+  case BindingKind::PatternRowPtr:
+    return "pattern_rowptr";
+  case BindingKind::PatternColIdx:
+    return "pattern_colidx";
+  case BindingKind::PatternLocations:
+    return "pattern_locations";
+  case BindingKind::UnionRowPtr:
+    return "union_rowptr";
+  case BindingKind::UnionColIdx:
+    return "union_colidx";
+  case BindingKind::UnionGather:
+    return "union_gather";
+  case BindingKind::ProductRowPtr:
+    return "product_rowptr";
+  case BindingKind::ProductColIdx:
+    return "product_colidx";
+  case BindingKind::Extern:
+    return "extern";
+  }
+  llvm_unreachable("binding kind");
+}
+
+Value FunctionLowering::getBinding(BindingKind kind, ArrayRef<StringRef> names,
+                                   Type type) {
+  std::string key = bindingKindName(kind).str();
+  for (StringRef name : names)
+    key += ":" + name.str();
+  auto it = bindingPositions.find(key);
+  if (it != bindingPositions.end())
+    return bindings[it->second].second;
+
+  MLIRContext *ctx = b.getContext();
+  SmallVector<NamedAttribute> entries;
+  entries.emplace_back(StringAttr::get(ctx, "kind"),
+                       StringAttr::get(ctx, bindingKindName(kind)));
+  // A union gather map names its part, a product its factors' shared set.
+  const char *const setKeys[] = {
+      "set", "rows", "cols",
+      kind == BindingKind::UnionGather ? "part" : "mid"};
+  switch (kind) {
+  case BindingKind::Extern:
+    entries.emplace_back(StringAttr::get(ctx, "name"),
+                         StringAttr::get(ctx, names[0]));
+    break;
+  case BindingKind::Field:
+    entries.emplace_back(StringAttr::get(ctx, "set"),
+                         StringAttr::get(ctx, names[0]));
+    entries.emplace_back(StringAttr::get(ctx, "field"),
+                         StringAttr::get(ctx, names[1]));
+    break;
+  default:
+    for (auto [i, name] : llvm::enumerate(names))
+      entries.emplace_back(StringAttr::get(ctx, setKeys[i]),
+                           StringAttr::get(ctx, name));
+  }
+  Value argument =
+      function.front().addArgument(type, function.getLoc());
+  bindingPositions[key] = bindings.size();
+  bindings.push_back({DictionaryAttr::get(ctx, entries), argument});
+  return argument;
+}
+
+Value FunctionLowering::getSetSize(StringAttr set) {
+  return getBinding(BindingKind::SetSize, {set.getValue()},
+                    b.getIndexType());
+}
+
+Value FunctionLowering::getField(StringAttr set, StringAttr field,
+                                 Type fieldType) {
+  SmallVector<int64_t> shape{ShapedType::kDynamic};
+  llvm::append_range(shape, localShape(fieldType));
+  return getBinding(BindingKind::Field, {set.getValue(), field.getValue()},
+                    MemRefType::get(shape, getComponentType(fieldType)));
+}
+
+Value FunctionLowering::getEndpoints(SetType set) {
+  return getEndpoints(set.getName(), set.getCardinality());
+}
+
+Value FunctionLowering::getEndpoints(StringAttr set, int64_t cardinality) {
+  return getBinding(
+      BindingKind::Endpoints, {set.getValue()},
+      MemRefType::get({ShapedType::kDynamic, cardinality}, b.getI32Type()));
+}
+
+Value FunctionLowering::getPatternArray(BindingKind kind, StringAttr edges,
+                                        StringAttr rows, StringAttr cols,
+                                        int64_t cardinality) {
+  Type type = MemRefType::get({ShapedType::kDynamic}, b.getI32Type());
+  if (kind == BindingKind::PatternLocations)
+    type = MemRefType::get({ShapedType::kDynamic, cardinality * cardinality},
+                           b.getI32Type());
+  return getBinding(kind,
+                    {edges.getValue(), rows.getValue(), cols.getValue()},
+                    type);
+}
+
+/// Set names joined by '+', as union and product bindings name them.
+static std::string joinSetNames(ArrayRef<StringAttr> sets) {
+  std::string key;
+  for (StringAttr set : sets)
+    key += (key.empty() ? "" : "+") + set.getValue().str();
+  return key;
+}
+
+/// A union binding's "set": the edge sets of a pattern or union storage.
+static std::string unionKey(const Storage &storage) {
+  return joinSetNames(storage.patternSets());
+}
+
+/// A product binding's "set": the factors' edge sets, '*'-separated.
+static std::string productKey(const Storage &storage) {
+  return joinSetNames(storage.members) + "*" +
+         joinSetNames(storage.rightMembers);
+}
+
+Value FunctionLowering::rowPointers(const Storage &storage) {
+  if (storage.kind == Storage::Kind::Product)
+    return getBinding(BindingKind::ProductRowPtr,
+                      {productKey(storage), storage.rows.getValue(),
+                       storage.cols.getValue(), storage.mid.getValue()},
+                      MemRefType::get({ShapedType::kDynamic}, b.getI32Type()));
+  if (storage.kind == Storage::Kind::Union)
+    return getBinding(BindingKind::UnionRowPtr,
+                      {unionKey(storage), storage.rows.getValue(),
+                       storage.cols.getValue()},
+                      MemRefType::get({ShapedType::kDynamic}, b.getI32Type()));
+  return getPatternArray(BindingKind::PatternRowPtr, storage.edges,
+                         storage.rows, storage.cols);
+}
+
+Value FunctionLowering::columnIndices(const Storage &storage) {
+  if (storage.kind == Storage::Kind::Product)
+    return getBinding(BindingKind::ProductColIdx,
+                      {productKey(storage), storage.rows.getValue(),
+                       storage.cols.getValue(), storage.mid.getValue()},
+                      MemRefType::get({ShapedType::kDynamic}, b.getI32Type()));
+  if (storage.kind == Storage::Kind::Union)
+    return getBinding(BindingKind::UnionColIdx,
+                      {unionKey(storage), storage.rows.getValue(),
+                       storage.cols.getValue()},
+                      MemRefType::get({ShapedType::kDynamic}, b.getI32Type()));
+  return getPatternArray(BindingKind::PatternColIdx, storage.edges,
+                         storage.rows, storage.cols);
+}
+
+Value FunctionLowering::gatherMap(const Storage &storage, const Storage &part,
+                                  bool transposed) {
+  return getBinding(BindingKind::UnionGather,
+                    {unionKey(storage), storage.rows.getValue(),
+                     storage.cols.getValue(),
+                     (transposed ? "~" : "") + unionKey(part)},
+                    MemRefType::get({ShapedType::kDynamic}, b.getI32Type()));
+}
+
+Value FunctionLowering::emptyIndexArray() {
+  // One stack slot at the function entry, so loops do not grow the stack.
+  if (!noIndices) {
+    OpBuilder::InsertionGuard guard(b);
+    b.setInsertionPointToStart(&function.front());
+    Location loc = function.getLoc();
+    noIndices = memref::CastOp::create(
+        b, loc, MemRefType::get({ShapedType::kDynamic}, b.getI32Type()),
+        memref::AllocaOp::create(b, loc,
+                                 MemRefType::get({0}, b.getI32Type())));
+  }
+  return noIndices;
+}
+
+Value FunctionLowering::getExtern(ExternOp global) {
+  Type type = global.getType();
+  Type memref = isa<FloatType, IntegerType>(type)
+                    ? MemRefType::get({}, type)
+                    : MemRefType::get({numComponents(type)},
+                                      getComponentType(type));
+  return getBinding(BindingKind::Extern, {global.getSymName()}, memref);
+}

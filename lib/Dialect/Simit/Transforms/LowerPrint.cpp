@@ -1,0 +1,204 @@
+//===- LowerPrint.cpp - Printing and strings ------------------------------===//
+//
+// simit.print and strings through runtime functions.
+//
+//===----------------------------------------------------------------------===//
+
+#include "LoopsLowering.h"
+#include "llvm/Support/xxhash.h"
+
+using namespace mlir;
+using namespace mlir::simit;
+using namespace mlir::simit::loops;
+
+Value FunctionLowering::callRuntime(Location loc, StringRef name,
+                                    TypeRange results, ValueRange args) {
+  auto type = FunctionType::get(b.getContext(), args.getTypes(), results);
+  if (!module.lookupSymbol<func::FuncOp>(name)) {
+    OpBuilder::InsertionGuard guard(b);
+    b.setInsertionPointToStart(module.getBody());
+    auto decl = func::FuncOp::create(b, loc, name, type);
+    decl.setPrivate();
+  }
+  auto call = func::CallOp::create(b, loc, name, results, args);
+  return call.getNumResults() ? call.getResult(0) : Value();
+}
+
+Value FunctionLowering::stringConstant(Location loc, StringRef text) {
+  // One internal constant global per distinct text: simit_str_<hash>.
+  MLIRContext *ctx = b.getContext();
+  std::string name = "simit_str_" + llvm::utohexstr(llvm::xxh3_64bits(text));
+  auto global = module.lookupSymbol<LLVM::GlobalOp>(name);
+  if (!global) {
+    OpBuilder::InsertionGuard guard(b);
+    b.setInsertionPointToStart(module.getBody());
+    std::string data = text.str();
+    data.push_back('\0');
+    auto arrayType =
+        LLVM::LLVMArrayType::get(IntegerType::get(ctx, 8), data.size());
+    global = LLVM::GlobalOp::create(b, loc, arrayType, /*isConstant=*/true,
+                                    LLVM::Linkage::Internal, name,
+                                    b.getStringAttr(data));
+  }
+  return LLVM::AddressOfOp::create(b, loc, LLVM::LLVMPointerType::get(ctx),
+                                   global.getSymName());
+}
+
+LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {
+  Location loc = op->getLoc();
+  MLIRContext *ctx = op->getContext();
+  auto ptrType = LLVM::LLVMPointerType::get(ctx);
+  auto stringConstant = [&](StringRef text) {
+    return this->stringConstant(loc, text);
+  };
+
+  if (auto constant = dyn_cast<StringConstantOp>(op)) {
+    map(constant, stringConstant(constant.getValue()));
+    return success();
+  }
+  if (auto concat = dyn_cast<StringConcatOp>(op)) {
+    map(concat, callRuntime(loc, "simit_rt_string_concat", {ptrType},
+                            {lookup(concat.getLhs()), lookup(concat.getRhs())}));
+    return success();
+  }
+  if (auto cmp = dyn_cast<StringCmpOp>(op)) {
+    Value order =
+        callRuntime(loc, "simit_rt_string_compare", {b.getI32Type()},
+                    {lookup(cmp.getLhs()), lookup(cmp.getRhs())});
+    arith::CmpIPredicate predicate;
+    switch (cmp.getPredicate()) {
+    case StringPredicate::eq: predicate = arith::CmpIPredicate::eq; break;
+    case StringPredicate::ne: predicate = arith::CmpIPredicate::ne; break;
+    case StringPredicate::lt: predicate = arith::CmpIPredicate::slt; break;
+    case StringPredicate::le: predicate = arith::CmpIPredicate::sle; break;
+    case StringPredicate::gt: predicate = arith::CmpIPredicate::sgt; break;
+    case StringPredicate::ge: predicate = arith::CmpIPredicate::sge; break;
+    }
+    Value zero = arith::ConstantIntOp::create(b, loc, b.getI32Type(), 0);
+    map(cmp, arith::CmpIOp::create(b, loc, predicate, order, zero));
+    return success();
+  }
+
+  auto print = cast<PrintOp>(op);
+  auto printText = [&](StringRef text) {
+    callRuntime(loc, "simit_rt_print_str", {}, {stringConstant(text)});
+  };
+  auto printFloat = [&](Value scalar) -> LogicalResult {
+    auto floatType = cast<FloatType>(scalar.getType());
+    if (floatType.getWidth() < 64)
+      scalar = arith::ExtFOp::create(b, loc, b.getF64Type(), scalar);
+    else if (floatType.getWidth() > 64)
+      return op->emitError("cannot print floats wider than 64 bits");
+    callRuntime(loc, "simit_rt_print_f64", {}, {scalar});
+    return success();
+  };
+  auto printScalar = [&](Value scalar) -> LogicalResult {
+    Type type = scalar.getType();
+    if (isa<LLVM::LLVMPointerType>(type)) {
+      callRuntime(loc, "simit_rt_print_str", {}, {scalar});
+      return success();
+    }
+    if (isa<FloatType>(type))
+      return printFloat(scalar);
+    // A complex prints as <re,im> (language.md section 6).
+    if (isa<ComplexType>(type)) {
+      printText("<");
+      if (failed(printFloat(complex::ReOp::create(b, loc, scalar))))
+        return failure();
+      printText(",");
+      if (failed(printFloat(complex::ImOp::create(b, loc, scalar))))
+        return failure();
+      printText(">");
+      return success();
+    }
+    if (isa<IndexType>(type)) {
+      scalar = arith::IndexCastOp::create(b, loc, b.getI64Type(), scalar);
+      type = scalar.getType();
+    }
+    if (auto intType = dyn_cast<IntegerType>(type)) {
+      if (intType.getWidth() == 1)
+        scalar = arith::ExtUIOp::create(b, loc, b.getI64Type(), scalar);
+      else if (intType.getWidth() < 64)
+        scalar = arith::ExtSIOp::create(b, loc, b.getI64Type(), scalar);
+      else if (intType.getWidth() > 64)
+        return op->emitError("cannot print integers wider than 64 bits");
+      callRuntime(loc, "simit_rt_print_i64", {}, {scalar});
+      return success();
+    }
+    return op->emitError("printing values of type ")
+           << type << " is not supported by the loop lowering";
+  };
+  for (Value value : print.getValues()) {
+    Type type = value.getType();
+    if (auto tensor = dyn_cast<RankedTensorType>(type)) {
+      Value lowered = lookup(value);
+      if (!lowered)
+        return op->emitError("print operand was not lowered");
+      // Components separated by spaces; the rows of a matrix by newlines.
+      int64_t n = tensor.getNumElements();
+      int64_t columns = tensor.getRank() >= 2 ? tensor.getShape().back() : n;
+      for (int64_t i = 0; i < n; ++i) {
+        if (i > 0)
+          printText(i % columns == 0 ? "\n" : " ");
+        if (failed(printScalar(component(type, lowered, i))))
+          return failure();
+      }
+      continue;
+    }
+    if (auto system = dyn_cast<SystemTensorType>(type);
+        system && system.isSystem()) {
+      if (system.getOrder() != 1)
+        return op->emitError("printing system matrices is not supported by "
+                             "the loop lowering yet");
+      // A system vector: its elements in set order, separated by spaces
+      // when they are scalars, one element's block per line otherwise
+      // (the block's components separated by spaces).
+      Value array = lookup(value);
+      auto memref = cast<MemRefType>(array.getType());
+      int64_t blockSize = numComponents(system.getBlockType());
+      Value size = memref::DimOp::create(b, loc, array, 0);
+      LogicalResult inner = success();
+      scf::ForOp::create(
+          b, loc, indexConstant(0), size, indexConstant(1), ValueRange{},
+          [&](OpBuilder &nb, Location, Value i, ValueRange) {
+            OpBuilder::InsertionGuard guard(b);
+            b.setInsertionPoint(nb.getInsertionBlock(),
+                                nb.getInsertionPoint());
+            Value notFirst = arith::CmpIOp::create(
+                b, loc, arith::CmpIPredicate::ne, i, indexConstant(0));
+            scf::IfOp::create(b, loc, notFirst, [&](OpBuilder &tb, Location) {
+              OpBuilder::InsertionGuard guard(b);
+              b.setInsertionPoint(tb.getInsertionBlock(),
+                                  tb.getInsertionPoint());
+              callRuntime(loc, "simit_rt_print_str", {},
+                          {stringConstant(blockSize == 1 ? " " : "\n")});
+              scf::YieldOp::create(b, loc);
+            });
+            for (int64_t c = 0; c < blockSize; ++c) {
+              if (c > 0)
+                callRuntime(loc, "simit_rt_print_str", {},
+                            {stringConstant(" ")});
+              Value scalar = memref::LoadOp::create(
+                  b, loc, array, blockIndices(memref, {i}, c));
+              if (failed(printScalar(scalar)))
+                inner = failure();
+            }
+            scf::YieldOp::create(b, loc);
+          });
+      if (failed(inner))
+        return failure();
+      continue;
+    }
+    if (isa<SystemTensorType>(type))
+      return op->emitError("printing system tensors is not supported by the "
+                           "loop lowering yet");
+    Value lowered = lookup(value);
+    if (!lowered)
+      return op->emitError("print operand was not lowered");
+    if (failed(printScalar(lowered)))
+      return failure();
+  }
+  if (print.getNewline())
+    printText("\n");
+  return success();
+}

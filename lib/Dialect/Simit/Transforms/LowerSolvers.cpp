@@ -1,0 +1,320 @@
+//===- LowerSolvers.cpp - Solves and factorisations -----------------------===//
+//
+// `\`, lu/chol/lusolve/lltsolve/lumatsolve/lltmatsolve/triangularSolve as
+// calls of the runtime, on system tensors and on local matrices.
+//
+//===----------------------------------------------------------------------===//
+
+#include "LoopsLowering.h"
+#include "SourcePosition.h"
+
+using namespace mlir;
+using namespace mlir::simit;
+using namespace mlir::simit::loops;
+
+func::FuncOp FunctionLowering::declareRuntime(Location loc, StringRef name,
+                                              FunctionType type) {
+  auto callee = module.lookupSymbol<func::FuncOp>(name);
+  if (callee)
+    return callee.getFunctionType() == type ? callee : func::FuncOp();
+  OpBuilder::InsertionGuard guard(b);
+  b.setInsertionPointToEnd(module.getBody());
+  callee = func::FuncOp::create(b, loc, name, type);
+  callee.setPrivate();
+  callee->setAttr("llvm.emit_c_interface", UnitAttr::get(b.getContext()));
+  return callee;
+}
+
+Value FunctionLowering::asRuntimeBlocks(Location loc, Value array,
+                                        MemRefType target) {
+  // memref<?xf64> becomes memref<?x1xf64> or memref<?x1x1xf64>.
+  auto type = cast<MemRefType>(array.getType());
+  int64_t rank = target.getRank();
+  if (type.getRank() == 1 && rank > 1) {
+    SmallVector<int64_t> shape(rank, 1);
+    shape[0] = ShapedType::kDynamic;
+    SmallVector<OpFoldResult> sizes(rank, b.getIndexAttr(1));
+    sizes[0] = memref::DimOp::create(b, loc, array, 0).getResult();
+    ReassociationIndices all(rank);
+    std::iota(all.begin(), all.end(), 0);
+    array = memref::ExpandShapeOp::create(
+        b, loc, MemRefType::get(shape, type.getElementType()), array,
+        ArrayRef<ReassociationIndices>{all}, sizes);
+  }
+  return memref::CastOp::create(b, loc, target, array);
+}
+
+/// The runtime's conjugate gradient solvers (lib/Engine/RuntimeFunctions).
+LogicalResult FunctionLowering::lowerSolve(SolveOp op) {
+  return lowerSystemSolve(op, op.getMatrix(), op.getRhs(), "solve");
+}
+
+LogicalResult FunctionLowering::lowerSystemSolve(Operation *op, Value matrix,
+                                                 Value rhs, StringRef method) {
+  Location loc = op->getLoc();
+  Storage storage = storages.lookup(matrix);
+  auto matrixType = cast<SystemTensorType>(matrix.getType());
+  // `\` also takes block diagonal matrices.
+  bool diagonal = storage.kind == Storage::Kind::Diagonal && method == "solve";
+  if (!diagonal && (!storage.isBCSR() || storage.rows != storage.cols))
+    return op->emitError("solves are supported for square matrices "
+                         "assembled from a set; this matrix is stored as ")
+           << storage.describe();
+  SmallVector<int64_t> block = matrixType.getBlockShape();
+  // Scalar blocks are 1x1 blocks to the runtime.
+  if (block.empty())
+    block = {1, 1};
+  Type component = matrixType.getComponentType();
+  if (!component.isF64() && !component.isF32())
+    return op->emitError("the runtime solver takes f64 or f32 matrices");
+  if (block.size() != 2 || block[0] != block[1])
+    return op->emitError("the runtime solver takes matrices of scalars or of "
+                         "square blocks");
+
+  // func.func private @simit_rt_<method>_{bcsr,diag}[_f32]([rowptr,
+  //     colidx,] values, b, x, where), declared once. The runtime ends the
+  // run with `where` in its message when the solve fails.
+  MLIRContext *ctx = b.getContext();
+  int64_t dyn = ShapedType::kDynamic;
+  Type indexArray = MemRefType::get({dyn}, b.getI32Type());
+  auto values = MemRefType::get({dyn, dyn, dyn}, component);
+  auto vector = MemRefType::get({dyn, dyn}, component);
+  SmallVector<Type> argTypes;
+  if (!diagonal)
+    argTypes.append({indexArray, indexArray});
+  argTypes.append({values, vector, vector, LLVM::LLVMPointerType::get(ctx)});
+  std::string solver = ("simit_rt_" + method +
+                        (diagonal ? "_diag" : "_bcsr") +
+                        (component.isF32() ? "_f32" : ""))
+                           .str();
+  func::FuncOp callee =
+      declareRuntime(loc, solver, FunctionType::get(ctx, argTypes, {}));
+  if (!callee)
+    return op->emitError("@") << solver << " is declared with another type";
+
+  Value result = op->getResult(0);
+  Value x = allocSystem(loc, result.getType(), Storage::dense(),
+                        /*zeroFill=*/false);
+  SmallVector<Value> args;
+  if (!diagonal)
+    args.append({rowPointers(storage), columnIndices(storage)});
+  args.append({asRuntimeBlocks(loc, lookup(matrix), values),
+               asRuntimeBlocks(loc, lookup(rhs), vector),
+               asRuntimeBlocks(loc, x, vector),
+               stringConstant(loc, (method == "solve" ? "solve"
+                                                      : "triangularSolve") +
+                                       sourcePositionSuffix(op))});
+  func::CallOp::create(b, loc, callee, args);
+  storages[result] = Storage::dense();
+  map(result, x);
+  return success();
+}
+
+/// The dense solver runtime functions, with the i64 size arguments their
+/// lowered form appends (see lowerSolverCall).
+bool mlir::simit::loops::isSolverFunction(StringRef name) {
+  return llvm::is_contained(
+      {StringRef("simit_rt_lu"), StringRef("simit_rt_chol"),
+       StringRef("simit_rt_lusolve"), StringRef("simit_rt_lltsolve"),
+       StringRef("simit_rt_lumatsolve"), StringRef("simit_rt_lltmatsolve"),
+       StringRef("simit_rt_lufree"), StringRef("simit_rt_cholfree"),
+       StringRef("simit_rt_triangularSolve")},
+      name);
+}
+
+LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
+  Location loc = call.getLoc();
+  StringRef name = call.getCallee();
+  if (name == "simit_rt_triangularSolve" && call.getNumOperands() == 2 &&
+      call.getNumResults() == 1)
+    return lowerSystemSolve(call, call.getOperand(0), call.getOperand(1),
+                            "triangular_solve");
+  bool factorise = name == "simit_rt_lu" || name == "simit_rt_chol";
+  bool solve = name == "simit_rt_lusolve" || name == "simit_rt_lltsolve";
+  Value matrix = factorise ? call.getOperand(0) : Value();
+  Storage storage = matrix ? storages.lookup(matrix) : Storage();
+  auto f64Blocks = [](Type t, unsigned order) {
+    auto type = dyn_cast<SystemTensorType>(t);
+    if (!type || !type.isSystem() || type.getOrder() != order ||
+        !type.getComponentType().isF64())
+      return false;
+    SmallVector<int64_t> block = type.getBlockShape();
+    return block.empty() || (order == 2 && block.size() == 2 &&
+                             block[0] == block[1]) ||
+           (order == 1 && block.size() == 1);
+  };
+  if (factorise && !(f64Blocks(matrix.getType(), 2) && storage.isBCSR() &&
+                     storage.rows == storage.cols))
+    return call.emitError("'@")
+           << name
+           << "' on a system matrix needs a square f64 matrix of scalars or "
+              "square blocks assembled from an edge set; this one is stored "
+              "as "
+           << storage.describe();
+  if (solve && !(call.getNumOperands() == 2 &&
+                 isa<OpaqueType>(call.getOperand(0).getType()) &&
+                 f64Blocks(call.getOperand(1).getType(), 1) &&
+                 call.getNumResults() == 1 &&
+                 call.getResult(0).getType() == call.getOperand(1).getType()))
+    return call.emitError("'@") << name
+                                << "' on system vectors needs an f64 vector "
+                                   "and a factorisation handle";
+  if (!factorise && !solve)
+    return call.emitError("'@") << name
+                                << "' is not supported on system tensors by "
+                                   "the loop lowering";
+
+  MLIRContext *ctx = b.getContext();
+  Type ptr = LLVM::LLVMPointerType::get(ctx);
+  int64_t dyn = ShapedType::kDynamic;
+  auto indexArray = MemRefType::get({dyn}, b.getI32Type());
+  auto values = MemRefType::get({dyn, dyn, dyn}, b.getF64Type());
+  auto vector = MemRefType::get({dyn, dyn}, b.getF64Type());
+  std::string runtimeName = (name + "_bcsr").str();
+  if (factorise) {
+    auto type = FunctionType::get(ctx, {indexArray, indexArray, values}, {ptr});
+    func::FuncOp callee = declareRuntime(loc, runtimeName, type);
+    if (!callee)
+      return call.emitError("@") << runtimeName
+                                 << " is declared with another type";
+    auto lowered = func::CallOp::create(
+        b, loc, callee,
+        ValueRange{rowPointers(storage), columnIndices(storage),
+                   asRuntimeBlocks(loc, lookup(matrix), values)});
+    map(call.getResult(0), lowered.getResult(0));
+    return success();
+  }
+  auto type = FunctionType::get(ctx, {ptr, vector, vector}, {});
+  func::FuncOp callee = declareRuntime(loc, runtimeName, type);
+  if (!callee)
+    return call.emitError("@") << runtimeName
+                               << " is declared with another type";
+  Value x = allocSystem(loc, call.getResult(0).getType(), Storage::dense(),
+                        /*zeroFill=*/false);
+  func::CallOp::create(
+      b, loc, callee,
+      ValueRange{lookup(call.getOperand(0)),
+                 asRuntimeBlocks(loc, lookup(call.getOperand(1)), vector),
+                 asRuntimeBlocks(loc, x, vector)});
+  storages[call.getResult(0)] = Storage::dense();
+  map(call.getResult(0), x);
+  return success();
+}
+
+LogicalResult FunctionLowering::lowerSolverCall(func::CallOp call,
+                                                func::FuncOp callee) {
+  Location loc = call.getLoc();
+  if (llvm::any_of(call.getOperandTypes(), isSystem))
+    return lowerSystemSolverCall(call);
+  MLIRContext *ctx = b.getContext();
+  StringRef name = call.getCallee();
+  Type f64 = b.getF64Type();
+  Type ptr = LLVM::LLVMPointerType::get(ctx);
+  Type flat = MemRefType::get({ShapedType::kDynamic}, f64);
+  bool factorise = name == "simit_rt_lu" || name == "simit_rt_chol";
+  bool free = name == "simit_rt_lufree" || name == "simit_rt_cholfree";
+  bool matSolve =
+      name == "simit_rt_lumatsolve" || name == "simit_rt_lltmatsolve";
+  bool triangular = name == "simit_rt_triangularSolve";
+
+  // Expected shapes: (handle | matrix)..., tensors of f64.
+  auto tensorOf = [&](Type t, unsigned rank) -> RankedTensorType {
+    auto tensor = dyn_cast<RankedTensorType>(t);
+    if (!tensor || !tensor.getElementType().isF64() ||
+        tensor.getRank() != rank || !tensor.hasStaticShape())
+      return nullptr;
+    return tensor;
+  };
+  auto isHandle = [](Type t) { return isa<OpaqueType>(t); };
+  auto isSquare = [&](Type t) {
+    auto m = tensorOf(t, 2);
+    return m && m.getDimSize(0) == m.getDimSize(1);
+  };
+  TypeRange in = call.getOperandTypes(), out = call.getResultTypes();
+  bool valid = false;
+  if (factorise)
+    valid = in.size() == 1 && isSquare(in[0]) && out.size() == 1 &&
+            isHandle(out[0]);
+  else if (free)
+    valid = in.size() == 1 && isHandle(in[0]) && out.empty();
+  else if (triangular)
+    valid = in.size() == 2 && isSquare(in[0]) && tensorOf(in[1], 1) &&
+            out.size() == 1 && out[0] == in[1] &&
+            tensorOf(in[1], 1).getDimSize(0) ==
+                cast<RankedTensorType>(in[0]).getDimSize(0);
+  else
+    valid = in.size() == 2 && isHandle(in[0]) &&
+            tensorOf(in[1], matSolve ? 2 : 1) && out.size() == 1 &&
+            out[0] == in[1];
+  if (!valid)
+    return call.emitError("'@")
+           << name
+           << "' is supported by the loop lowering on dense local f64 "
+              "matrices and vectors (and opaque handles) only";
+
+  // Local tensors (vectors) are stored to a stack buffer passed as
+  // memref<?xf64>; tensor results come back through one.
+  auto buffer = [&](int64_t size) {
+    OpBuilder::InsertionGuard guard(b);
+    b.setInsertionPointToStart(allocaBlock);
+    return memref::AllocaOp::create(b, loc, MemRefType::get({size}, f64))
+        .getResult();
+  };
+  Value zero = free ? Value() : indexConstant(0);
+  SmallVector<Value> args;
+  SmallVector<Type> argTypes;
+  for (Value operand : call.getOperands()) {
+    Value value = lookup(operand);
+    if (isHandle(operand.getType())) {
+      args.push_back(value);
+      argTypes.push_back(ptr);
+      continue;
+    }
+    int64_t size = cast<RankedTensorType>(operand.getType()).getNumElements();
+    Value slot = buffer(size);
+    vector::StoreOp::create(b, loc, value, slot, ValueRange{zero});
+    args.push_back(memref::CastOp::create(b, loc, flat, slot));
+    argTypes.push_back(flat);
+  }
+  Value resultSlot;
+  SmallVector<Type> resultTypes;
+  if (factorise) {
+    resultTypes.push_back(ptr);
+  } else if (!free) {
+    auto resultType = cast<RankedTensorType>(out[0]);
+    resultSlot = buffer(resultType.getNumElements());
+    args.push_back(memref::CastOp::create(b, loc, flat, resultSlot));
+    argTypes.push_back(flat);
+  }
+  // Sizes: n of a factorised or triangular matrix, the columns of a
+  // matrix right-hand side.
+  auto sizeArg = [&](int64_t size) {
+    args.push_back(arith::ConstantOp::create(b, loc, b.getI64IntegerAttr(size)));
+    argTypes.push_back(b.getI64Type());
+  };
+  if (factorise || triangular)
+    sizeArg(cast<RankedTensorType>(in[0]).getDimSize(0));
+  else if (matSolve)
+    sizeArg(cast<RankedTensorType>(in[1]).getDimSize(1));
+
+  // The declaration takes the lowered signature (the JIT binds the
+  // C interface, _mlir_ciface_<name>, of those with memrefs).
+  auto type = FunctionType::get(ctx, argTypes, resultTypes);
+  if (callee.getFunctionType() != type) {
+    if (llvm::any_of(callee.getFunctionType().getInputs(),
+                     [](Type t) { return isa<MemRefType, LLVM::LLVMPointerType>(t); }))
+      return call.emitError("'@") << name
+                                  << "' is called with different shapes";
+    callee.setFunctionType(type);
+  }
+  if (!free)
+    callee->setAttr("llvm.emit_c_interface", UnitAttr::get(ctx));
+  auto lowered = func::CallOp::create(b, loc, name, resultTypes, args);
+  if (factorise)
+    map(call.getResult(0), lowered.getResult(0));
+  else if (!free)
+    map(call.getResult(0),
+        vector::LoadOp::create(b, loc, cast<VectorType>(convertType(out[0])),
+                               resultSlot, ValueRange{zero}));
+  return success();
+}

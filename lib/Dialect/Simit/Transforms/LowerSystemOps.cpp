@@ -1,0 +1,232 @@
+//===- LowerSystemOps.cpp - Host-level system vector ops ------------------===//
+//
+// Host-level operations on system tensors: field reads and writes, set
+// sizes, loads and stores of system tensor variables (with the aliasing
+// rules of docs/lowering.md), and the dispatch of linear algebra, solves,
+// products and slices to their parts.
+//
+//===----------------------------------------------------------------------===//
+
+#include "LoopsLowering.h"
+#include "mlir/IR/IRMapping.h"
+
+using namespace mlir;
+using namespace mlir::simit;
+using namespace mlir::simit::loops;
+
+/// Whether `op` writes field `field` of set `set`: a field write, or a map
+/// whose element function writes a field of that name.
+static bool writesField(Operation *op, StringAttr set, StringAttr field,
+                        ModuleOp module) {
+  if (auto write = dyn_cast<FieldWriteOp>(op))
+    return write.getFieldAttr() == field &&
+           cast<SetType>(write.getSet().getType()).getName() == set;
+  if (isa<MapOp, AssembleOp>(op)) {
+    auto callee = module.lookupSymbol<func::FuncOp>(
+        op->getAttrOfType<FlatSymbolRefAttr>("callee"));
+    if (!callee)
+      return true;
+    bool writes = false;
+    callee.walk([&](ElemWriteOp w) {
+      if (w.getFieldAttr() == field)
+        writes = true;
+    });
+    return writes;
+  }
+  return isa<func::CallOp>(op);
+}
+
+LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
+  handled = true;
+  Location loc = op->getLoc();
+  if (auto read = dyn_cast<FieldReadOp>(op)) {
+    auto set = cast<SetType>(read.getSet().getType());
+    Type fieldType = set.getElement().getFieldType(read.getField());
+    Value array = getField(set.getName(), read.getFieldAttr(), fieldType);
+    storages[read] = Storage::dense();
+    if (canAlias(op, [&](Operation *w) {
+          return writesField(w, set.getName(), read.getFieldAttr(), module);
+        })) {
+      map(read, array);
+      return success();
+    }
+    Value copy = memref::AllocOp::create(
+        b, loc, cast<MemRefType>(array.getType()),
+        ValueRange{getSetSize(set.getName())});
+    memref::CopyOp::create(b, loc, array, copy);
+    map(read, copy);
+    return success();
+  }
+  if (auto write = dyn_cast<FieldWriteOp>(op)) {
+    auto set = cast<SetType>(write.getSet().getType());
+    Type fieldType = set.getElement().getFieldType(write.getField());
+    Value array = getField(set.getName(), write.getFieldAttr(), fieldType);
+    Value value = lookup(write.getValue());
+    if (isSystem(write.getValue().getType())) {
+      // An index expression may have been computed into the field itself.
+      if (value != array)
+        memref::CopyOp::create(b, loc, value, array);
+    } else
+      fill(loc, array, value);
+    return success();
+  }
+
+  // The remaining operations matter here only on system tensors.
+  bool system = llvm::any_of(op->getOperandTypes(), isSystem) ||
+                llvm::any_of(op->getResultTypes(), isSystem);
+  auto refOf = [](Type type) {
+    auto ref = dyn_cast<RefType>(type);
+    return ref && isSystem(ref.getValueType());
+  };
+  bool systemRef = llvm::any_of(op->getOperandTypes(), refOf) ||
+                   llvm::any_of(op->getResultTypes(), refOf);
+  if (!system && !systemRef) {
+    handled = false;
+    return success();
+  }
+
+  if (isa<ZerosOp, BroadcastOp>(op)) {
+    Type type = op->getResult(0).getType();
+    if (cast<SystemTensorType>(type).getOrder() != 1)
+      return op->emitError("a system matrix of unknown sparsity cannot be "
+                           "created here; assemble it with a map");
+    Value array = allocSystem(loc, type, Storage::dense(),
+                               /*zeroFill=*/isa<ZerosOp>(op));
+    if (auto broadcast = dyn_cast<BroadcastOp>(op))
+      fill(loc, array, lookup(broadcast.getValue()));
+    storages[op->getResult(0)] = Storage::dense();
+    map(op->getResult(0), array);
+    return success();
+  }
+  if (auto alloc = dyn_cast<AllocOp>(op)) {
+    Type type = cast<RefType>(alloc.getType()).getValueType();
+    // A matrix variable's storage is that of the first matrix stored to
+    // it: its array is made there.
+    if (cast<SystemTensorType>(type).getOrder() != 1)
+      return success();
+    map(alloc, allocSystem(loc, type, Storage::dense()));
+    storages[alloc] = Storage::dense();
+    return success();
+  }
+  if (auto load = dyn_cast<LoadOp>(op)) {
+    Value buffer = lookup(load.getRef());
+    if (!buffer)
+      return op->emitError("a variable holding a system matrix is read "
+                           "before a matrix is stored to it");
+    storages[load] = storages.lookup(load.getRef());
+    if (canAlias(op, [&](Operation *w) {
+          auto store = dyn_cast<StoreOp>(w);
+          return (store && store.getRef() == load.getRef()) ||
+                 isa<func::CallOp>(w);
+        })) {
+      map(load, buffer);
+      return success();
+    }
+    auto type = cast<MemRefType>(buffer.getType());
+    Value copy = memref::AllocOp::create(
+        b, loc, type,
+        ValueRange{memref::DimOp::create(b, loc, buffer, 0).getResult()});
+    memref::CopyOp::create(b, loc, buffer, copy);
+    map(load, copy);
+    return success();
+  }
+  if (auto store = dyn_cast<StoreOp>(op)) {
+    Value value = lookup(store.getValue()), buffer = lookup(store.getRef());
+    Storage storage = storages.lookup(store.getValue());
+    if (!buffer) {
+      // The first store to a matrix variable, which must be where the
+      // variable is declared so that its array dominates every use.
+      Operation *alloc = store.getRef().getDefiningOp();
+      if (!alloc || alloc->getBlock() != op->getBlock())
+        return op->emitError("a variable holding a system matrix must be "
+                             "first assigned where it is declared");
+      if (!storage.isMatrix())
+        return op->emitError("a variable holding a system matrix must be "
+                             "first assigned an assembled matrix");
+      storages[store.getRef()] = storage;
+      // A fresh matrix used only here becomes the variable's array.
+      if (store.getValue().hasOneUse() &&
+          isa_and_present<MapOp, AssembleOp, IndexExprOp>(
+              store.getValue().getDefiningOp())) {
+        map(store.getRef(), value);
+        return success();
+      }
+      buffer = allocSystem(loc, store.getValue().getType(), storage,
+                           /*zeroFill=*/false);
+      map(store.getRef(), buffer);
+    } else if (storage != storages.lookup(store.getRef())) {
+      return op->emitError("a variable stored as ")
+             << storages.lookup(store.getRef()).describe()
+             << " cannot be assigned a value stored as "
+             << storage.describe();
+    }
+    if (value != buffer)
+      memref::CopyOp::create(b, loc, value, buffer);
+    return success();
+  }
+  if (auto insert = dyn_cast<InsertOp>(op)) {
+    auto type = cast<SystemTensorType>(insert.getTensor().getType());
+    if (type.getOrder() != 1)
+      return lowerMatrixBlockAccess(op);
+    // `v(p) = b` on a variable (load, insert, store back) writes the
+    // variable's array in place; otherwise the vector is copied first.
+    Value tensor = lookup(insert.getTensor());
+    auto load = insert.getTensor().getDefiningOp<LoadOp>();
+    auto store = insert->hasOneUse()
+                     ? dyn_cast<StoreOp>(*insert->getUsers().begin())
+                     : StoreOp();
+    bool inPlace = load && store && store.getRef() == load.getRef() &&
+                   tensor == lookup(load.getRef());
+    auto memref = cast<MemRefType>(tensor.getType());
+    Value target = tensor;
+    if (!inPlace) {
+      target = memref::AllocOp::create(
+          b, loc, memref,
+          ValueRange{memref::DimOp::create(b, loc, tensor, 0).getResult()});
+      memref::CopyOp::create(b, loc, tensor, target);
+    }
+    Value position = lookup(insert.getIndices()[0]);
+    Value value = lookup(insert.getValue());
+    for (int64_t c = 0, n = numComponents(insert.getValue().getType()); c < n;
+         ++c)
+      memref::StoreOp::create(b, loc,
+                              component(insert.getValue().getType(), value, c),
+                              target, blockIndices(memref, {position}, c));
+    storages[insert] = Storage::dense();
+    map(insert, target);
+    return success();
+  }
+  if (auto extract = dyn_cast<ExtractOp>(op)) {
+    auto type = cast<SystemTensorType>(extract.getTensor().getType());
+    if (type.getOrder() != 1)
+      return lowerMatrixBlockAccess(op);
+    Value array = lookup(extract.getTensor());
+    Value position = lookup(extract.getIndices()[0]);
+    int64_t n = numComponents(extract.getType());
+    SmallVector<Value> components;
+    auto memref = cast<MemRefType>(array.getType());
+    for (int64_t c = 0; c < n; ++c)
+      components.push_back(memref::LoadOp::create(
+          b, loc, array, blockIndices(memref, {position}, c)));
+    map(extract, n == 1 && !isa<ShapedType>(extract.getType())
+                     ? components[0]
+                     : fromComponents(convertType(extract.getType()),
+                                      components));
+    return success();
+  }
+  if (auto indexExpr = dyn_cast<IndexExprOp>(op))
+    return lowerIndexExpr(indexExpr);
+  if (auto solve = dyn_cast<SolveOp>(op))
+    return lowerSolve(solve);
+  if (auto matmul = dyn_cast<MatMulOp>(op))
+    return lowerMatMul(matmul);
+  if (auto slice = dyn_cast<SliceOp>(op))
+    return lowerMatrixSlice(slice);
+  if (isa<AddOp, SubOp, MulOp, DivOp, NegOp, ScaleOp, MatVecOp, MatMulOp,
+          TransposeOp, DotOp, OuterOp, NormOp>(op))
+    return op->emitError("linear algebra on system tensors must be rewritten "
+                         "by simit-linalg-to-index-expr first");
+  return op->emitError("'") << op->getName()
+                            << "' on system tensors is not supported by the "
+                               "loop lowering";
+}

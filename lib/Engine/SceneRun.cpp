@@ -1,6 +1,6 @@
 //===--- SceneRun.cpp - Running a program on a scene ----------------------===//
 
-#include "SceneRun.h"
+#include "simit/Engine/SceneRun.h"
 
 #include "simit/Engine/RuntimeFunctions.h"
 #include "simit/Runtime/Scene.h"
@@ -24,18 +24,13 @@ double millisecondsSince(Clock::time_point start) {
       .count();
 }
 
-struct NamedFunction {
-  std::string name;
-  Function function;
-};
-
 /// Makes the set hold every field `function` reads or writes: a field the
 /// scene did not mention is added zero-filled with the program's type and
 /// shape, and a float64 field is narrowed when the program runs in single
 /// precision. Other mismatches are left for Function::init to report.
 llvm::Error provideFields(const SceneDescription &scene, SetRegistry &registry,
-                          const NamedFunction &named) {
-  for (const ArgumentBinding &arg : named.function.signature().arguments) {
+                          const std::string &name, const Function &function) {
+  for (const ArgumentBinding &arg : function.signature().arguments) {
     if (arg.kind != ArgumentBinding::Kind::Field)
       continue;
     Set *set = registry.find(arg.set);
@@ -51,7 +46,7 @@ llvm::Error provideFields(const SceneDescription &scene, SetRegistry &registry,
         if (dim == ValueType::kDynamic)
           return llvm::createStringError(
               scene.path + ": sets." + arg.set + ".fields." + arg.field +
-              ": the program's function '" + named.name +
+              ": the program's function '" + name +
               "' uses this field with a shape only the scene can give");
         shape.push_back(static_cast<int>(dim));
       }
@@ -99,15 +94,14 @@ llvm::Error checkSceneFields(const SceneDescription &scene, Program &program,
   return llvm::Error::success();
 }
 
-/// Binds the sets and extern tensors `named` needs from the registry.
+/// Binds the sets and extern tensors `function` needs from the registry.
 llvm::Error bindFromScene(const SceneDescription &scene, SetRegistry &registry,
-                          NamedFunction &named) {
-  Function &function = named.function;
+                          const std::string &name, Function &function) {
   for (const std::string &setName : function.requiredSets()) {
     Set *set = registry.find(setName);
     if (!set)
       return llvm::createStringError(
-          scene.path + ": sets: the program's function '" + named.name +
+          scene.path + ": sets: the program's function '" + name +
           "' uses set '" + setName + "', which the scene does not define");
     if (llvm::Error err = function.bind(setName, *set))
       return err;
@@ -115,14 +109,14 @@ llvm::Error bindFromScene(const SceneDescription &scene, SetRegistry &registry,
   for (const ArgumentBinding &arg : function.signature().arguments) {
     if (arg.kind == ArgumentBinding::Kind::Parameter)
       return llvm::createStringError(
-          "function '" + named.name + "' takes parameters; a scene can only "
+          "function '" + name + "' takes parameters; a scene can only "
           "run functions without parameters");
     if (arg.kind != ArgumentBinding::Kind::Extern)
       continue;
     ExternTensor *tensor = registry.findExtern(arg.name);
     if (!tensor)
       return llvm::createStringError(
-          scene.path + ": externs: the program's function '" + named.name +
+          scene.path + ": externs: the program's function '" + name +
           "' uses extern '" + arg.name + "', which the scene does not give");
     ComponentType type;
     if (componentTypeFor(arg.type.scalar, type) && tensor->type != type)
@@ -136,13 +130,115 @@ llvm::Error bindFromScene(const SceneDescription &scene, SetRegistry &registry,
   return function.init();
 }
 
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+} // namespace
+
+SceneTimeSummary SceneTimes::summarize() const {
+  SceneTimeSummary summary;
+  summary.compileMs = compileMs;
+  summary.bindMs = bindMs;
+  summary.setsMs = setsMs;
+  summary.initMs = initMs;
+  summary.frames = static_cast<int>(frameMs.size());
+  if (frameMs.empty())
+    return summary;
+  // Frame 1 includes first-touch costs; the median leaves it out.
+  auto steady = [](const std::vector<double> &perFrame) {
+    return median(perFrame.size() > 1
+                      ? std::vector<double>(perFrame.begin() + 1,
+                                            perFrame.end())
+                      : perFrame);
+  };
+  summary.frameMs = steady(frameMs);
+  summary.assemblyMs = steady(assemblyMs);
+  summary.solveMs = steady(solveMs);
+  summary.firstFrameMs = frameMs.front();
+  return summary;
+}
+
+SceneRunner::SceneRunner(SceneDescription scene,
+                         const SceneRunOptions &options)
+    : description(std::move(scene)), options(options),
+      program(ProgramOptions{options.precision, {}, options.timePhases,
+                             options.checkNumerics}) {}
+
+SceneRunner::~SceneRunner() = default;
+
+llvm::Expected<std::unique_ptr<SceneRunner>>
+SceneRunner::create(SceneDescription scene, const SceneRunOptions &options) {
+  std::unique_ptr<SceneRunner> runner(
+      new SceneRunner(std::move(scene), options));
+  const SceneDescription &desc = runner->description;
+  std::string programPath =
+      options.programPath.empty() ? desc.program : options.programPath;
+  if (programPath.empty())
+    return llvm::createStringError(
+        desc.path + ": no program: give one on the command line or as "
+                    "\"program\" in the scene");
+  runner->frameCount = options.frames.value_or(desc.frames);
+  if (runner->frameCount > 0 && desc.step.empty())
+    return llvm::createStringError(desc.path + ": " +
+                                   llvm::Twine(runner->frameCount) +
+                                   " frames need a \"step\" function");
+
+  Clock::time_point compileStart = Clock::now();
+  Program &program = runner->program;
+  if (llvm::Error err = program.loadFile(programPath))
+    return std::move(err);
+  if (llvm::Error err = checkSceneFields(desc, program, programPath))
+    return std::move(err);
+  for (auto [names, group] :
+       {std::pair(&desc.init, &runner->initFunctions),
+        std::pair(&desc.step, &runner->stepFunctions)}) {
+    for (const std::string &name : *names) {
+      llvm::Expected<Function> function = program.compile(name);
+      if (!function)
+        return llvm::createStringError(programPath + ": " +
+                                       llvm::toString(function.takeError()));
+      group->push_back({name, std::move(*function)});
+    }
+  }
+  SceneTimes &times = runner->timings;
+  times.compileMs = millisecondsSince(compileStart);
+
+  Clock::time_point bindStart = Clock::now();
+  SetRegistry &registry = runner->registry;
+  if (llvm::Error err = buildSets(desc, registry))
+    return std::move(err);
+  times.setsMs = millisecondsSince(bindStart);
+  for (auto *group : {&runner->initFunctions, &runner->stepFunctions})
+    for (NamedFunction &named : *group)
+      if (llvm::Error err =
+              provideFields(desc, registry, named.name, named.function))
+        return std::move(err);
+  for (auto *group : {&runner->initFunctions, &runner->stepFunctions})
+    for (NamedFunction &named : *group)
+      if (llvm::Error err =
+              bindFromScene(desc, registry, named.name, named.function))
+        return std::move(err);
+  times.bindMs = millisecondsSince(bindStart);
+
+  if (options.outputDirectory) {
+    auto writer =
+        SceneOutputWriter::create(desc, registry, *options.outputDirectory);
+    if (!writer)
+      return writer.takeError();
+    runner->writer = std::move(*writer);
+  }
+  return std::move(runner);
+}
+
 /// Runs every function of `group` in order.
-llvm::Error runAll(std::vector<NamedFunction> &group, bool checkNumerics,
-                   int frame) {
+llvm::Error SceneRunner::runAll(std::vector<NamedFunction> &group,
+                                int frame) {
   for (NamedFunction &named : group) {
     if (llvm::Error err = named.function.run())
       return err;
-    if (!checkNumerics)
+    if (!options.checkNumerics)
       continue;
     // First the assembly or solve that produced a NaN or infinity, then
     // what the function left in the fields and externs (from work that is
@@ -160,123 +256,57 @@ llvm::Error runAll(std::vector<NamedFunction> &group, bool checkNumerics,
   return llvm::Error::success();
 }
 
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+llvm::Error SceneRunner::init() {
+  if (initDone)
+    return llvm::Error::success();
+  Clock::time_point start = Clock::now();
+  if (llvm::Error err = runAll(initFunctions, 0))
+    return err;
+  timings.initMs = millisecondsSince(start);
+  initDone = true;
+  if (writer)
+    return writer->writeFrame(0, frameCount == 0);
+  return llvm::Error::success();
 }
-} // namespace
 
-llvm::Error simit::runScene(const SceneRunOptions &options) {
-  llvm::Expected<SceneDescription> scene = loadScene(options.scenePath);
-  if (!scene)
-    return scene.takeError();
-  std::string programPath =
-      options.programPath.empty() ? scene->program : options.programPath;
-  if (programPath.empty())
-    return llvm::createStringError(
-        scene->path + ": no program: give one on the command line or as "
-                      "\"program\" in the scene");
-  int frames = options.frames.value_or(scene->frames);
-  if (frames > 0 && scene->step.empty())
-    return llvm::createStringError(scene->path + ": " + llvm::Twine(frames) +
-                                   " frames need a \"step\" function");
-
-  Clock::time_point compileStart = Clock::now();
-  ProgramOptions programOptions;
-  programOptions.precision = options.precision;
-  programOptions.timePhases = options.printTimes;
-  programOptions.checkNumerics = options.checkNumerics;
-  Program program(programOptions);
-  if (llvm::Error err = program.loadFile(programPath))
+llvm::Error SceneRunner::step(int count) {
+  if (llvm::Error err = init())
     return err;
-  if (llvm::Error err = checkSceneFields(*scene, program, programPath))
-    return err;
-  std::vector<NamedFunction> init, step;
-  for (auto [names, group] : {std::pair(&scene->init, &init),
-                              std::pair(&scene->step, &step)}) {
-    for (const std::string &name : *names) {
-      llvm::Expected<Function> function = program.compile(name);
-      if (!function)
-        return llvm::createStringError(programPath + ": " +
-                                       llvm::toString(function.takeError()));
-      group->push_back({name, std::move(*function)});
-    }
-  }
-  double compileMs = millisecondsSince(compileStart);
-
-  Clock::time_point bindStart = Clock::now();
-  SetRegistry registry;
-  if (llvm::Error err = buildSets(*scene, registry))
-    return err;
-  double setsMs = millisecondsSince(bindStart);
-  for (std::vector<NamedFunction> *group : {&init, &step})
-    for (NamedFunction &named : *group)
-      if (llvm::Error err = provideFields(*scene, registry, named))
-        return err;
-  for (std::vector<NamedFunction> *group : {&init, &step})
-    for (NamedFunction &named : *group)
-      if (llvm::Error err = bindFromScene(*scene, registry, named))
-        return err;
-  double bindMs = millisecondsSince(bindStart);
-
-  auto writer =
-      SceneOutputWriter::create(*scene, registry, options.outputDirectory);
-  if (!writer)
-    return writer.takeError();
-
+  if (count > 0 && stepFunctions.empty())
+    return llvm::createStringError(description.path +
+                                   ": frames need a \"step\" function");
   Clock::time_point runStart = Clock::now();
-  if (llvm::Error err = runAll(init, options.checkNumerics, 0))
-    return err;
-  double initMs = millisecondsSince(runStart);
-  if (llvm::Error err = (*writer)->writeFrame(0, frames == 0))
-    return err;
-
-  std::vector<double> frameMs, assemblyMs, solveMs;
-  Clock::time_point lastProgress = Clock::now();
-  for (int frame = 1; frame <= frames; ++frame) {
+  Clock::time_point lastProgress = runStart;
+  for (int i = 0; i < count; ++i) {
+    int frame = ++currentFrame;
     resetPhaseTimes();
     Clock::time_point frameStart = Clock::now();
-    if (llvm::Error err = runAll(step, options.checkNumerics, frame))
+    if (llvm::Error err = runAll(stepFunctions, frame))
       return err;
-    frameMs.push_back(millisecondsSince(frameStart));
+    timings.frameMs.push_back(millisecondsSince(frameStart));
     PhaseTimes phases = readPhaseTimes();
-    assemblyMs.push_back(phases.assemblyMs);
-    solveMs.push_back(phases.solveMs);
-    if (llvm::Error err = (*writer)->writeFrame(frame, frame == frames))
-      return err;
+    timings.assemblyMs.push_back(phases.assemblyMs);
+    timings.solveMs.push_back(phases.solveMs);
+    if (writer)
+      if (llvm::Error err = writer->writeFrame(frame, frame == frameCount))
+        return err;
     if (options.progress && millisecondsSince(runStart) > 2000 &&
         millisecondsSince(lastProgress) > 1000) {
-      llvm::errs() << "frame " << frame << " of " << frames << " ("
-                   << llvm::format("%.2f", frameMs.back()) << " ms)\n";
+      llvm::errs() << "frame " << frame << " of " << frameCount << " ("
+                   << llvm::format("%.2f", timings.frameMs.back()) << " ms)\n";
       lastProgress = Clock::now();
     }
   }
-
-  if (options.printTimes) {
-    llvm::raw_ostream &os = llvm::outs();
-    os << llvm::format("compile:   %10.2f ms\n", compileMs);
-    os << llvm::format("bind/init: %10.2f ms (sets %.2f ms)\n", bindMs,
-                       setsMs);
-    os << llvm::format("init:      %10.2f ms\n", initMs);
-    if (!frameMs.empty()) {
-      // Frame 1 includes first-touch costs; the median leaves it out.
-      auto steady = [](const std::vector<double> &perFrame) {
-        return median(perFrame.size() > 1
-                          ? std::vector<double>(perFrame.begin() + 1,
-                                                perFrame.end())
-                          : perFrame);
-      };
-      os << llvm::format("frame:     %10.3f ms (median of frames %d..%d; "
-                         "frame 1 %.3f ms)\n",
-                         steady(frameMs), frameMs.size() > 1 ? 2 : 1, frames,
-                         frameMs.front());
-      os << llvm::format("  assembly:%10.3f ms (map and apply statements)\n",
-                         steady(assemblyMs));
-      os << llvm::format("  solve:   %10.3f ms (solves, and while loops "
-                         "without assemblies)\n",
-                         steady(solveMs));
-    }
-  }
   return llvm::Error::success();
+}
+
+llvm::Error SceneRunner::run() {
+  if (llvm::Error err = init())
+    return err;
+  return step(std::max(0, frameCount - currentFrame));
+}
+
+const std::vector<std::string> &SceneRunner::writtenFiles() const {
+  static const std::vector<std::string> none;
+  return writer ? writer->writtenFiles() : none;
 }

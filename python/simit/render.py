@@ -65,8 +65,10 @@ def draw(grid, values, axes, norm, colormap, title):
     if 2 in grid.cells:
         lines = grid.cells[2]
         colors = colormap(norm(values[lines].mean(axis=1)))
+        # Thick lines for a few springs, hairlines for thousands.
+        width = min(2.0, max(0.3, 200.0 / len(lines)))
         axes.add_collection3d(Line3DCollection(points[lines], colors=colors,
-                                               linewidths=0.4))
+                                               linewidths=width))
     if not ({2, 3, 4} & set(grid.cells)):
         axes.scatter(*points.T, c=colormap(norm(values)), s=2)
     axes.set_title(title)

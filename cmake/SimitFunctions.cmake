@@ -1,3 +1,11 @@
+include(GNUInstallDirs)
+
+# Installed libraries and tools find the project's libraries beside them
+# ($ORIGIN), and libMLIR, which Debian keeps out of the loader's path, in
+# LLVM's library folder.
+set(SIMIT_INSTALL_LIBRARY_RPATH "\$ORIGIN;${LLVM_LIBRARY_DIR}")
+set(SIMIT_INSTALL_TOOL_RPATH "\$ORIGIN/../${CMAKE_INSTALL_LIBDIR};${LLVM_LIBRARY_DIR}")
+
 # simit_add_library(<name> <sources>... [DEPENDS <targets>...] [LINK <libs>...])
 #
 # A shared library of the project. Every library links the shared libMLIR and
@@ -20,7 +28,7 @@ function(simit_add_library name)
   set_target_properties(${name} PROPERTIES
     EXPORT_NAME ${name}
     BUILD_RPATH "${CMAKE_BINARY_DIR}/lib"
-    INSTALL_RPATH "\$ORIGIN")
+    INSTALL_RPATH "${SIMIT_INSTALL_LIBRARY_RPATH}")
 endfunction()
 
 # simit_add_tool(<name> <sources>... [LINK <libs>...])
@@ -28,5 +36,6 @@ function(simit_add_tool name)
   cmake_parse_arguments(ARG "" "" "LINK" ${ARGN})
   add_executable(${name} ${ARG_UNPARSED_ARGUMENTS})
   target_link_libraries(${name} PRIVATE ${ARG_LINK} MLIR LLVM)
-  set_target_properties(${name} PROPERTIES INSTALL_RPATH "\$ORIGIN/../lib")
+  set_target_properties(${name} PROPERTIES
+    INSTALL_RPATH "${SIMIT_INSTALL_TOOL_RPATH}")
 endfunction()

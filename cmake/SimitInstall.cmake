@@ -2,7 +2,6 @@
 # and a CMake package so that another project can `find_package(Simit CONFIG)`
 # and link `Simit::MLIRSimitDialect` without the frontend or runtime.
 include(CMakePackageConfigHelpers)
-include(GNUInstallDirs)
 
 set(SIMIT_INSTALL_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/simit)
 
@@ -13,24 +12,15 @@ install(DIRECTORY ${SIMIT_BINARY_DIR}/include/simit
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
   FILES_MATCHING PATTERN "*.inc")
 
-set(simit_installed_libraries)
-foreach(lib MLIRSimitDialect MLIRSimitTransforms SimitFrontend SimitRuntime SimitJIT)
-  if(TARGET ${lib})
-    list(APPEND simit_installed_libraries ${lib})
-  endif()
-endforeach()
-install(TARGETS ${simit_installed_libraries}
+# Every library and tool by name: a name that is no target is a configure
+# error, not a library silently left out of the install.
+install(TARGETS MLIRSimitDialect MLIRSimitTransforms SimitFrontend SimitIRGen
+    SimitRuntime SimitEngine
   EXPORT SimitTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
-
-set(simit_installed_tools)
-foreach(tool simit-opt simit-translate simit-run)
-  if(TARGET ${tool})
-    list(APPEND simit_installed_tools ${tool})
-  endif()
-endforeach()
-install(TARGETS ${simit_installed_tools} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS simit-opt simit-translate simit-run
+  RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 
 install(EXPORT SimitTargets
   NAMESPACE Simit::

@@ -16,6 +16,10 @@ config.substitutions.append(("%PATH%", config.environment["PATH"]))
 config.substitutions.append(("%simit_src", config.simit_src_root))
 config.substitutions.append(("%simit_obj", config.simit_obj_root))
 config.substitutions.append(("%shared", config.shared_dir))
+if config.simit_build_python:
+    config.available_features.add("simit-python")
+config.substitutions.append(("%python3", config.python3_executable))
+config.substitutions.append(("%simit_python_dir", config.simit_python_install_dir))
 config.substitutions.append(("%meshes", os.path.join(config.shared_dir, "data", "meshes")))
 
 llvm_config.with_system_environment(["HOME", "INCLUDE", "LIB", "TMP", "TEMP"])

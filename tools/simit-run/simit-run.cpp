@@ -9,13 +9,16 @@
 //
 //===----------------------------------------------------------------------===//
 
-#include "SceneRun.h"
 #include "TestRun.h"
 
 #include "simit/Engine/Program.h"
+#include "simit/Engine/SceneRun.h"
 
+#include "llvm/ADT/SmallString.h"
 #include "llvm/Support/CommandLine.h"
+#include "llvm/Support/Format.h"
 #include "llvm/Support/InitLLVM.h"
+#include "llvm/Support/Path.h"
 #include "llvm/Support/raw_ostream.h"
 
 using namespace simit;
@@ -29,9 +32,11 @@ static cl::opt<std::string> programPath(cl::cat(runCategory), cl::Positional,
                                         cl::init(""));
 static cl::opt<std::string> scenePath(cl::cat(runCategory), "scene", cl::desc("Run on a scene file"),
                                       cl::value_desc("scene.json"));
-static cl::opt<std::string>
-    outputDirectory(cl::cat(runCategory), "output-dir", cl::desc("Where scene outputs are written"),
-                    cl::init("."));
+static cl::opt<std::string> outputDirectory(
+    cl::cat(runCategory), "output-dir",
+    cl::desc("Where scene outputs are written (default: "
+             "simit-output/<scene file name without .json>)"),
+    cl::value_desc("dir"));
 static cl::opt<int> frames(cl::cat(runCategory), "frames",
                            cl::desc("Override the scene's frame count"),
                            cl::init(-1));
@@ -62,6 +67,61 @@ static cl::opt<bool> noProgress(cl::cat(runCategory), "no-progress",
 static int fail(llvm::Error err) {
   llvm::errs() << "simit-run: " << llvm::toString(std::move(err)) << "\n";
   return 1;
+}
+
+/// A scene's outputs go to --output-dir, else to a folder of their own
+/// named after the scene, so that a run never scatters files over the
+/// current directory.
+static std::string sceneOutputDirectory() {
+  if (!outputDirectory.empty())
+    return outputDirectory;
+  llvm::SmallString<128> directory("simit-output");
+  llvm::sys::path::append(directory, llvm::sys::path::stem(scenePath));
+  return std::string(directory);
+}
+
+static void printTimeSummary(const SceneTimeSummary &times, int frames) {
+  llvm::raw_ostream &os = llvm::outs();
+  os << llvm::format("compile:   %10.2f ms\n", times.compileMs);
+  os << llvm::format("bind/init: %10.2f ms (sets %.2f ms)\n", times.bindMs,
+                     times.setsMs);
+  os << llvm::format("init:      %10.2f ms\n", times.initMs);
+  if (times.frames == 0)
+    return;
+  os << llvm::format("frame:     %10.3f ms (median of frames %d..%d; "
+                     "frame 1 %.3f ms)\n",
+                     times.frameMs, times.frames > 1 ? 2 : 1, frames,
+                     times.firstFrameMs);
+  os << llvm::format("  assembly:%10.3f ms (map and apply statements)\n",
+                     times.assemblyMs);
+  os << llvm::format("  solve:   %10.3f ms (solves, and while loops "
+                     "without assemblies)\n",
+                     times.solveMs);
+}
+
+/// Builds the scene's sets, compiles the program, runs "init" once and
+/// "step" per frame, and writes the outputs.
+static int runSceneFile(FloatPrecision precision) {
+  llvm::Expected<SceneDescription> scene = loadScene(scenePath);
+  if (!scene)
+    return fail(scene.takeError());
+  SceneRunOptions options;
+  options.programPath = programPath;
+  options.outputDirectory = sceneOutputDirectory();
+  if (frames >= 0)
+    options.frames = frames;
+  options.precision = precision;
+  options.timePhases = printTimes;
+  options.checkNumerics = checkNumerics;
+  options.progress = !noProgress;
+  auto runner = SceneRunner::create(std::move(*scene), options);
+  if (!runner)
+    return fail(runner.takeError());
+  if (llvm::Error err = (*runner)->run())
+    return fail(std::move(err));
+  if (printTimes)
+    printTimeSummary((*runner)->times().summarize(), (*runner)->frames());
+  return 0;
 }
 
 int main(int argc, char **argv) {
@@ -96,17 +156,5 @@ int main(int argc, char **argv) {
   if (scenePath.empty())
     return fail(llvm::createStringError(
         "nothing to do: give --scene, --test, --eval or --emit"));
-  SceneRunOptions options;
-  options.scenePath = scenePath;
-  options.programPath = programPath;
-  options.outputDirectory = outputDirectory;
-  if (frames >= 0)
-    options.frames = frames;
-  options.precision = precision;
-  options.printTimes = printTimes;
-  options.checkNumerics = checkNumerics;
-  options.progress = !noProgress;
-  if (llvm::Error err = runScene(options))
-    return fail(std::move(err));
-  return 0;
+  return runSceneFile(precision);
 }

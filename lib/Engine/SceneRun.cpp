@@ -1,0 +1,313 @@
+//===--- SceneRun.cpp - Running a program on a scene ----------------------===//
+
+#include "simit/Engine/SceneRun.h"
+
+#include "simit/Engine/RuntimeFunctions.h"
+#include "simit/Runtime/Scene.h"
+#include "simit/Runtime/SceneOutput.h"
+
+#include "llvm/ADT/STLExtras.h"
+#include "llvm/ADT/StringExtras.h"
+#include "llvm/Support/Format.h"
+#include "llvm/Support/raw_ostream.h"
+
+#include <algorithm>
+#include <chrono>
+
+using namespace simit;
+
+namespace {
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start)
+      .count();
+}
+
+/// Makes the set hold every field `function` reads or writes: a field the
+/// scene did not mention is added zero-filled with the program's type and
+/// shape, and a float64 field is narrowed when the program runs in single
+/// precision. Other mismatches are left for Function::init to report.
+llvm::Error provideFields(const SceneDescription &scene, SetRegistry &registry,
+                          const std::string &name, const Function &function) {
+  for (const ArgumentBinding &arg : function.signature().arguments) {
+    if (arg.kind != ArgumentBinding::Kind::Field)
+      continue;
+    Set *set = registry.find(arg.set);
+    if (!set)
+      continue; // reported when binding
+    ComponentType type;
+    if (!componentTypeFor(arg.type.scalar, type))
+      continue;
+    const FieldDescriptor *field = set->fieldDescriptor(arg.field);
+    if (!field) {
+      std::vector<int> shape;
+      for (int64_t dim : llvm::drop_begin(arg.type.shape)) {
+        if (dim == ValueType::kDynamic)
+          return llvm::createStringError(
+              scene.path + ": sets." + arg.set + ".fields." + arg.field +
+              ": the program's function '" + name +
+              "' uses this field with a shape only the scene can give");
+        shape.push_back(static_cast<int>(dim));
+      }
+      if (llvm::Error err = set->addField(arg.field, type, shape))
+        return err;
+      continue;
+    }
+    if (field->type == ComponentType::Float64 &&
+        type == ComponentType::Float32) {
+      std::vector<int> shape = field->shape;
+      size_t count = set->size() * field->blockSize();
+      const double *wide = static_cast<const double *>(set->fieldData(arg.field));
+      std::vector<float> narrow(wide, wide + count);
+      set->removeField(arg.field);
+      if (llvm::Error err = set->addField(arg.field, type, shape))
+        return err;
+      std::copy(narrow.begin(), narrow.end(),
+                static_cast<float *>(set->fieldData(arg.field)));
+    }
+  }
+  return llvm::Error::success();
+}
+
+/// A scene field that the program's element type does not declare is a
+/// typo or a leftover: either way the program would silently not see it.
+llvm::Error checkSceneFields(const SceneDescription &scene, Program &program,
+                             llvm::StringRef programPath) {
+  auto declared = program.externSetFields();
+  if (!declared)
+    return declared.takeError();
+  for (const SetSpec &set : scene.sets) {
+    auto it = declared->find(set.name);
+    if (it == declared->end())
+      continue;
+    for (const FieldSpec &field : set.fields)
+      if (!llvm::is_contained(it->second, field.name))
+        return llvm::createStringError(
+            scene.path + ": " + field.jsonPath + ": the elements of set '" +
+            set.name + "' in " + programPath + " have no field '" +
+            field.name + "' (they have: " +
+            (it->second.empty() ? std::string("none")
+                                : llvm::join(it->second, ", ")) +
+            ")");
+  }
+  return llvm::Error::success();
+}
+
+/// Binds the sets and extern tensors `function` needs from the registry.
+llvm::Error bindFromScene(const SceneDescription &scene, SetRegistry &registry,
+                          const std::string &name, Function &function) {
+  for (const std::string &setName : function.requiredSets()) {
+    Set *set = registry.find(setName);
+    if (!set)
+      return llvm::createStringError(
+          scene.path + ": sets: the program's function '" + name +
+          "' uses set '" + setName + "', which the scene does not define");
+    if (llvm::Error err = function.bind(setName, *set))
+      return err;
+  }
+  for (const ArgumentBinding &arg : function.signature().arguments) {
+    if (arg.kind == ArgumentBinding::Kind::Parameter)
+      return llvm::createStringError(
+          "function '" + name + "' takes parameters; a scene can only "
+          "run functions without parameters");
+    if (arg.kind != ArgumentBinding::Kind::Extern)
+      continue;
+    ExternTensor *tensor = registry.findExtern(arg.name);
+    if (!tensor)
+      return llvm::createStringError(
+          scene.path + ": externs: the program's function '" + name +
+          "' uses extern '" + arg.name + "', which the scene does not give");
+    ComponentType type;
+    if (componentTypeFor(arg.type.scalar, type) && tensor->type != type)
+      if (llvm::Error err = tensor->convertTo(type))
+        return llvm::createStringError(scene.path + ": externs." + arg.name +
+                                       ": " + llvm::toString(std::move(err)));
+    if (llvm::Error err =
+            function.bind(arg.name, tensor->data(), tensor->type, tensor->shape))
+      return err;
+  }
+  return function.init();
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+} // namespace
+
+SceneTimeSummary SceneTimes::summarize() const {
+  SceneTimeSummary summary;
+  summary.compileMs = compileMs;
+  summary.bindMs = bindMs;
+  summary.setsMs = setsMs;
+  summary.initMs = initMs;
+  summary.frames = static_cast<int>(frameMs.size());
+  if (frameMs.empty())
+    return summary;
+  // Frame 1 includes first-touch costs; the median leaves it out.
+  auto steady = [](const std::vector<double> &perFrame) {
+    return median(perFrame.size() > 1
+                      ? std::vector<double>(perFrame.begin() + 1,
+                                            perFrame.end())
+                      : perFrame);
+  };
+  summary.frameMs = steady(frameMs);
+  summary.assemblyMs = steady(assemblyMs);
+  summary.solveMs = steady(solveMs);
+  summary.firstFrameMs = frameMs.front();
+  return summary;
+}
+
+SceneRunner::SceneRunner(SceneDescription scene,
+                         const SceneRunOptions &options)
+    : description(std::move(scene)), options(options),
+      program(ProgramOptions{options.precision, {}, options.timePhases,
+                             options.checkNumerics}) {}
+
+SceneRunner::~SceneRunner() = default;
+
+llvm::Expected<std::unique_ptr<SceneRunner>>
+SceneRunner::create(SceneDescription scene, const SceneRunOptions &options) {
+  std::unique_ptr<SceneRunner> runner(
+      new SceneRunner(std::move(scene), options));
+  const SceneDescription &desc = runner->description;
+  std::string programPath =
+      options.programPath.empty() ? desc.program : options.programPath;
+  if (programPath.empty())
+    return llvm::createStringError(
+        desc.path + ": no program: give one on the command line or as "
+                    "\"program\" in the scene");
+  runner->frameCount = options.frames.value_or(desc.frames);
+  if (runner->frameCount > 0 && desc.step.empty())
+    return llvm::createStringError(desc.path + ": " +
+                                   llvm::Twine(runner->frameCount) +
+                                   " frames need a \"step\" function");
+
+  Clock::time_point compileStart = Clock::now();
+  Program &program = runner->program;
+  if (llvm::Error err = program.loadFile(programPath))
+    return std::move(err);
+  if (llvm::Error err = checkSceneFields(desc, program, programPath))
+    return std::move(err);
+  for (auto [names, group] :
+       {std::pair(&desc.init, &runner->initFunctions),
+        std::pair(&desc.step, &runner->stepFunctions)}) {
+    for (const std::string &name : *names) {
+      llvm::Expected<Function> function = program.compile(name);
+      if (!function)
+        return llvm::createStringError(programPath + ": " +
+                                       llvm::toString(function.takeError()));
+      group->push_back({name, std::move(*function)});
+    }
+  }
+  SceneTimes &times = runner->timings;
+  times.compileMs = millisecondsSince(compileStart);
+
+  Clock::time_point bindStart = Clock::now();
+  SetRegistry &registry = runner->registry;
+  if (llvm::Error err = buildSets(desc, registry))
+    return std::move(err);
+  times.setsMs = millisecondsSince(bindStart);
+  for (auto *group : {&runner->initFunctions, &runner->stepFunctions})
+    for (NamedFunction &named : *group)
+      if (llvm::Error err =
+              provideFields(desc, registry, named.name, named.function))
+        return std::move(err);
+  for (auto *group : {&runner->initFunctions, &runner->stepFunctions})
+    for (NamedFunction &named : *group)
+      if (llvm::Error err =
+              bindFromScene(desc, registry, named.name, named.function))
+        return std::move(err);
+  times.bindMs = millisecondsSince(bindStart);
+
+  if (options.outputDirectory) {
+    auto writer =
+        SceneOutputWriter::create(desc, registry, *options.outputDirectory);
+    if (!writer)
+      return writer.takeError();
+    runner->writer = std::move(*writer);
+  }
+  return std::move(runner);
+}
+
+/// Runs every function of `group` in order.
+llvm::Error SceneRunner::runAll(std::vector<NamedFunction> &group,
+                                int frame) {
+  for (NamedFunction &named : group) {
+    std::string where =
+        "function '" + named.name + "' (frame " + std::to_string(frame) + ")";
+    if (llvm::Error err = named.function.run())
+      return llvm::createStringError(where + ": " +
+                                     llvm::toString(std::move(err)));
+    if (!options.checkNumerics)
+      continue;
+    // First the assembly or solve that produced a NaN or infinity, then
+    // what the function left in the fields and externs (from work that is
+    // neither, e.g. a solver written in Simit).
+    if (std::optional<std::string> problem = takeNumericsProblem())
+      return llvm::createStringError("check-numerics: " + where + ": " +
+                                     *problem);
+    std::string problem = named.function.findNonFinite();
+    if (!problem.empty())
+      return llvm::createStringError("check-numerics: after " + where + ": " +
+                                     problem);
+  }
+  return llvm::Error::success();
+}
+
+llvm::Error SceneRunner::init() {
+  if (initDone)
+    return llvm::Error::success();
+  Clock::time_point start = Clock::now();
+  if (llvm::Error err = runAll(initFunctions, 0))
+    return err;
+  timings.initMs = millisecondsSince(start);
+  initDone = true;
+  if (writer)
+    return writer->writeFrame(0, frameCount == 0);
+  return llvm::Error::success();
+}
+
+llvm::Error SceneRunner::step(int count) {
+  if (llvm::Error err = init())
+    return err;
+  if (count > 0 && stepFunctions.empty())
+    return llvm::createStringError(description.path +
+                                   ": frames need a \"step\" function");
+  Clock::time_point runStart = Clock::now();
+  Clock::time_point lastProgress = runStart;
+  for (int i = 0; i < count; ++i) {
+    int frame = ++currentFrame;
+    resetPhaseTimes();
+    Clock::time_point frameStart = Clock::now();
+    if (llvm::Error err = runAll(stepFunctions, frame))
+      return err;
+    timings.frameMs.push_back(millisecondsSince(frameStart));
+    PhaseTimes phases = readPhaseTimes();
+    timings.assemblyMs.push_back(phases.assemblyMs);
+    timings.solveMs.push_back(phases.solveMs);
+    if (writer)
+      if (llvm::Error err = writer->writeFrame(frame, frame == frameCount))
+        return err;
+    if (options.progress && millisecondsSince(runStart) > 2000 &&
+        millisecondsSince(lastProgress) > 1000) {
+      llvm::errs() << "frame " << frame << " of " << frameCount << " ("
+                   << llvm::format("%.2f", timings.frameMs.back()) << " ms)\n";
+      lastProgress = Clock::now();
+    }
+  }
+  return llvm::Error::success();
+}
+
+llvm::Error SceneRunner::run() {
+  if (llvm::Error err = init())
+    return err;
+  return step(std::max(0, frameCount - currentFrame));
+}
+
+const std::vector<std::string> &SceneRunner::writtenFiles() const {
+  static const std::vector<std::string> none;
+  return writer ? writer->writtenFiles() : none;
+}

@@ -1,0 +1,89 @@
+"""Errors of the compiler and runtime as simit.Error with their position;
+misuse of the Python API as the usual Python exceptions."""
+
+import numpy as np
+import pytest
+
+import simit
+
+from conftest import SPRINGS_SIM
+
+UNDEFINED = """element P
+  x : float;
+end
+extern ps : set{P};
+
+export func f()
+  ps.x = 2.0 * y;
+end
+"""
+
+
+def test_a_frontend_error_carries_file_line_and_column():
+    with pytest.raises(simit.Error) as info:
+        simit.compile(UNDEFINED, name="bad.sim")
+    error = info.value
+    assert (error.file, error.line, error.column) == ("bad.sim", 7, 16)
+    assert "error:" in error.message and "'y'" in error.message
+
+
+def test_a_missing_file():
+    with pytest.raises(simit.Error) as info:
+        simit.compile("no/such/program.sim")
+    assert info.value.file == "no/such/program.sim"
+
+
+def test_unknown_functions():
+    program = simit.compile(SPRINGS_SIM)
+    assert program.functions == ["init", "step"]
+    with pytest.raises(AttributeError, match="no function 'stepp'"):
+        program.stepp
+    with pytest.raises(simit.Error, match="exported functions: init, step"):
+        program["stepp"]
+
+
+def springs_sets(x_shape=3):
+    points = simit.Set("points", size=2)
+    points.add_field("x", shape=x_shape)
+    points.add_field("v", shape=3)
+    points.add_field("m")
+    points.add_field("c", "int32")
+    springs = simit.Set("springs", [points, points], endpoints=[[0, 1]])
+    springs.add_field("k")
+    springs.add_field("l0")
+    return points, springs
+
+
+def test_binding_errors_name_the_function_and_the_item():
+    program = simit.compile(SPRINGS_SIM)
+    points, springs = springs_sets()
+    step = program.step
+    step.bind(points=points, springs=springs)
+    with pytest.raises(simit.Error, match=r"function 'step': extern '\w+' "
+                                          r"is not bound"):
+        step()
+    flat, _ = springs_sets(x_shape=2)
+    step.bind(points=flat)
+    with pytest.raises(simit.Error, match=r"field 'points.x' holds float64 "
+                                          r"components of shape \[2\]"):
+        step.init()
+    with pytest.raises(TypeError, match="'points' is an extern set"):
+        step.bind(points=np.zeros(3))
+    with pytest.raises(simit.Error, match="uses no extern tensor named 'hh'"):
+        step.bind(hh=0.01)
+    with pytest.raises(TypeError, match="no exported function of the "
+                                        "program uses 'hh'"):
+        program.bind(hh=0.01)
+
+
+def test_check_numerics_names_the_assembly():
+    program = simit.compile(SPRINGS_SIM, check_numerics=True)
+    points, springs = springs_sets()  # both points at the origin: l = 0
+    externs = dict(h=0.01, viscous=2.0, stiffness=1e4, density=1e3,
+                   radius=0.01, grav=[0.0, -9.81, 0.0], cgTol=1e-12,
+                   cgMaxIters=50)
+    program.bind(points=points, springs=springs, **externs)
+    with pytest.raises(simit.NumericsError, match="produced nan") as info:
+        program.step()
+    assert info.value.file.endswith("springs.sim")
+    assert info.value.line is not None

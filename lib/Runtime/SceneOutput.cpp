@@ -5,9 +5,13 @@
 #include "simit/Runtime/CSV.h"
 #include "simit/Runtime/VTK.h"
 
+#include "AtomicFile.h"
+
 #include "llvm/Support/FileSystem.h"
 #include "llvm/Support/Path.h"
 #include "llvm/Support/raw_ostream.h"
+
+#include <map>
 
 using namespace simit;
 
@@ -30,9 +34,9 @@ static bool collectsFrames(const OutputSpec &output) {
 llvm::Expected<std::unique_ptr<SceneOutputWriter>>
 SceneOutputWriter::create(const SceneDescription &scene,
                           const SetRegistry &registry,
-                          llvm::StringRef outputDirectory) {
+                          llvm::StringRef outputDirectory, int frames) {
   std::unique_ptr<SceneOutputWriter> writer(
-      new SceneOutputWriter(scene, registry, outputDirectory.str()));
+      new SceneOutputWriter(scene, registry, outputDirectory.str(), frames));
   for (const OutputSpec &output : scene.outputs) {
     auto fail = [&](llvm::Error err) {
       return llvm::createStringError(scene.path + ": " + output.jsonPath +
@@ -58,20 +62,57 @@ SceneOutputWriter::create(const SceneDescription &scene,
       if (std::error_code ec = llvm::sys::fs::create_directories(parent))
         return fail(llvm::createStringError(parent + ": cannot create: " +
                                             ec.message()));
-    std::unique_ptr<llvm::raw_fd_ostream> stream;
+    std::unique_ptr<detail::AtomicFile> collected;
     if (collectsFrames(output)) {
-      std::error_code ec;
-      stream = std::make_unique<llvm::raw_fd_ostream>(first, ec,
-                                                      llvm::sys::fs::OF_Text);
-      if (ec)
-        return fail(llvm::createStringError(first + ": cannot write: " +
-                                            ec.message()));
-      *stream << csvHeader(*set, output.fields, /*withFrame=*/true);
-      writer->written.push_back(first);
+      auto file = detail::AtomicFile::create(first);
+      if (!file)
+        return fail(file.takeError());
+      collected = std::move(*file);
+      collected->stream() << csvHeader(*set, output.fields,
+                                       /*withFrame=*/true);
     }
-    writer->csvStreams.push_back(std::move(stream));
+    writer->collectedFiles.push_back(std::move(collected));
   }
+  if (llvm::Error err = writer->checkCollisions())
+    return err;
   return writer;
+}
+
+/// The frames after which `output` writes: every `every`-th of 0..frames,
+/// or only the last.
+static std::vector<int> framesWritten(const OutputSpec &output, int frames) {
+  if (output.lastOnly)
+    return {frames};
+  std::vector<int> list;
+  for (int frame = 0; frame <= frames; frame += output.every)
+    list.push_back(frame);
+  return list;
+}
+
+llvm::Error SceneOutputWriter::checkCollisions() const {
+  // Every file each output writes, by its lexically normalised absolute
+  // path; standard output may be shared.
+  std::map<std::string, size_t> owner;
+  for (size_t i = 0; i < scene.outputs.size(); ++i) {
+    const OutputSpec &output = scene.outputs[i];
+    if (output.path == "-")
+      continue;
+    std::vector<int> frames = output.path.find("{frame}") == std::string::npos
+                                  ? std::vector<int>{0}
+                                  : framesWritten(output, frameCount);
+    for (int frame : frames) {
+      llvm::SmallString<256> path(pathFor(output, frame));
+      llvm::sys::fs::make_absolute(path);
+      llvm::sys::path::remove_dots(path, /*remove_dot_dot=*/true);
+      auto [it, inserted] = owner.try_emplace(std::string(path), i);
+      if (!inserted && it->second != i)
+        return llvm::createStringError(
+            scene.path + ": " + output.jsonPath + ".path: writes " +
+            it->first + ", which " + scene.outputs[it->second].jsonPath +
+            " writes too");
+    }
+  }
+  return llvm::Error::success();
 }
 
 std::string SceneOutputWriter::pathFor(const OutputSpec &output,
@@ -95,14 +136,11 @@ llvm::Error SceneOutputWriter::writeOutput(size_t index, int frame) {
   // The program's print statements go through llvm::outs(); keep the order.
   if (output.path == "-")
     llvm::outs().flush();
-  if (llvm::raw_fd_ostream *stream = csvStreams[index].get()) {
-    if (llvm::Error err = writeCSVRows(*stream, set, output.fields, frame))
+  if (detail::AtomicFile *file = collectedFiles[index].get()) {
+    if (llvm::Error err =
+            writeCSVRows(file->stream(), set, output.fields, frame))
       return err;
-    stream->flush();
-    if (stream->has_error())
-      return llvm::createStringError("cannot write: " +
-                                     stream->error().message());
-    return llvm::Error::success();
+    return file->flush();
   }
   std::string path = pathFor(output, frame);
   if (llvm::Error err = output.kind == OutputSpec::VTK
@@ -112,6 +150,29 @@ llvm::Error SceneOutputWriter::writeOutput(size_t index, int frame) {
   written.push_back(path);
   return llvm::Error::success();
 }
+
+llvm::Error SceneOutputWriter::finish() {
+  for (size_t i = 0; i < scene.outputs.size(); ++i) {
+    std::unique_ptr<detail::AtomicFile> &file = collectedFiles[i];
+    if (!file)
+      continue;
+    if (llvm::Error err = file->commit())
+      return llvm::createStringError(scene.path + ": " +
+                                     scene.outputs[i].jsonPath + ": " +
+                                     llvm::toString(std::move(err)));
+    written.push_back(pathFor(scene.outputs[i], 0));
+    file.reset();
+  }
+  return llvm::Error::success();
+}
+
+SceneOutputWriter::SceneOutputWriter(const SceneDescription &scene,
+                                     const SetRegistry &registry,
+                                     std::string directory, int frames)
+    : scene(scene), registry(registry), directory(std::move(directory)),
+      frameCount(frames) {}
+
+SceneOutputWriter::~SceneOutputWriter() = default;
 
 llvm::Error SceneOutputWriter::writeFrame(int frame, bool isLast) {
   for (size_t i = 0; i < scene.outputs.size(); ++i) {

@@ -221,7 +221,8 @@ llvm::Error simit::runScene(const SceneRunOptions &options) {
   double bindMs = millisecondsSince(bindStart);
 
   auto writer =
-      SceneOutputWriter::create(*scene, registry, options.outputDirectory);
+      SceneOutputWriter::create(*scene, registry, options.outputDirectory,
+                                frames);
   if (!writer)
     return writer.takeError();
 
@@ -252,6 +253,8 @@ llvm::Error simit::runScene(const SceneRunOptions &options) {
       lastProgress = Clock::now();
     }
   }
+  if (llvm::Error err = (*writer)->finish())
+    return err;
 
   if (options.printTimes) {
     llvm::raw_ostream &os = llvm::outs();

@@ -56,7 +56,10 @@ llvm::Error provideFields(const SceneDescription &scene, SetRegistry &registry,
         shape.push_back(static_cast<int>(dim));
       }
       if (llvm::Error err = set->addField(arg.field, type, shape))
-        return err;
+        return llvm::createStringError(
+            scene.path + ": sets." + arg.set + ": the program's function '" +
+            named.name + "' uses field '" + arg.field + "': " +
+            llvm::toString(std::move(err)));
       continue;
     }
     if (field->type == ComponentType::Float64 &&
@@ -99,6 +102,21 @@ llvm::Error checkSceneFields(const SceneDescription &scene, Program &program,
   return llvm::Error::success();
 }
 
+/// Where the scene gives the value bound to `arg`.
+std::string jsonPathOf(const SceneDescription &scene,
+                       const ArgumentBinding &arg) {
+  if (arg.kind == ArgumentBinding::Kind::Extern)
+    return "externs." + arg.name;
+  std::string setPath = "sets." + arg.set;
+  if (arg.kind != ArgumentBinding::Kind::Field)
+    return setPath;
+  if (const SetSpec *set = scene.findSet(arg.set))
+    for (const FieldSpec &field : set->fields)
+      if (field.name == arg.field)
+        return field.jsonPath;
+  return setPath;
+}
+
 /// Binds the sets and extern tensors `named` needs from the registry.
 llvm::Error bindFromScene(const SceneDescription &scene, SetRegistry &registry,
                           NamedFunction &named) {
@@ -110,7 +128,8 @@ llvm::Error bindFromScene(const SceneDescription &scene, SetRegistry &registry,
           scene.path + ": sets: the program's function '" + named.name +
           "' uses set '" + setName + "', which the scene does not define");
     if (llvm::Error err = function.bind(setName, *set))
-      return err;
+      return llvm::createStringError(scene.path + ": sets." + setName + ": " +
+                                     llvm::toString(std::move(err)));
   }
   for (const ArgumentBinding &arg : function.signature().arguments) {
     if (arg.kind == ArgumentBinding::Kind::Parameter)
@@ -133,7 +152,12 @@ llvm::Error bindFromScene(const SceneDescription &scene, SetRegistry &registry,
             function.bind(arg.name, tensor->data(), tensor->type, tensor->shape))
       return err;
   }
-  return function.init();
+  return llvm::handleErrors(
+      function.init(), [&](const ArgumentError &err) -> llvm::Error {
+        return llvm::createStringError(scene.path + ": " +
+                                       jsonPathOf(scene, err.argument()) +
+                                       ": " + err.message());
+      });
 }
 
 /// Runs every function of `group` in order.

@@ -160,6 +160,23 @@ llvm::Error bindFromScene(const SceneDescription &scene, SetRegistry &registry,
       });
 }
 
+/// Scans what the functions of a frame left in their float fields and
+/// externs; the error names the frame, and the field or extern and the
+/// element, and how to find the statement that produced the value.
+llvm::Error checkFrame(const SceneDescription &scene,
+                       const std::vector<NamedFunction> &group, int frame) {
+  for (const NamedFunction &named : group) {
+    std::string problem = named.function.findNonFinite();
+    if (!problem.empty())
+      return llvm::createStringError(
+          scene.path + ": frame " + llvm::Twine(frame) + ": after function '" +
+          named.name + "': " + problem +
+          " (rerun with --check-numerics to find the statement that "
+          "produced it, or --no-check to run on)");
+  }
+  return llvm::Error::success();
+}
+
 /// Runs every function of `group` in order.
 llvm::Error runAll(std::vector<NamedFunction> &group, bool checkNumerics,
                    int frame) {
@@ -249,21 +266,31 @@ llvm::Error simit::runScene(const SceneRunOptions &options) {
                                 frames);
   if (!writer)
     return writer.takeError();
+  bool checkFrames = options.checkFrames && !options.checkNumerics;
 
   Clock::time_point runStart = Clock::now();
   if (llvm::Error err = runAll(init, options.checkNumerics, 0))
     return err;
+  if (checkFrames)
+    if (llvm::Error err = checkFrame(*scene, init, 0))
+      return err;
   double initMs = millisecondsSince(runStart);
   if (llvm::Error err = (*writer)->writeFrame(0, frames == 0))
     return err;
 
-  std::vector<double> frameMs, assemblyMs, solveMs;
+  std::vector<double> frameMs, assemblyMs, solveMs, checkMs;
   Clock::time_point lastProgress = Clock::now();
   for (int frame = 1; frame <= frames; ++frame) {
     resetPhaseTimes();
     Clock::time_point frameStart = Clock::now();
     if (llvm::Error err = runAll(step, options.checkNumerics, frame))
       return err;
+    if (checkFrames) {
+      Clock::time_point checkStart = Clock::now();
+      if (llvm::Error err = checkFrame(*scene, step, frame))
+        return err;
+      checkMs.push_back(millisecondsSince(checkStart));
+    }
     frameMs.push_back(millisecondsSince(frameStart));
     PhaseTimes phases = readPhaseTimes();
     assemblyMs.push_back(phases.assemblyMs);
@@ -303,6 +330,10 @@ llvm::Error simit::runScene(const SceneRunOptions &options) {
       os << llvm::format("  solve:   %10.3f ms (solves, and while loops "
                          "without assemblies)\n",
                          steady(solveMs));
+      if (!checkMs.empty())
+        os << llvm::format("  check:   %10.3f ms (the scan of the state for "
+                           "NaN and infinity)\n",
+                           steady(checkMs));
     }
   }
   return llvm::Error::success();

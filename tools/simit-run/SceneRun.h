@@ -21,7 +21,12 @@ struct SceneRunOptions {
   std::optional<int> frames;
   FloatPrecision precision = FloatPrecision::Double;
   bool printTimes = false;
+  /// Instruments the program to name the statement that produces a NaN or
+  /// infinity.
   bool checkNumerics = false;
+  /// Scans the float fields and externs of the functions after init and
+  /// after every frame, stopping at a NaN or infinity.
+  bool checkFrames = true;
   /// Progress lines on stderr once a run has taken a while.
   bool progress = true;
 };

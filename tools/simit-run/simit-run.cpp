@@ -54,6 +54,10 @@ static cl::opt<bool> checkNumerics(cl::cat(runCategory),
     "check-numerics",
     cl::desc("Stop at the first NaN or infinity a function leaves in a bound "
              "field or extern"));
+static cl::opt<bool>
+    noCheck(cl::cat(runCategory), "no-check",
+            cl::desc("Do not scan the state for NaN or infinity after every "
+                     "frame (for benchmarks)"));
 static cl::opt<bool> float32(cl::cat(runCategory), "float32",
                              cl::desc("Compile `float` as single precision"));
 static cl::opt<bool> noProgress(cl::cat(runCategory), "no-progress",
@@ -105,6 +109,7 @@ int main(int argc, char **argv) {
   options.precision = precision;
   options.printTimes = printTimes;
   options.checkNumerics = checkNumerics;
+  options.checkFrames = !noCheck;
   options.progress = !noProgress;
   if (llvm::Error err = runScene(options))
     return fail(std::move(err));

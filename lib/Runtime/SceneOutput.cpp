@@ -68,8 +68,6 @@ SceneOutputWriter::create(const SceneDescription &scene,
       if (!file)
         return fail(file.takeError());
       collected = std::move(*file);
-      collected->stream() << csvHeader(*set, output.fields,
-                                       /*withFrame=*/true);
     }
     writer->collectedFiles.push_back(std::move(collected));
   }
@@ -78,40 +76,95 @@ SceneOutputWriter::create(const SceneDescription &scene,
   return writer;
 }
 
-/// The frames after which `output` writes: every `every`-th of 0..frames,
-/// or only the last.
-static std::vector<int> framesWritten(const OutputSpec &output, int frames) {
-  if (output.lastOnly)
-    return {frames};
-  std::vector<int> list;
-  for (int frame = 0; frame <= frames; frame += output.every)
-    list.push_back(frame);
-  return list;
-}
+namespace {
+
+/// The files an output writes in a run of `frames` frames: its path,
+/// lexically normalised and absolute, cut at "{frame}" into a prefix and a
+/// suffix, and the frames it writes.
+struct OutputFiles {
+  std::string prefix, suffix;
+  bool perFrame;
+  const OutputSpec *output;
+  int frames;
+
+  bool writes(long long frame) const {
+    return output->lastOnly ? frame == frames
+                            : frame % output->every == 0 && frame <= frames;
+  }
+  /// The number of files, and the k-th frame written.
+  long long count() const {
+    return !perFrame || output->lastOnly ? 1 : frames / output->every + 1;
+  }
+  long long frameNumber(long long k) const {
+    return output->lastOnly ? frames : k * output->every;
+  }
+  std::string path(long long frame) const {
+    return perFrame ? prefix + std::to_string(frame) + suffix : prefix;
+  }
+  /// Whether a file of each could have one name: the prefix of one starts
+  /// the other's and the suffix of one ends the other's (a frame number
+  /// fills the gap).
+  bool mayMeet(const OutputFiles &other) const {
+    llvm::StringRef p1 = prefix, p2 = other.prefix, s1 = suffix,
+                    s2 = other.suffix;
+    if (!perFrame || !other.perFrame)
+      return true;
+    return (p1.starts_with(p2) || p2.starts_with(p1)) &&
+           (s1.ends_with(s2) || s2.ends_with(s1));
+  }
+  /// Is `path` one of the files?
+  bool holds(llvm::StringRef path) const {
+    if (!perFrame)
+      return path == prefix;
+    if (!path.consume_front(prefix) || !path.consume_back(suffix) ||
+        path.empty() || (path.size() > 1 && path.front() == '0'))
+      return false;
+    long long frame;
+    return !path.getAsInteger(10, frame) && frame >= 0 && writes(frame);
+  }
+};
+
+} // namespace
 
 llvm::Error SceneOutputWriter::checkCollisions() const {
-  // Every file each output writes, by its lexically normalised absolute
-  // path; standard output may be shared.
-  std::map<std::string, size_t> owner;
-  for (size_t i = 0; i < scene.outputs.size(); ++i) {
-    const OutputSpec &output = scene.outputs[i];
-    if (output.path == "-")
+  std::vector<OutputFiles> files;
+  for (const OutputSpec &output : scene.outputs) {
+    if (output.path == "-") // standard output may be shared
       continue;
-    std::vector<int> frames = output.path.find("{frame}") == std::string::npos
-                                  ? std::vector<int>{0}
-                                  : framesWritten(output, frameCount);
-    for (int frame : frames) {
-      llvm::SmallString<256> path(pathFor(output, frame));
-      llvm::sys::fs::make_absolute(path);
-      llvm::sys::path::remove_dots(path, /*remove_dot_dot=*/true);
-      auto [it, inserted] = owner.try_emplace(std::string(path), i);
-      if (!inserted && it->second != i)
-        return llvm::createStringError(
-            scene.path + ": " + output.jsonPath + ".path: writes " +
-            it->first + ", which " + scene.outputs[it->second].jsonPath +
-            " writes too");
+    // Resolved as pathFor does, with "{frame}" kept.
+    llvm::SmallString<256> full;
+    if (!directory.empty() && !llvm::sys::path::is_absolute(output.path))
+      full = directory;
+    llvm::sys::path::append(full, output.path);
+    llvm::sys::fs::make_absolute(full);
+    llvm::sys::path::remove_dots(full, /*remove_dot_dot=*/true);
+    llvm::StringRef text = full;
+    size_t at = text.find("{frame}");
+    OutputFiles entry{text.str(), "", at != llvm::StringRef::npos, &output,
+                      frameCount};
+    if (entry.perFrame) {
+      entry.prefix = text.take_front(at).str();
+      entry.suffix = text.drop_front(at + 7).str();
     }
+    files.push_back(std::move(entry));
   }
+  for (size_t j = 0; j < files.size(); ++j)
+    for (size_t i = 0; i < j; ++i) {
+      // Walk the output with fewer files, asking the other about each.
+      const OutputFiles &few =
+          files[i].count() <= files[j].count() ? files[i] : files[j];
+      const OutputFiles &many = &few == &files[i] ? files[j] : files[i];
+      if (!few.mayMeet(many))
+        continue;
+      for (long long k = 0; k < few.count(); ++k) {
+        std::string path = few.path(few.frameNumber(k));
+        if (many.holds(path))
+          return llvm::createStringError(
+              scene.path + ": " + files[j].output->jsonPath +
+              ".path: writes " + path + ", which " +
+              files[i].output->jsonPath + " writes too");
+      }
+    }
   return llvm::Error::success();
 }
 
@@ -137,6 +190,10 @@ llvm::Error SceneOutputWriter::writeOutput(size_t index, int frame) {
   if (output.path == "-")
     llvm::outs().flush();
   if (detail::AtomicFile *file = collectedFiles[index].get()) {
+    // The header goes with the first rows (frame 0, or the only frame of a
+    // "last" output), after whatever the program printed before them.
+    if (output.lastOnly || frame == 0)
+      file->stream() << csvHeader(set, output.fields, /*withFrame=*/true);
     if (llvm::Error err =
             writeCSVRows(file->stream(), set, output.fields, frame))
       return err;

@@ -376,6 +376,19 @@ TEST(SceneOutput, OutputsWritingOneFileAreAnError) {
   EXPECT_THAT(errorFor(frames, 12), HasSubstr("/o/x10.csv, which outputs[0] "
                                               "writes too"));
   EXPECT_EQ(errorFor(frames, 9), "");
+  // A file of its own name meets a frame's file; "every" decides which.
+  std::string fixed = "{" + csv + R"(, "path": "x{frame}.csv", "every": 2},
+                       {)" + csv + R"(, "path": "x8.csv"})";
+  EXPECT_THAT(errorFor(fixed, 9), HasSubstr("outputs[1].path: writes "));
+  EXPECT_THAT(errorFor(fixed, 9), HasSubstr("/o/x8.csv, which outputs[0] "
+                                            "writes too"));
+  EXPECT_EQ(errorFor(fixed, 7), "");
+  // Paths that cannot meet are not walked frame by frame: two billion
+  // frames take no time.
+  EXPECT_EQ(errorFor("{" + csv + R"(, "path": "a{frame}.csv"}, {)" + csv +
+                         R"(, "path": "b{frame}.csv"})",
+                     2000000000),
+            "");
   // Standard output may be shared.
   EXPECT_EQ(errorFor("{" + csv + R"(, "path": "-"}, {)" + csv +
                          R"(, "path": "-"})",

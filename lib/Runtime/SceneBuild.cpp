@@ -139,17 +139,18 @@ private:
   std::map<std::string, Box> boxes;
 };
 
-/// The bytes refineTets needs for one level of `mesh`: eight tets per tet,
-/// at most six new points per tet, and the map of edge midpoints.
+/// The bytes refineTets needs for one level of `mesh`, generously: eight
+/// tets per tet, at most six new points per tet in a vector that may
+/// double, and a hash map node and bucket per edge midpoint.
 static std::optional<uint64_t> refinementBytes(const Mesh &mesh) {
   uint64_t tets = mesh.tets.size(), points = mesh.points.size();
   auto tetBytes = detail::checkedProduct({tets, 8, sizeof(mesh.tets[0])});
   auto midpoints = detail::checkedProduct({tets, 6});
   if (!tetBytes || !midpoints)
     return std::nullopt;
-  auto pointBytes =
-      detail::checkedProduct(points + *midpoints, sizeof(mesh.points[0]));
-  auto mapBytes = detail::checkedProduct(*midpoints, 4 * sizeof(uint64_t));
+  auto pointBytes = detail::checkedProduct(
+      {points + *midpoints, 2, sizeof(mesh.points[0])});
+  auto mapBytes = detail::checkedProduct(*midpoints, 6 * sizeof(uint64_t));
   if (!pointBytes || !mapBytes)
     return std::nullopt;
   return *tetBytes + *pointBytes + *mapBytes;

@@ -732,8 +732,8 @@ private:
 };
 
 TEST_F(SceneTest, RefinementBeyondTheMemoryIsAnError) {
-  // Each level multiplies the 2 tets by 8; level k needs about
-  // 2 * 8^(k-1) * 464 bytes, more than 2 GiB first at level 8 (and more
+  // Each level multiplies the 2 tets by 8; level k is estimated at
+  // 2 * 8^(k-1) * 704 bytes, more than 2 GiB first at level 8 (and more
   // than the 10 levels allowed would take years).
   AddressSpaceLimit limit(2ull << 30);
   std::string err = buildError(R"({"meshes": {"m": {"file": "pyramid.node",

@@ -483,7 +483,8 @@ llvm::Error Function::Impl::init() {
   size_t word = 0;
   for (const ArgumentBinding &arg : signature().arguments)
     if (llvm::Error err = prepareArgument(arg, word))
-      return err;
+      return llvm::make_error<ArgumentError>(arg,
+                                             llvm::toString(std::move(err)));
   vectorStorage.assign(vectorBytes);
   for (const VectorCopy &copy : vectorCopies)
     args[copy.argument] = vectorStorage.data() + copy.offset;
@@ -551,6 +552,8 @@ void Function::Impl::decodeResults() {
 }
 
 //===--- Function ---------------------------------------------------------===//
+
+char ArgumentError::ID = 0;
 
 /// The error of using a Function that no Program compiled.
 static llvm::Error notCompiled() {

@@ -51,7 +51,10 @@ llvm::Error provideFields(const SceneDescription &scene, SetRegistry &registry,
         shape.push_back(static_cast<int>(dim));
       }
       if (llvm::Error err = set->addField(arg.field, type, shape))
-        return err;
+        return llvm::createStringError(
+            scene.path + ": sets." + arg.set + ": the program's function '" +
+            named.name + "' uses field '" + arg.field + "': " +
+            llvm::toString(std::move(err)));
       continue;
     }
     if (field->type == ComponentType::Float64 &&
@@ -94,6 +97,21 @@ llvm::Error checkSceneFields(const SceneDescription &scene, Program &program,
   return llvm::Error::success();
 }
 
+/// Where the scene gives the value bound to `arg`.
+std::string jsonPathOf(const SceneDescription &scene,
+                       const ArgumentBinding &arg) {
+  if (arg.kind == ArgumentBinding::Kind::Extern)
+    return "externs." + arg.name;
+  std::string setPath = "sets." + arg.set;
+  if (arg.kind != ArgumentBinding::Kind::Field)
+    return setPath;
+  if (const SetSpec *set = scene.findSet(arg.set))
+    for (const FieldSpec &field : set->fields)
+      if (field.name == arg.field)
+        return field.jsonPath;
+  return setPath;
+}
+
 /// Binds the sets and extern tensors `function` needs from the registry.
 llvm::Error bindFromScene(const SceneDescription &scene, SetRegistry &registry,
                           const std::string &name, Function &function) {
@@ -104,7 +122,8 @@ llvm::Error bindFromScene(const SceneDescription &scene, SetRegistry &registry,
           scene.path + ": sets: the program's function '" + name +
           "' uses set '" + setName + "', which the scene does not define");
     if (llvm::Error err = function.bind(setName, *set))
-      return err;
+      return llvm::createStringError(scene.path + ": sets." + setName + ": " +
+                                     llvm::toString(std::move(err)));
   }
   for (const ArgumentBinding &arg : function.signature().arguments) {
     if (arg.kind == ArgumentBinding::Kind::Parameter)
@@ -127,8 +146,14 @@ llvm::Error bindFromScene(const SceneDescription &scene, SetRegistry &registry,
             function.bind(arg.name, tensor->data(), tensor->type, tensor->shape))
       return err;
   }
-  return function.init();
+  return llvm::handleErrors(
+      function.init(), [&](const ArgumentError &err) -> llvm::Error {
+        return llvm::createStringError(scene.path + ": " +
+                                       jsonPathOf(scene, err.argument()) +
+                                       ": " + err.message());
+      });
 }
+
 
 double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
@@ -156,6 +181,8 @@ SceneTimeSummary SceneTimes::summarize() const {
   summary.frameMs = steady(frameMs);
   summary.assemblyMs = steady(assemblyMs);
   summary.solveMs = steady(solveMs);
+  if (!checkMs.empty())
+    summary.checkMs = steady(checkMs);
   summary.firstFrameMs = frameMs.front();
   return summary;
 }
@@ -224,7 +251,8 @@ SceneRunner::create(SceneDescription scene, const SceneRunOptions &options) {
 
   if (options.outputDirectory) {
     auto writer =
-        SceneOutputWriter::create(desc, registry, *options.outputDirectory);
+        SceneOutputWriter::create(desc, registry, *options.outputDirectory,
+                                  runner->frameCount);
     if (!writer)
       return writer.takeError();
     runner->writer = std::move(*writer);
@@ -263,11 +291,12 @@ llvm::Error SceneRunner::init() {
   Clock::time_point start = Clock::now();
   if (llvm::Error err = runAll(initFunctions, 0))
     return err;
+  if (checksFrames())
+    if (llvm::Error err = checkFrame(initFunctions, 0))
+      return err;
   timings.initMs = millisecondsSince(start);
   initDone = true;
-  if (writer)
-    return writer->writeFrame(0, frameCount == 0);
-  return llvm::Error::success();
+  return writeFrame(0);
 }
 
 llvm::Error SceneRunner::step(int count) {
@@ -284,13 +313,18 @@ llvm::Error SceneRunner::step(int count) {
     Clock::time_point frameStart = Clock::now();
     if (llvm::Error err = runAll(stepFunctions, frame))
       return err;
+    if (checksFrames()) {
+      Clock::time_point checkStart = Clock::now();
+      if (llvm::Error err = checkFrame(stepFunctions, frame))
+        return err;
+      timings.checkMs.push_back(millisecondsSince(checkStart));
+    }
     timings.frameMs.push_back(millisecondsSince(frameStart));
     PhaseTimes phases = readPhaseTimes();
     timings.assemblyMs.push_back(phases.assemblyMs);
     timings.solveMs.push_back(phases.solveMs);
-    if (writer)
-      if (llvm::Error err = writer->writeFrame(frame, frame == frameCount))
-        return err;
+    if (llvm::Error err = writeFrame(frame))
+      return err;
     if (options.progress && millisecondsSince(runStart) > 2000 &&
         millisecondsSince(lastProgress) > 1000) {
       llvm::errs() << "frame " << frame << " of " << frameCount << " ("
@@ -299,6 +333,29 @@ llvm::Error SceneRunner::step(int count) {
     }
   }
   return llvm::Error::success();
+}
+
+llvm::Error SceneRunner::checkFrame(const std::vector<NamedFunction> &group,
+                                    int frame) {
+  for (const NamedFunction &named : group) {
+    std::string problem = named.function.findNonFinite();
+    if (!problem.empty())
+      return llvm::createStringError(
+          description.path + ": frame " + llvm::Twine(frame) + ": after function '" +
+          named.name + "': " + problem +
+          " (rerun with --check-numerics to find the statement that "
+          "produced it, or --no-check to run on)");
+  }
+  return llvm::Error::success();
+}
+
+llvm::Error SceneRunner::writeFrame(int frame) {
+  if (!writer)
+    return llvm::Error::success();
+  if (llvm::Error err = writer->writeFrame(frame, frame == frameCount))
+    return err;
+  // The files that collect frames are complete after the last one.
+  return frame == frameCount ? writer->finish() : llvm::Error::success();
 }
 
 llvm::Error SceneRunner::run() {

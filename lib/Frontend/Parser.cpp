@@ -32,6 +32,41 @@ struct SyntaxError {};
 
 /// Deep nesting is reported rather than allowed to exhaust the stack.
 constexpr unsigned kMaxNesting = 200;
+/// Chains of operators (`a + a + ...`, `v''...`) build tall trees without
+/// nesting in the parser; the walks over them recurse on the height.
+constexpr unsigned kMaxHeight = 1000;
+
+/// Calls `f` on each operand of `e` (its direct subexpressions).
+void forEachOperand(const Expr &e, llvm::function_ref<void(const Expr &)> f) {
+  auto each = [&](const std::vector<ExprPtr> &list) {
+    for (const ExprPtr &operand : list)
+      if (operand)
+        f(*operand);
+  };
+  if (auto *call = llvm::dyn_cast<CallExpr>(&e)) {
+    each(call->args);
+  } else if (auto *read = llvm::dyn_cast<ReadExpr>(&e)) {
+    f(*read->base);
+    each(read->indices);
+  } else if (auto *field = llvm::dyn_cast<FieldExpr>(&e)) {
+    f(*field->base);
+  } else if (auto *setRead = llvm::dyn_cast<SetReadExpr>(&e)) {
+    f(*setRead->base);
+    each(setRead->offsets);
+    each(setRead->directions);
+  } else if (auto *unary = llvm::dyn_cast<UnaryExpr>(&e)) {
+    f(*unary->operand);
+  } else if (auto *binary = llvm::dyn_cast<BinaryExpr>(&e)) {
+    f(*binary->lhs);
+    f(*binary->rhs);
+  } else if (auto *compare = llvm::dyn_cast<CompareExpr>(&e)) {
+    each(compare->operands);
+  } else if (auto *transpose = llvm::dyn_cast<TransposeExpr>(&e)) {
+    f(*transpose->operand);
+  } else if (auto *map = llvm::dyn_cast<MapExpr>(&e)) {
+    each(map->args);
+  }
+}
 
 class Parser {
 public:
@@ -89,6 +124,19 @@ private:
     if (!is(TK::Ident))
       expected(what);
     return take().text.str();
+  }
+
+  /// Sets the height of a new node from its operands'; a tree taller than
+  /// kMaxHeight is an error at the node's operator.
+  template <typename T> std::unique_ptr<T> measured(std::unique_ptr<T> expr,
+                                                    SMLoc at) {
+    forEachOperand(*expr, [&](const Expr &operand) {
+      expr->height = std::max(expr->height, operand.height + 1);
+    });
+    if (expr->height > kMaxHeight)
+      fail(at, "expression nested too deeply (more than " +
+                   llvm::Twine(kMaxHeight) + " operators on one path)");
+    return expr;
   }
 
   struct NestingGuard {
@@ -797,6 +845,7 @@ std::unique_ptr<MapExpr> Parser::parseMapBody(SMLoc loc, bool allowReduce) {
   if (accept(TK::LParen)) {
     map->args = parseExprList(TK::RParen);
     expect(TK::RParen);
+    map = measured(std::move(map), loc);
   }
   expect(TK::KwTo);
   map->targetLoc = tok().loc();
@@ -832,8 +881,9 @@ ExprPtr Parser::parseOr() {
   ExprPtr lhs = parseAnd();
   while (is(TK::KwOr)) {
     SMLoc loc = take().loc();
-    lhs = std::make_unique<BinaryExpr>(loc, BinaryExpr::Op::Or, std::move(lhs),
-                                       parseAnd());
+    lhs = measured(std::make_unique<BinaryExpr>(loc, BinaryExpr::Op::Or,
+                                                std::move(lhs), parseAnd()),
+                   loc);
   }
   return lhs;
 }
@@ -842,8 +892,9 @@ ExprPtr Parser::parseAnd() {
   ExprPtr lhs = parseXor();
   while (is(TK::KwAnd)) {
     SMLoc loc = take().loc();
-    lhs = std::make_unique<BinaryExpr>(loc, BinaryExpr::Op::And,
-                                       std::move(lhs), parseXor());
+    lhs = measured(std::make_unique<BinaryExpr>(loc, BinaryExpr::Op::And,
+                                                std::move(lhs), parseXor()),
+                   loc);
   }
   return lhs;
 }
@@ -852,8 +903,10 @@ ExprPtr Parser::parseXor() {
   ExprPtr lhs = parseCompare();
   while (is(TK::KwXor)) {
     SMLoc loc = take().loc();
-    lhs = std::make_unique<BinaryExpr>(loc, BinaryExpr::Op::Xor,
-                                       std::move(lhs), parseCompare());
+    lhs = measured(std::make_unique<BinaryExpr>(loc, BinaryExpr::Op::Xor,
+                                                std::move(lhs),
+                                                parseCompare()),
+                   loc);
   }
   return lhs;
 }
@@ -882,14 +935,16 @@ ExprPtr Parser::parseCompare() {
     cmp->ops.push_back(op);
     cmp->operands.push_back(parseTerm());
   }
-  return cmp;
+  SMLoc opLoc = cmp->opLocs.front();
+  return measured(std::move(cmp), opLoc);
 }
 
 ExprPtr Parser::parseTerm() {
   if (is(TK::KwNot)) {
     NestingGuard guard(*this);
     SMLoc loc = take().loc();
-    return std::make_unique<UnaryExpr>(loc, UnaryExpr::Op::Not, parseTerm());
+    return measured(
+        std::make_unique<UnaryExpr>(loc, UnaryExpr::Op::Not, parseTerm()), loc);
   }
   return parseAdd();
 }
@@ -899,7 +954,8 @@ ExprPtr Parser::parseAdd() {
   while (is(TK::Plus) || is(TK::Minus)) {
     auto op = is(TK::Plus) ? BinaryExpr::Op::Add : BinaryExpr::Op::Sub;
     SMLoc loc = take().loc();
-    lhs = std::make_unique<BinaryExpr>(loc, op, std::move(lhs), parseMul());
+    lhs = measured(
+        std::make_unique<BinaryExpr>(loc, op, std::move(lhs), parseMul()), loc);
   }
   return lhs;
 }
@@ -917,7 +973,9 @@ ExprPtr Parser::parseMul() {
     default: return lhs;
     }
     SMLoc loc = take().loc();
-    lhs = std::make_unique<BinaryExpr>(loc, op, std::move(lhs), parseUnary());
+    lhs = measured(
+        std::make_unique<BinaryExpr>(loc, op, std::move(lhs), parseUnary()),
+        loc);
   }
 }
 
@@ -926,7 +984,7 @@ ExprPtr Parser::parseUnary() {
     NestingGuard guard(*this);
     auto op = is(TK::Minus) ? UnaryExpr::Op::Neg : UnaryExpr::Op::Plus;
     SMLoc loc = take().loc();
-    return std::make_unique<UnaryExpr>(loc, op, parseUnary());
+    return measured(std::make_unique<UnaryExpr>(loc, op, parseUnary()), loc);
   }
   return parsePow();
 }
@@ -937,8 +995,9 @@ ExprPtr Parser::parsePow() {
     return base;
   NestingGuard guard(*this);
   SMLoc loc = take().loc();
-  return std::make_unique<BinaryExpr>(loc, BinaryExpr::Op::Pow,
-                                      std::move(base), parsePow());
+  return measured(std::make_unique<BinaryExpr>(loc, BinaryExpr::Op::Pow,
+                                               std::move(base), parsePow()),
+                  loc);
 }
 
 bool Parser::looksLikeGenericCall() const {
@@ -965,8 +1024,10 @@ ExprPtr Parser::parsePostfix() {
     take();
     SMLoc fieldLoc = tok().loc();
     std::string field = take().text.str();
-    expr = std::make_unique<FieldExpr>(expr->loc, std::move(expr), field,
-                                       fieldLoc);
+    SMLoc loc = expr->loc;
+    expr = measured(
+        std::make_unique<FieldExpr>(loc, std::move(expr), field, fieldLoc),
+        fieldLoc);
   } else if (is(TK::LBracket)) {
     SMLoc loc = take().loc();
     auto read = std::make_unique<SetReadExpr>(loc, std::move(expr));
@@ -978,7 +1039,7 @@ ExprPtr Parser::parsePostfix() {
       }
     }
     expect(TK::RBracket);
-    expr = std::move(read);
+    expr = measured(std::move(read), loc);
   }
   if (is(TK::Dot)) {
     if (llvm::isa<ReadExpr>(expr.get()) && !expr->parenthesized && !tupleLike)
@@ -987,14 +1048,17 @@ ExprPtr Parser::parsePostfix() {
     take();
     SMLoc fieldLoc = tok().loc();
     std::string field = expectIdent("a field name");
-    expr = std::make_unique<FieldExpr>(expr->loc, std::move(expr), field,
-                                       fieldLoc);
+    SMLoc loc = expr->loc;
+    expr = measured(
+        std::make_unique<FieldExpr>(loc, std::move(expr), field, fieldLoc),
+        fieldLoc);
   }
   while (is(TK::LParen))
     expr = parseReadArgs(std::move(expr));
   while (is(TK::Quote)) {
     SMLoc loc = take().loc();
-    expr = std::make_unique<TransposeExpr>(loc, std::move(expr));
+    expr = measured(std::make_unique<TransposeExpr>(loc, std::move(expr)),
+                    loc);
   }
   if (is(TK::LParen))
     fail(tok().loc(), "an index cannot follow a transpose; write (v')(i)");
@@ -1004,10 +1068,11 @@ ExprPtr Parser::parsePostfix() {
 }
 
 ExprPtr Parser::parseReadArgs(ExprPtr base) {
-  take();
-  auto read = std::make_unique<ReadExpr>(base->loc, std::move(base));
+  SMLoc open = take().loc();
+  SMLoc loc = base->loc;
+  auto read = std::make_unique<ReadExpr>(loc, std::move(base));
   if (accept(TK::RParen))
-    return read;
+    return measured(std::move(read), open);
   do {
     read->indexLocs.push_back(tok().loc());
     if (is(TK::Colon) && (is(TK::Comma, 1) || is(TK::RParen, 1))) {
@@ -1018,7 +1083,7 @@ ExprPtr Parser::parseReadArgs(ExprPtr base) {
     }
   } while (accept(TK::Comma));
   expect(TK::RParen);
-  return read;
+  return measured(std::move(read), open);
 }
 
 ExprPtr Parser::parsePrimary() {
@@ -1042,7 +1107,7 @@ ExprPtr Parser::parsePrimary() {
       expect(TK::LParen);
       call->args = parseExprList(TK::RParen);
       expect(TK::RParen);
-      return call;
+      return measured(std::move(call), loc);
     }
     return std::make_unique<NameExpr>(loc, take().text.str());
   }

@@ -146,6 +146,19 @@ std::optional<Dim> Sema::resolveDim(const DimExpr &dim, bool forGenericArg) {
   return Dim::ofSet(var);
 }
 
+/// No element type has this many endpoints or tuple members; the types
+/// below hold one entry per repetition.
+constexpr int64_t kMaxRepeat = 1024;
+
+bool Sema::checkRepeatBound(const TypeExpr &type, llvm::StringRef what) {
+  if (type.repeat <= kMaxRepeat)
+    return true;
+  diags.error(type.repeatLoc, what + " can be at most " +
+                                  std::to_string(kMaxRepeat) + ", found " +
+                                  std::to_string(type.repeat));
+  return false;
+}
+
 TypePtr Sema::resolveType(const TypeExpr &type) {
   switch (type.kind) {
   case TypeExpr::Kind::Scalar:
@@ -218,6 +231,8 @@ TypePtr Sema::resolveType(const TypeExpr &type) {
         diags.error(type.repeatLoc, "a grid needs a positive dimension count");
         return Type::error();
       }
+      if (!checkRepeatBound(type, "a grid's dimension count"))
+        return Type::error();
       const Type &points = *set->endpoints.front()->type;
       if (!points.endpoints.empty()) {
         diags.error(type.endpoints.front().loc,
@@ -235,6 +250,8 @@ TypePtr Sema::resolveType(const TypeExpr &type) {
                         std::to_string(type.repeat));
         return Type::error();
       }
+      if (!checkRepeatBound(type, "an edge set's arity"))
+        return Type::error();
       set->endpoints.assign(type.repeat, set->endpoints.front());
     }
     return set;
@@ -254,6 +271,8 @@ TypePtr Sema::resolveType(const TypeExpr &type) {
                                         std::to_string(type.repeat));
         return Type::error();
       }
+      if (!checkRepeatBound(type, "a tuple's length"))
+        return Type::error();
       tuple->members.assign(type.repeat, element);
       return tuple;
     }

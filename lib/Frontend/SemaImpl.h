@@ -35,6 +35,9 @@ public:
   void checkTestLine(TestLine &test);
   TypePtr resolveType(const TypeExpr &type);
   std::optional<Dim> resolveDim(const DimExpr &dim, bool forGenericArg);
+  /// Reports a repeat count (`S*n`, `(E*n)`, `grid[n]`) too large to
+  /// represent; `what` names it.
+  bool checkRepeatBound(const TypeExpr &type, llvm::StringRef what);
 
   // Statements (Sema.cpp).
   void checkBlock(Block &block);

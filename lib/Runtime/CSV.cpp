@@ -2,9 +2,8 @@
 
 #include "simit/Runtime/CSV.h"
 
+#include "AtomicFile.h"
 #include "FieldText.h"
-
-#include "llvm/Support/FileSystem.h"
 
 using namespace simit;
 
@@ -69,16 +68,8 @@ llvm::Error simit::writeCSV(llvm::StringRef path, const Set &set,
                             llvm::ArrayRef<std::string> fields) {
   if (llvm::Error err = checkCSVFields(set, fields))
     return err;
-  std::error_code ec;
-  llvm::raw_fd_ostream os(path, ec, llvm::sys::fs::OF_Text);
-  if (ec)
-    return llvm::createStringError(path + ": cannot write: " + ec.message());
-  os << csvHeader(set, fields, false);
-  if (llvm::Error err = writeCSVRows(os, set, fields, std::nullopt))
-    return err;
-  os.close();
-  if (os.has_error())
-    return llvm::createStringError(path + ": cannot write: " +
-                                   os.error().message());
-  return llvm::Error::success();
+  return detail::writeFileAtomically(path, [&](llvm::raw_ostream &os) {
+    os << csvHeader(set, fields, false);
+    return writeCSVRows(os, set, fields, std::nullopt);
+  });
 }

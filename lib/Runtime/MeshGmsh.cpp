@@ -6,6 +6,8 @@
 
 #include "llvm/ADT/DenseMap.h"
 
+#include <algorithm>
+
 using namespace simit;
 using namespace simit::detail;
 
@@ -99,7 +101,7 @@ llvm::Error GmshReader::addNode(long long tag, const Tokens &tokens,
     return reader.error("expected 3 coordinates");
   std::array<double, 3> point;
   for (int d = 0; d < 3; ++d) {
-    auto value = reader.parseDouble(tokens[first + d], "a coordinate");
+    auto value = reader.parseFiniteDouble(tokens[first + d], "a coordinate");
     if (!value)
       return value.takeError();
     point[d] = *value;
@@ -168,8 +170,11 @@ llvm::Error GmshReader::readNodesV4(Mesh &mesh) {
       }
       continue;
     }
-    // 4.1 lists the block's tags first, then its coordinates.
-    std::vector<long long> tags(*count);
+    // 4.1 lists the block's tags first, then its coordinates: room for
+    // the tags the file can hold, not for what the header says.
+    std::vector<long long> tags;
+    tags.reserve(std::min<size_t>(std::max(*count, 0LL),
+                                  reader.recordCapacity(1)));
     for (long long i = 0; i < *count; ++i) {
       if (auto err = reader.requireTokens(tokens, "a node tag"))
         return err;
@@ -178,7 +183,7 @@ llvm::Error GmshReader::readNodesV4(Mesh &mesh) {
       auto tag = intAt(tokens, 0, "a node tag");
       if (!tag)
         return tag.takeError();
-      tags[i] = *tag;
+      tags.push_back(*tag);
     }
     for (long long i = 0; i < *count; ++i) {
       if (auto err = reader.requireTokens(tokens, "<x> <y> <z>"))

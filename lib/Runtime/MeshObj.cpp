@@ -21,7 +21,7 @@ llvm::Expected<Mesh> simit::loadObj(llvm::StringRef path) {
         return reader->error("expected 'v x y z [w]'");
       std::array<double, 3> point;
       for (int d = 0; d < 3; ++d) {
-        auto value = reader->parseDouble(tokens[1 + d], "a coordinate");
+        auto value = reader->parseFiniteDouble(tokens[1 + d], "a coordinate");
         if (!value)
           return value.takeError();
         point[d] = *value;

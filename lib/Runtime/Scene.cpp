@@ -15,7 +15,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cfloat>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <map>
 
@@ -55,7 +57,7 @@ private:
   llvm::Expected<std::string> getString(const Json &value,
                                         const std::string &path);
   llvm::Expected<int> getInt(const Json &value, const std::string &path,
-                             int minimum);
+                             int minimum, int maximum = INT32_MAX);
   llvm::Expected<std::vector<std::string>>
   getNames(const Json &value, const std::string &path);
   llvm::Expected<std::vector<int>> getShape(const Json &value,
@@ -73,6 +75,10 @@ private:
   llvm::Error readConstant(const Json &value, const std::string &path,
                            ComponentType type, std::vector<int> &shape,
                            bool inferShape, std::vector<double> &values);
+  /// Checks that `values` fit in `type` (int32 and float32 hold less than
+  /// the doubles JSON numbers are read as).
+  llvm::Error checkRange(const std::string &path, ComponentType type,
+                         llvm::ArrayRef<double> values);
 
   /// Reads an array of constant blocks, one per element, appending their
   /// components to `values`; the first block gives the shape when inferred.
@@ -103,6 +109,10 @@ private:
   std::string name, directory;
 };
 
+/// Each level multiplies the tets by 8: past this, no machine holds the
+/// result of even a one-tet mesh.
+constexpr int kMaxRefine = 10;
+
 const char *jsonKind(const Json &value) {
   switch (value.type()) {
   case Json::value_t::null:
@@ -125,6 +135,12 @@ std::string shapeText(llvm::ArrayRef<int> shape) {
   for (size_t i = 0; i < shape.size(); ++i)
     text += (i ? ", " : "") + std::to_string(shape[i]);
   return text + "]";
+}
+
+std::string numberText(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", value);
+  return text;
 }
 
 size_t product(llvm::ArrayRef<int> shape) {
@@ -176,11 +192,19 @@ llvm::Expected<std::string> SceneParser::getString(const Json &value,
 }
 
 llvm::Expected<int> SceneParser::getInt(const Json &value,
-                                        const std::string &path, int minimum) {
-  if (!value.is_number_integer() || value.get<long long>() < minimum ||
-      value.get<long long>() > INT32_MAX)
-    return error(path, "expected an integer of at least " +
-                           llvm::Twine(minimum));
+                                        const std::string &path, int minimum,
+                                        int maximum) {
+  // Large unsigned numbers do not fit in a long long: compare as doubles
+  // first.
+  if (!value.is_number_integer() || value.get<double>() < minimum ||
+      value.get<double>() > maximum) {
+    if (maximum == INT32_MAX)
+      return error(path, "expected an integer of at least " +
+                             llvm::Twine(minimum) + " (and at most " +
+                             llvm::Twine(maximum) + ")");
+    return error(path, "expected an integer from " + llvm::Twine(minimum) +
+                           " to " + llvm::Twine(maximum));
+  }
   return static_cast<int>(value.get<long long>());
 }
 
@@ -313,6 +337,29 @@ llvm::Error SceneParser::readConstant(const Json &value,
                                                        "boolean");
     break;
   }
+  return checkRange(path, type, values);
+}
+
+llvm::Error SceneParser::checkRange(const std::string &path,
+                                    ComponentType type,
+                                    llvm::ArrayRef<double> values) {
+  double low, high;
+  if (type == ComponentType::Int32)
+    low = INT32_MIN, high = INT32_MAX;
+  else if (type == ComponentType::Float32)
+    low = -FLT_MAX, high = FLT_MAX;
+  else
+    return llvm::Error::success();
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (values[i] >= low && values[i] <= high)
+      continue;
+    std::string where =
+        values.size() == 1 ? path : path + ": component " + std::to_string(i);
+    return error(where, "expected " + componentTypeName(type) +
+                            " values from " + numberText(low) + " to " +
+                            numberText(high) + ", found " +
+                            numberText(values[i]));
+  }
   return llvm::Error::success();
 }
 
@@ -343,7 +390,8 @@ llvm::Error SceneParser::parseMeshes(const Json &value,
         return file.takeError();
       mesh.path = resolve(*file);
       if (entry.contains("refine")) {
-        auto refine = getInt(entry["refine"], child(path, "refine"), 0);
+        auto refine = getInt(entry["refine"], child(path, "refine"), 0,
+                             kMaxRefine);
         if (!refine)
           return refine.takeError();
         mesh.refine = *refine;
@@ -946,12 +994,85 @@ const SetSpec *SceneDescription::findSet(llvm::StringRef setName) const {
   return nullptr;
 }
 
+namespace {
+
+/// Deeper JSON than this is no scene; the readers below recurse on arrays.
+constexpr int kMaxJsonNesting = 64;
+
+/// Follows the JSON path of the value being parsed, for errors that the
+/// JSON library raises without one (a number out of range) and for nesting
+/// too deep to read.
+class JsonPathTracker {
+public:
+  struct TooDeep {};
+
+  bool operator()(int depth, nlohmann::detail::parse_event_t event,
+                  Json &parsed) {
+    using Event = nlohmann::detail::parse_event_t;
+    switch (event) {
+    case Event::object_start:
+    case Event::array_start:
+      if (depth >= kMaxJsonNesting)
+        throw TooDeep();
+      frames.push_back({event == Event::array_start, "", 0});
+      break;
+    case Event::key:
+      frames.back().key = parsed.get<std::string>();
+      break;
+    case Event::object_end:
+    case Event::array_end:
+      frames.pop_back();
+      finishedValue();
+      break;
+    case Event::value:
+      finishedValue();
+      break;
+    }
+    return true;
+  }
+
+  /// The path of the value being read, as the scene errors spell it.
+  std::string path() const {
+    std::string text;
+    for (const Frame &frame : frames) {
+      if (frame.isArray)
+        text += "[" + std::to_string(frame.index) + "]";
+      else
+        text += (text.empty() ? "" : ".") + frame.key;
+    }
+    return text.empty() ? "the top level" : text;
+  }
+
+private:
+  struct Frame {
+    bool isArray;
+    std::string key;
+    size_t index;
+  };
+  void finishedValue() {
+    if (!frames.empty() && frames.back().isArray)
+      ++frames.back().index;
+  }
+  std::vector<Frame> frames;
+};
+
+} // namespace
+
 llvm::Expected<SceneDescription> simit::parseScene(llvm::StringRef text,
                                                    llvm::StringRef name,
                                                    llvm::StringRef directory) {
   Json root;
+  auto tracker = std::make_shared<JsonPathTracker>();
   try {
-    root = Json::parse(text.begin(), text.end());
+    root = Json::parse(
+        text.begin(), text.end(),
+        [tracker](int depth, nlohmann::detail::parse_event_t event,
+                  Json &parsed) { return (*tracker)(depth, event, parsed); });
+  } catch (const JsonPathTracker::TooDeep &) {
+    return llvm::createStringError(name + ": " + tracker->path() +
+                                   ": arrays and objects nested too deeply "
+                                   "(more than " +
+                                   llvm::Twine(kMaxJsonNesting) + " levels)");
   } catch (const Json::parse_error &e) {
     // Turn the byte offset into line:column.
     size_t offset = std::min<size_t>(e.byte ? e.byte - 1 : 0, text.size());
@@ -968,6 +1089,14 @@ llvm::Expected<SceneDescription> simit::parseScene(llvm::StringRef text,
       what = what.drop_front(colon + 2);
     return llvm::createStringError(name + ":" + llvm::Twine(line) + ":" +
                                    llvm::Twine(column) +
+                                   ": invalid JSON: " + what);
+  } catch (const Json::exception &e) {
+    // A number too large for a double ("number overflow parsing '1e999'").
+    llvm::StringRef what = e.what();
+    size_t bracket = what.find("] ");
+    if (bracket != llvm::StringRef::npos)
+      what = what.drop_front(bracket + 2);
+    return llvm::createStringError(name + ": " + tracker->path() +
                                    ": invalid JSON: " + what);
   }
   SceneDescription scene;

@@ -2,9 +2,12 @@
 
 #include "simit/Runtime/Scene.h"
 
+#include "MemoryBudget.h"
 #include "TextReader.h"
 
+#include "llvm/Support/Format.h"
 #include "llvm/Support/FormatVariadic.h"
+#include "llvm/Support/raw_ostream.h"
 
 #include <cmath>
 
@@ -111,6 +114,11 @@ private:
   }
 
   llvm::Error loadMeshes();
+  /// The number of elements `spec` will have, or nothing when it does not
+  /// fit in 64 bits.
+  std::optional<uint64_t> elementCount(const SetSpec &spec);
+  /// Checks that the elements of `spec` and their fields fit in memory.
+  llvm::Error checkSetMemory(const SetSpec &spec);
   llvm::Error createSet(const SetSpec &spec);
   llvm::Error fillField(const SetSpec &spec, Set &set,
                         const FieldSpec &field);
@@ -131,13 +139,75 @@ private:
   std::map<std::string, Box> boxes;
 };
 
+/// The bytes refineTets needs for one level of `mesh`, generously: eight
+/// tets per tet, at most six new points per tet in a vector that may
+/// double, and a hash map node and bucket per edge midpoint.
+static std::optional<uint64_t> refinementBytes(const Mesh &mesh) {
+  uint64_t tets = mesh.tets.size(), points = mesh.points.size();
+  auto tetBytes = detail::checkedProduct({tets, 8, sizeof(mesh.tets[0])});
+  auto midpoints = detail::checkedProduct({tets, 6});
+  if (!tetBytes || !midpoints)
+    return std::nullopt;
+  auto pointBytes = detail::checkedProduct(
+      {points + *midpoints, 2, sizeof(mesh.points[0])});
+  auto mapBytes = detail::checkedProduct(*midpoints, 6 * sizeof(uint64_t));
+  if (!pointBytes || !mapBytes)
+    return std::nullopt;
+  return *tetBytes + *pointBytes + *mapBytes;
+}
+
+/// Warns about tets of zero volume and tets whose orientation is against
+/// that of most of the mesh (the program's rest shapes would be singular
+/// or inverted), naming the count and the first one.
+static void warnAboutBadTets(const Mesh &mesh, const std::string &where) {
+  size_t positive = 0, negative = 0;
+  std::vector<double> volumes(mesh.tets.size());
+  std::vector<bool> degenerate(mesh.tets.size());
+  for (size_t t = 0; t < mesh.tets.size(); ++t) {
+    const std::array<int, 4> &tet = mesh.tets[t];
+    volumes[t] = signedTetVolume(mesh, tet);
+    // Zero up to rounding, relative to the edges from the first vertex.
+    double scale = 1;
+    for (int k = 1; k < 4; ++k) {
+      double length = 0;
+      for (int d = 0; d < 3; ++d) {
+        double delta = mesh.points[tet[k]][d] - mesh.points[tet[0]][d];
+        length += delta * delta;
+      }
+      scale *= std::sqrt(length);
+    }
+    degenerate[t] = std::abs(volumes[t]) <= 1e-12 * scale;
+    if (!degenerate[t])
+      (volumes[t] > 0 ? positive : negative) += 1;
+  }
+  bool majorityPositive = positive >= negative;
+  size_t bad = 0, first = 0;
+  for (size_t t = 0; t < mesh.tets.size(); ++t)
+    if (degenerate[t] || (volumes[t] > 0) != majorityPositive)
+      if (bad++ == 0)
+        first = t;
+  if (bad == 0)
+    return;
+  llvm::errs() << where << ": warning: " << bad << " of " << mesh.tets.size()
+               << " tetrahedra are degenerate or inverted (the first is "
+               << "tetrahedron " << first << ", of volume "
+               << llvm::format("%g", volumes[first]) << ")\n";
+}
+
 llvm::Error SetBuilder::loadMeshes() {
   for (const MeshSpec &spec : scene.meshes) {
+    std::string path = "meshes." + spec.name;
     auto mesh = loadMesh(spec.path);
     if (!mesh)
-      return error("meshes." + spec.name, llvm::toString(mesh.takeError()));
-    for (int i = 0; i < spec.refine; ++i)
+      return error(path, llvm::toString(mesh.takeError()));
+    warnAboutBadTets(*mesh, scene.path + ": " + path);
+    for (int i = 0; i < spec.refine; ++i) {
+      if (llvm::Error err = detail::checkMemoryRequest(
+              refinementBytes(*mesh),
+              "refinement level " + llvm::Twine(i + 1) + " of the mesh"))
+        return error(path + ".refine", llvm::toString(std::move(err)));
       *mesh = refineTets(*mesh);
+    }
     Box box{{0, 0, 0}, {0, 0, 0}};
     for (size_t p = 0; p < mesh->points.size(); ++p)
       for (int d = 0; d < 3; ++d) {
@@ -164,8 +234,61 @@ llvm::Error addElements(Set &set,
   return llvm::Error::success();
 }
 
+std::optional<uint64_t> SetBuilder::elementCount(const SetSpec &spec) {
+  switch (spec.kind) {
+  case SetSpec::Points:
+    return meshes[spec.mesh]->points.size();
+  case SetSpec::Elements: {
+    const Mesh &mesh = *meshes[spec.mesh];
+    return spec.elements == "edges"       ? mesh.edges.size()
+           : spec.elements == "triangles" ? mesh.triangles.size()
+                                          : mesh.tets.size();
+  }
+  case SetSpec::Sized:
+    return spec.size;
+  case SetSpec::Grid: {
+    // One edge per point and dimension.
+    std::vector<uint64_t> factors(spec.dims.begin(), spec.dims.end());
+    factors.push_back(spec.dims.size());
+    return detail::checkedProduct(factors);
+  }
+  case SetSpec::Listed:
+    return spec.listed.size();
+  }
+  return std::nullopt;
+}
+
+llvm::Error SetBuilder::checkSetMemory(const SetSpec &spec) {
+  // Endpoint indices, then each field's block.
+  std::optional<uint64_t> perElement =
+      std::max<uint64_t>(1, spec.endpoints.size()) * sizeof(int);
+  for (const FieldSpec &field : spec.fields) {
+    std::vector<uint64_t> factors(field.shape.begin(), field.shape.end());
+    factors.push_back(componentSize(field.type));
+    std::optional<uint64_t> block = detail::checkedProduct(factors);
+    if (!block || *perElement + *block < *block) {
+      perElement = std::nullopt;
+      break;
+    }
+    *perElement += *block;
+  }
+  std::optional<uint64_t> count = elementCount(spec);
+  std::optional<uint64_t> bytes;
+  if (count && perElement)
+    bytes = detail::checkedProduct(*count, *perElement);
+  std::string elements =
+      count ? std::to_string(*count) : std::string("more than 2^64");
+  if (llvm::Error err = detail::checkMemoryRequest(
+          bytes, "the " + elements + " elements of set \"" + spec.name +
+                     "\" and their fields"))
+    return error("sets." + spec.name, llvm::toString(std::move(err)));
+  return llvm::Error::success();
+}
+
 llvm::Error SetBuilder::createSet(const SetSpec &spec) {
   std::string path = "sets." + spec.name;
+  if (llvm::Error err = checkSetMemory(spec))
+    return err;
   std::unique_ptr<Set> set;
   switch (spec.kind) {
   case SetSpec::Points: {

@@ -7,6 +7,7 @@
 #include "llvm/ADT/StringSwitch.h"
 
 #include <cctype>
+#include <cmath>
 
 using namespace simit;
 
@@ -34,6 +35,8 @@ struct SceneExpression::Node {
   };
   Kind kind;
   bool boolean = false;
+  /// The longest path to a leaf, counting this node.
+  unsigned height = 1;
   double value = 0;
   int index = 0;
   std::unique_ptr<Node> operands[3];
@@ -42,6 +45,11 @@ struct SceneExpression::Node {
 namespace {
 
 using Node = SceneExpression::Node;
+
+/// Parsing, evaluating and destroying an expression recurse on its nesting
+/// and on the height of its tree, so both are bounded.
+constexpr unsigned kMaxNesting = 200;
+constexpr unsigned kMaxHeight = 1000;
 
 class Parser {
 public:
@@ -96,7 +104,40 @@ private:
     node->operands[0] = std::move(a);
     node->operands[1] = std::move(b);
     node->operands[2] = std::move(c);
+    for (const std::unique_ptr<Node> &operand : node->operands)
+      if (operand)
+        node->height = std::max(node->height, operand->height + 1);
     return node;
+  }
+
+  /// Counts one level of recursion of the parser; the error names the
+  /// column where the limit was passed.
+  class NestingGuard {
+  public:
+    explicit NestingGuard(Parser &parser) : parser(parser) {
+      ++parser.nesting;
+    }
+    ~NestingGuard() { --parser.nesting; }
+    bool tooDeep() const { return parser.nesting > kMaxNesting; }
+
+  private:
+    Parser &parser;
+  };
+  llvm::Error nestingError() const {
+    return error("expression nested too deeply (more than " +
+                 llvm::Twine(kMaxNesting) + " levels)");
+  }
+  /// Checks a new node's height; chains of binary operators grow the tree
+  /// without recursing in the parser.
+  llvm::Expected<std::unique_ptr<Node>> checked(std::unique_ptr<Node> node,
+                                                size_t at) const {
+    if (node->height <= kMaxHeight)
+      return node;
+    return llvm::createStringError("column " + llvm::Twine(at + 1) +
+                                   ": expression nested too deeply (more "
+                                   "than " +
+                                   llvm::Twine(kMaxHeight) +
+                                   " operators on one path)");
   }
 
   llvm::Error expectType(const Node &node, bool boolean, size_t at,
@@ -111,6 +152,9 @@ private:
 
   // conditional := or ['if' or 'else' conditional]
   llvm::Expected<std::unique_ptr<Node>> parseConditional() {
+    NestingGuard guard(*this);
+    if (guard.tooDeep())
+      return nestingError();
     auto thenValue = parseOr();
     if (!thenValue)
       return thenValue.takeError();
@@ -150,6 +194,8 @@ private:
     if (!lhs)
       return lhs.takeError();
     while (true) {
+      skipSpace();
+      size_t opAt = pos;
       if (!accept(isOr ? "or" : "and"))
         return lhs;
       if (auto err = expectType(**lhs, true, at,
@@ -163,8 +209,11 @@ private:
       if (auto err = expectType(**rhs, true, at,
                                 isOr ? "operand of 'or'" : "operand of 'and'"))
         return err;
-      lhs = make(isOr ? Node::Or : Node::And, true, std::move(*lhs),
-                 std::move(*rhs));
+      lhs = checked(make(isOr ? Node::Or : Node::And, true, std::move(*lhs),
+                         std::move(*rhs)),
+                    opAt);
+      if (!lhs)
+        return lhs.takeError();
     }
   }
 
@@ -172,6 +221,9 @@ private:
   llvm::Expected<std::unique_ptr<Node>> parseNot() {
     if (!accept("not"))
       return parseComparison();
+    NestingGuard guard(*this);
+    if (guard.tooDeep())
+      return nestingError();
     skipSpace();
     size_t at = pos;
     auto operand = parseNot();
@@ -225,6 +277,8 @@ private:
     if (!lhs)
       return lhs.takeError();
     while (true) {
+      skipSpace();
+      size_t opAt = pos;
       Node::Kind kind;
       if (isSum && accept("+"))
         kind = Node::Add;
@@ -245,7 +299,9 @@ private:
         return rhs.takeError();
       if (auto err = expectType(**rhs, false, at, "arithmetic operand"))
         return err;
-      lhs = make(kind, false, std::move(*lhs), std::move(*rhs));
+      lhs = checked(make(kind, false, std::move(*lhs), std::move(*rhs)), opAt);
+      if (!lhs)
+        return lhs.takeError();
     }
   }
   llvm::Expected<std::unique_ptr<Node>> parseSum() {
@@ -256,6 +312,9 @@ private:
   llvm::Expected<std::unique_ptr<Node>> parseUnary() {
     if (!accept("-"))
       return parsePrimary();
+    NestingGuard guard(*this);
+    if (guard.tooDeep())
+      return nestingError();
     skipSpace();
     size_t at = pos;
     auto operand = parseUnary();
@@ -290,10 +349,14 @@ private:
                (text[pos - 1] == 'e' || text[pos - 1] == 'E'))))
         ++pos;
       auto node = make(Node::Number, false);
-      if (!detail::parseDoubleToken(text.slice(start, pos), node->value)) {
-        llvm::StringRef word = text.slice(start, pos);
+      llvm::StringRef word = text.slice(start, pos);
+      if (!detail::parseDoubleToken(word, node->value)) {
         pos = start;
         return error("expected a number, found '" + word + "'");
+      }
+      if (!std::isfinite(node->value)) {
+        pos = start;
+        return error("expected a finite number, found '" + word + "'");
       }
       return node;
     }
@@ -336,6 +399,7 @@ private:
 
   llvm::StringRef text;
   size_t pos = 0;
+  unsigned nesting = 0;
 };
 
 double evaluateNode(const Node &node, const CoordinateFrame &frame) {

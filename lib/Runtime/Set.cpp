@@ -4,6 +4,8 @@
 
 #include "simit/Runtime/SparsityPattern.h"
 
+#include "MemoryBudget.h"
+
 #include "llvm/Support/ErrorHandling.h"
 
 #include <algorithm>
@@ -276,6 +278,13 @@ llvm::Error Set::addField(llvm::StringRef name, ComponentType type,
       return llvm::createStringError(
           "set '" + setName + "': field '" + name +
           "': expected positive dimensions, found " + llvm::Twine(dim));
+  std::vector<uint64_t> factors(shape.begin(), shape.end());
+  factors.push_back(componentSize(type));
+  factors.push_back(std::max(1, capacity));
+  if (llvm::Error err = detail::checkMemoryRequest(
+          detail::checkedProduct(factors),
+          "field '" + name + "' of set '" + setName + "'"))
+    return err;
   FieldDescriptor descriptor{name.str(), type, {shape.begin(), shape.end()}};
   fieldStorage.push_back(makeStorage(std::move(descriptor), capacity));
   ++setVersion;

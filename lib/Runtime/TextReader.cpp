@@ -3,6 +3,7 @@
 #include "TextReader.h"
 
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 
 using namespace simit;
@@ -93,5 +94,15 @@ llvm::Expected<double> TextReader::parseDouble(llvm::StringRef token,
   double value;
   if (!parseDoubleToken(token, value))
     return error("expected a number for " + what + ", found '" + token + "'");
+  return value;
+}
+
+llvm::Expected<double>
+TextReader::parseFiniteDouble(llvm::StringRef token,
+                              const llvm::Twine &what) const {
+  auto value = parseDouble(token, what);
+  if (value && !std::isfinite(*value))
+    return error("expected a finite number for " + what + ", found '" +
+                 token + "'");
   return value;
 }

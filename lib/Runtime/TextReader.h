@@ -49,6 +49,19 @@ public:
                                      const llvm::Twine &what) const;
   llvm::Expected<double> parseDouble(llvm::StringRef token,
                                      const llvm::Twine &what) const;
+  /// parseDouble for values that must be finite (coordinates): NaN and
+  /// infinities are errors.
+  llvm::Expected<double> parseFiniteDouble(llvm::StringRef token,
+                                           const llvm::Twine &what) const;
+
+  /// The most records of `tokens` tokens each that the rest of the file
+  /// can hold (a token and a separator take two bytes at least): what a
+  /// count read from a header may reserve room for before the records are
+  /// read, so that a header promising 2e9 points on a short file cannot
+  /// allocate gigabytes.
+  size_t recordCapacity(unsigned tokens) const {
+    return (rest.size() + 1) / (2 * static_cast<size_t>(tokens));
+  }
 
 private:
   TextReader(std::string name, std::unique_ptr<llvm::MemoryBuffer> buffer,

@@ -2,9 +2,9 @@
 
 #include "simit/Runtime/VTK.h"
 
+#include "AtomicFile.h"
 #include "FieldText.h"
 
-#include "llvm/Support/FileSystem.h"
 
 using namespace simit;
 
@@ -161,15 +161,7 @@ llvm::Error simit::writeVTU(llvm::StringRef path, const Set &points,
                             const VTKOptions &options) {
   if (llvm::Error err = checkVTKOptions(points, options))
     return err;
-  std::error_code ec;
-  llvm::raw_fd_ostream os(path, ec, llvm::sys::fs::OF_Text);
-  if (ec)
-    return llvm::createStringError(path + ": cannot write: " + ec.message());
-  if (llvm::Error err = writeVTU(os, points, options))
-    return err;
-  os.close();
-  if (os.has_error())
-    return llvm::createStringError(path + ": cannot write: " +
-                                   os.error().message());
-  return llvm::Error::success();
+  return detail::writeFileAtomically(path, [&](llvm::raw_ostream &os) {
+    return writeVTU(os, points, options);
+  });
 }

@@ -59,6 +59,10 @@ static cl::opt<bool> checkNumerics(cl::cat(runCategory),
     "check-numerics",
     cl::desc("Stop at the first NaN or infinity a function leaves in a bound "
              "field or extern"));
+static cl::opt<bool>
+    noCheck(cl::cat(runCategory), "no-check",
+            cl::desc("Do not scan the state for NaN or infinity after every "
+                     "frame (for benchmarks)"));
 static cl::opt<bool> float32(cl::cat(runCategory), "float32",
                              cl::desc("Compile `float` as single precision"));
 static cl::opt<bool> noProgress(cl::cat(runCategory), "no-progress",
@@ -97,6 +101,10 @@ static void printTimeSummary(const SceneTimeSummary &times, int frames) {
   os << llvm::format("  solve:   %10.3f ms (solves, and while loops "
                      "without assemblies)\n",
                      times.solveMs);
+  if (times.checkMs > 0)
+    os << llvm::format("  check:   %10.3f ms (the scan of the state for NaN "
+                       "and infinity)\n",
+                       times.checkMs);
 }
 
 /// Builds the scene's sets, compiles the program, runs "init" once and
@@ -113,6 +121,7 @@ static int runSceneFile(FloatPrecision precision) {
   options.precision = precision;
   options.timePhases = printTimes;
   options.checkNumerics = checkNumerics;
+  options.checkFrames = !noCheck;
   options.progress = !noProgress;
   auto runner = SceneRunner::create(std::move(*scene), options);
   if (!runner)

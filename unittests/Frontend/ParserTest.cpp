@@ -348,6 +348,42 @@ TEST(Parser, DeepNestingIsReportedNotACrash) {
             std::string::npos);
 }
 
+std::string repeated(const std::string &text, size_t times) {
+  std::string result;
+  result.reserve(text.size() * times);
+  for (size_t i = 0; i < times; ++i)
+    result += text;
+  return result;
+}
+
+TEST(Parser, TallOperatorChainsAreReportedNotACrash) {
+  // Chains nest in the tree, not in the parser: `a + a + ...` is
+  // ((a + a) + a) + ..., 100000 levels deep for sema and IR generation.
+  for (const char *link : {" + a", " * a", " and a", " or a", "'", "(0)"}) {
+    std::string err = parseRhs("a" + repeated(link, 100000));
+    EXPECT_NE(err.find("expression nested too deeply (more than 1000 "
+                       "operators on one path)"),
+              std::string::npos)
+        << link << ": " << err.substr(0, 200);
+  }
+  EXPECT_NE(parseRhs(repeated("-", 100000) + "a").find("too deeply"),
+            std::string::npos);
+  EXPECT_NE(parseRhs(repeated("not ", 100000) + "a").find("too deeply"),
+            std::string::npos);
+  // The error names the operator that passed the limit: the 1000th '+',
+  // at column 9 + 4 * 999.
+  Compilation c("func f()\n  x = a" + repeated(" + a", 2000) + ";\nend\n",
+                false);
+  EXPECT_TRUE(c.hasError("2:4005", "nested too deeply"))
+      << c.allErrors().substr(0, 200);
+}
+
+TEST(Parser, ChainsBelowTheLimitParseAndCheck) {
+  Compilation c("func f(a : float) -> (x : float)\n  x = a" +
+                repeated(" + a", 998) + ";\nend\n");
+  EXPECT_TRUE(c.ok) << c.allErrors().substr(0, 200);
+}
+
 TEST(Parser, ForDomainLookahead) {
   Compilation c("func f()\n for i in n:m\n end\n for p in S\n end\nend\n",
                 false);

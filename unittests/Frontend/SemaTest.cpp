@@ -270,6 +270,17 @@ TEST(SemaDecls, TupleTypes) {
                "redefinition of tuple member");
 }
 
+TEST(SemaDecls, RepeatCountsAreBounded) {
+  // Each repetition is a member of the type: 2^31 - 1 would take gigabytes.
+  EXPECT_ERROR(kDecls + kSets + "func f(t : (E*2147483647))\nend\n", "10:15",
+               "a tuple's length can be at most 1024, found 2147483647");
+  EXPECT_ERROR(kDecls + kSets + "extern s : set{E}(verts*5000);\n", "10:25",
+               "an edge set's arity can be at most 1024, found 5000");
+  EXPECT_ERROR(kDecls + kSets + "extern g : grid[100000]{E}(verts);\n",
+               "10:17", "a grid's dimension count can be at most 1024");
+  EXPECT_ACCEPTS(kDecls + kSets + "func f(t : (E*1024))\nend\n");
+}
+
 TEST(SemaDecls, VarMustBeTensor) {
   EXPECT_ERROR(inFunc("el : E", "var e2 = el;\n"), "11:10",
                "must have a tensor type");

@@ -167,7 +167,9 @@ TEST(TetGenLoader, OutOfRangeVertexIsAnError) {
 
 TEST(TetGenLoader, OneBasedVertexZeroIsOutOfRange) {
   TempDir dir;
-  std::string err = tetgenError(dir, kUnitNodes, "1 4 0\n1 0 1 2 3\n");
+  std::string err = tetgenError(
+      dir, "4 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n",
+      "1 4 0\n1 0 1 2 3\n");
   EXPECT_THAT(err, HasSubstr("m.ele:2: vertex index 0 is out of range "
                              "(1..4)"));
 }
@@ -198,6 +200,57 @@ TEST(TetGenLoader, BadEdgeFileIsAnError) {
   err = errorOf(loadTetGen(dir.path("m")));
   EXPECT_THAT(err, HasSubstr("m.edge:2: expected an integer for a vertex "
                              "index, found 'x'"));
+}
+
+TEST(TetGenLoader, OneBasedTetsBecomeZeroBased) {
+  TempDir dir;
+  dir.write("m.node", "4 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n");
+  dir.write("m.ele", "1 4 0\n1 4 3 2 1\n");
+  auto mesh = loadTetGen(dir.path("m"));
+  ASSERT_TRUE(bool(mesh)) << llvm::toString(mesh.takeError());
+  EXPECT_EQ(mesh->tets, (std::vector<Tet>{{3, 2, 1, 0}}));
+}
+
+TEST(TetGenLoader, ElementFilesFollowTheNumberingOfTheNodeFile) {
+  TempDir dir;
+  // 1-based points, 0-based tets: vertex 0 would silently shift by one.
+  std::string err = tetgenError(
+      dir, "4 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n",
+      "1 4 0\n0 1 2 3 4\n");
+  EXPECT_THAT(err, HasSubstr("m.ele:2: expected the first record index to "
+                             "be 1, the numbering of the .node file, found "
+                             "0"));
+}
+
+TEST(TetGenLoader, TwoDimensionalNodesCannotHoldTets) {
+  TempDir dir;
+  std::string err = tetgenError(dir, "4 2 0 0\n0 0 0\n1 1 0\n2 0 1\n3 1 1\n",
+                                "1 4 0\n0 0 1 2 3\n");
+  EXPECT_THAT(err, HasSubstr("m.node: expected 3-D points for the "
+                             "tetrahedra of "));
+  EXPECT_THAT(err, HasSubstr("found dimension 2"));
+}
+
+TEST(TetGenLoader, NonFiniteCoordinateIsAnError) {
+  TempDir dir;
+  for (const char *value : {"nan", "inf", "-inf", "1e999"}) {
+    std::string node = "2 3 0 0\n0 0 0 0\n1 0 " + std::string(value) + " 0\n";
+    EXPECT_THAT(tetgenError(dir, node, ""),
+                HasSubstr("m.node:3: expected a finite number for a "
+                          "coordinate, found '" +
+                          std::string(value) + "'"));
+  }
+}
+
+TEST(TetGenLoader, CountsBeyondTheFileReserveOnlyWhatTheFileHolds) {
+  TempDir dir;
+  // 2e9 points would take 48 GB; the file holds one.
+  std::string err = tetgenError(dir, "2000000000 3 0 0\n0 0 0 0\n", "");
+  EXPECT_THAT(err, HasSubstr("m.node:3: expected point 2 of 2000000000, "
+                             "found the end of the file"));
+  err = tetgenError(dir, kUnitNodes, "2000000000 4 0\n0 0 1 2 3\n");
+  EXPECT_THAT(err, HasSubstr("m.ele:3: expected tetrahedron 2 of "
+                             "2000000000, found the end of the file"));
 }
 
 TEST(TetGenLoader, NegativeHeaderCountIsAnError) {
@@ -390,6 +443,30 @@ TEST(GmshLoader, NonNumberCoordinateIsAnError) {
                              "found 'O'"));
 }
 
+TEST(GmshLoader, NonFiniteCoordinateIsAnError) {
+  TempDir dir;
+  std::string text = kGmsh2;
+  text.replace(text.find("20 1 0 0"), 8, "20 1 nan 0");
+  std::string err = errorOf(loadGmsh(dir.write("m.msh", text)));
+  EXPECT_THAT(err, HasSubstr("m.msh:11: expected a finite number for a "
+                             "coordinate, found 'nan'"));
+}
+
+TEST(GmshLoader, CountsBeyondTheFileReserveOnlyWhatTheFileHolds) {
+  TempDir dir;
+  std::string err = errorOf(loadGmsh(dir.write(
+      "m.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n"
+               "2000000000\n1 0 0 0\n")));
+  EXPECT_THAT(err, HasSubstr("m.msh:7: expected node 2 of 2000000000, found "
+                             "the end of the file"));
+  // Format 4.1 reads a block's tags into an array before its coordinates.
+  err = errorOf(loadGmsh(dir.write(
+      "m4.msh", "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n"
+                "1 2000000000 1 2000000000\n3 1 0 2000000000\n1\n")));
+  EXPECT_THAT(err, HasSubstr("m4.msh:8: expected a node tag, found the end "
+                             "of the file"));
+}
+
 //===--- OBJ --------------------------------------------------------------===//
 
 TEST(ObjLoader, FanTriangulatesPolygonsAndResolvesNegativeIndices) {
@@ -425,6 +502,9 @@ TEST(ObjLoader, MalformedRecordsAreErrors) {
               HasSubstr("m.obj:2: expected a face of at least 3 vertices"));
   EXPECT_THAT(errorOf(loadObj(dir.write("m.obj", "v 0 0 a\n"))),
               HasSubstr("m.obj:1: expected a number for a coordinate"));
+  EXPECT_THAT(errorOf(loadObj(dir.write("m.obj", "v 0 inf 0\n"))),
+              HasSubstr("m.obj:1: expected a finite number for a "
+                        "coordinate, found 'inf'"));
 }
 
 //===--- Dispatch ---------------------------------------------------------===//

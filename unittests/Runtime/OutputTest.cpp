@@ -8,9 +8,14 @@
 
 #include "gmock/gmock.h"
 
+#include "llvm/Support/FileSystem.h"
 #include "llvm/Support/MemoryBuffer.h"
+#include "llvm/Support/Path.h"
 
+#include <algorithm>
+#include <csignal>
 #include <sstream>
+#include <sys/resource.h>
 
 using namespace simit;
 using namespace simit::test;
@@ -192,6 +197,44 @@ TEST(CSV, WholeFileAndErrors) {
               HasSubstr("dir.csv: cannot write"));
 }
 
+/// Limits the size of files the process writes (`ulimit -f`), a disk
+/// that fills up after `bytes`, for the test's duration: writes past it
+/// fail with EFBIG instead of raising SIGXFSZ.
+class FileSizeLimit {
+public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    savedHandler = std::signal(SIGXFSZ, SIG_IGN);
+    getrlimit(RLIMIT_FSIZE, &saved);
+    struct rlimit lower = saved;
+    lower.rlim_cur = bytes;
+    setrlimit(RLIMIT_FSIZE, &lower);
+  }
+  ~FileSizeLimit() {
+    setrlimit(RLIMIT_FSIZE, &saved);
+    std::signal(SIGXFSZ, savedHandler);
+  }
+
+private:
+  struct rlimit saved;
+  void (*savedHandler)(int);
+};
+
+TEST(CSV, AFullDiskNamesTheFileAndKeepsTheOldOne) {
+  Set set("s");
+  auto x = set.addField<double, 3>("x");
+  for (int i = 0; i < 1000; ++i)
+    x.set(set.add(), {1.0 / 3, 2, 3});
+  TempDir dir;
+  dir.write("x.csv", "element,x_0,x_1,x_2\n0,1,2,3\n");
+  std::string err;
+  {
+    FileSizeLimit limit(4096);
+    err = errorOf(writeCSV(dir.path("x.csv"), set, {"x"}));
+  }
+  EXPECT_THAT(err, HasSubstr("x.csv: cannot write: File too large"));
+  EXPECT_EQ(readFile(dir.path("x.csv")), "element,x_0,x_1,x_2\n0,1,2,3\n");
+}
+
 TEST(SceneOutput, WritesFramesAsTheSceneSays) {
   TempDir dir;
   dir.write("m.node", "4 3 0 0\n0 0 0 0\n1 1 0 0\n2 0 1 0\n3 0 0 1\n");
@@ -216,7 +259,7 @@ TEST(SceneOutput, WritesFramesAsTheSceneSays) {
   SetRegistry registry;
   ASSERT_FALSE(bool(buildSets(*scene, registry)));
   std::string out = dir.path("out");
-  auto writer = SceneOutputWriter::create(*scene, registry, out);
+  auto writer = SceneOutputWriter::create(*scene, registry, out, 4);
   ASSERT_TRUE(bool(writer)) << llvm::toString(writer.takeError());
   auto c = registry.find("verts")->field<int32_t>("c");
   for (int frame = 0; frame <= 4; ++frame) {
@@ -224,10 +267,13 @@ TEST(SceneOutput, WritesFramesAsTheSceneSays) {
       c.set(p, frame * 10 + p);
     ASSERT_FALSE(bool((*writer)->writeFrame(frame, frame == 4)));
   }
-  // VTK at frames 0, 2, 4; the CSV with every frame; the last-only CSV.
+  // The CSV with every frame appears when the run finishes.
+  EXPECT_FALSE(llvm::sys::fs::exists(out + "/all.csv"));
+  ASSERT_FALSE(bool((*writer)->finish()));
+  // VTK at frames 0, 2, 4; the last-only CSV; the CSV with every frame.
   std::vector<std::string> expected = {
-      out + "/all.csv", out + "/vtk/f0.vtu", out + "/vtk/f2.vtu",
-      out + "/vtk/f4.vtu", out + "/csv/c4.csv"};
+      out + "/vtk/f0.vtu", out + "/vtk/f2.vtu", out + "/vtk/f4.vtu",
+      out + "/csv/c4.csv", out + "/all.csv"};
   EXPECT_EQ((*writer)->writtenFiles(), expected);
   EXPECT_EQ(dataArray(readFile(out + "/vtk/f2.vtu"), "Name=\"c\""),
             (std::vector<double>{20, 21, 22, 23}));
@@ -250,9 +296,104 @@ TEST(SceneOutput, FieldsAreCheckedAgainstTheBuiltSets) {
   SetRegistry registry;
   ASSERT_FALSE(bool(buildSets(*scene, registry)));
   std::string err =
-      errorOf(SceneOutputWriter::create(*scene, registry, dir.path("o")));
+      errorOf(SceneOutputWriter::create(*scene, registry, dir.path("o"), 0));
   EXPECT_THAT(err, HasSubstr("scene.json: outputs[0]: CSV output of set 'p': "
                              "no field 'v'"));
+}
+
+/// The names in `directory`, sorted.
+std::vector<std::string> filesIn(const std::string &directory) {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (llvm::sys::fs::directory_iterator it(directory, ec), end;
+       it != end && !ec; it.increment(ec))
+    names.push_back(llvm::sys::path::filename(it->path()).str());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST(SceneOutput, AFailedRunKeepsTheFilesOfTheLastRun) {
+  TempDir dir;
+  auto scene = loadScene(dir.write("scene.json", R"({
+    "sets": {"p": {"size": 2, "fields": {"c": {"type": "int32",
+                                                "value": 7}}}},
+    "step": "step", "frames": 2,
+    "outputs": [
+      {"format": "csv", "path": "all.csv", "set": "p", "fields": ["c"]},
+      {"format": "csv", "path": "last.csv", "set": "p", "fields": ["c"],
+       "last": true}
+    ]
+  })"));
+  ASSERT_TRUE(bool(scene)) << llvm::toString(scene.takeError());
+  SetRegistry registry;
+  ASSERT_FALSE(bool(buildSets(*scene, registry)));
+  std::string out = dir.path("out");
+  llvm::sys::fs::create_directories(out);
+  std::string earlier = "element,c\n0,1\n";
+  dir.write("out/all.csv", earlier);
+  dir.write("out/last.csv", earlier);
+  {
+    // A run that stops after frame 1: the writer goes without finish().
+    auto writer = SceneOutputWriter::create(*scene, registry, out, 2);
+    ASSERT_TRUE(bool(writer)) << llvm::toString(writer.takeError());
+    ASSERT_FALSE(bool((*writer)->writeFrame(0, false)));
+    ASSERT_FALSE(bool((*writer)->writeFrame(1, false)));
+    EXPECT_EQ(readFile(out + "/all.csv"), earlier);
+  }
+  EXPECT_EQ(readFile(out + "/all.csv"), earlier);
+  EXPECT_EQ(readFile(out + "/last.csv"), earlier);
+  // Nothing else is left behind.
+  EXPECT_EQ(filesIn(out), (std::vector<std::string>{"all.csv", "last.csv"}));
+}
+
+TEST(SceneOutput, OutputsWritingOneFileAreAnError) {
+  TempDir dir;
+  auto errorFor = [&](llvm::StringRef outputs, int frames) {
+    auto scene = loadScene(dir.write(
+        "scene.json", (R"({"sets": {"p": {"size": 1, "fields": {"x":
+                           {"shape": [3]}}}}, "step": "s", "frames": 3,
+                           "outputs": [)" +
+                       outputs + "]}")
+                          .str()));
+    if (!scene)
+      return llvm::toString(scene.takeError());
+    SetRegistry registry;
+    if (llvm::Error err = buildSets(*scene, registry))
+      return llvm::toString(std::move(err));
+    auto writer =
+        SceneOutputWriter::create(*scene, registry, dir.path("o"), frames);
+    return writer ? std::string() : llvm::toString(writer.takeError());
+  };
+  std::string csv = R"("format": "csv", "set": "p", "fields": ["x"])";
+  std::string err = errorFor("{" + csv + R"(, "path": "a.csv"}, {)" + csv +
+                                 R"(, "path": "./sub/../a.csv"})",
+                             3);
+  EXPECT_THAT(err, HasSubstr("scene.json: outputs[1].path: writes "));
+  EXPECT_THAT(err, HasSubstr("/o/a.csv, which outputs[0] writes too"));
+  // "x{frame}.csv" at frame 10 is "x1{frame}.csv" at frame 0.
+  std::string frames = "{" + csv + R"(, "path": "x{frame}.csv"}, {)" + csv +
+                       R"(, "path": "x1{frame}.csv"})";
+  EXPECT_THAT(errorFor(frames, 12), HasSubstr("/o/x10.csv, which outputs[0] "
+                                              "writes too"));
+  EXPECT_EQ(errorFor(frames, 9), "");
+  // A file of its own name meets a frame's file; "every" decides which.
+  std::string fixed = "{" + csv + R"(, "path": "x{frame}.csv", "every": 2},
+                       {)" + csv + R"(, "path": "x8.csv"})";
+  EXPECT_THAT(errorFor(fixed, 9), HasSubstr("outputs[1].path: writes "));
+  EXPECT_THAT(errorFor(fixed, 9), HasSubstr("/o/x8.csv, which outputs[0] "
+                                            "writes too"));
+  EXPECT_EQ(errorFor(fixed, 7), "");
+  // Paths that cannot meet are not walked frame by frame: two billion
+  // frames take no time.
+  EXPECT_EQ(errorFor("{" + csv + R"(, "path": "a{frame}.csv"}, {)" + csv +
+                         R"(, "path": "b{frame}.csv"})",
+                     2000000000),
+            "");
+  // Standard output may be shared.
+  EXPECT_EQ(errorFor("{" + csv + R"(, "path": "-"}, {)" + csv +
+                         R"(, "path": "-"})",
+                     3),
+            "");
 }
 
 } // namespace

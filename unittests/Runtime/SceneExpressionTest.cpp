@@ -104,4 +104,47 @@ TEST(SceneExpression, TypeErrors) {
               HasSubstr("expected a number operand of a comparison"));
 }
 
+std::string repeated(llvm::StringRef text, size_t times) {
+  std::string result;
+  result.reserve(text.size() * times);
+  for (size_t i = 0; i < times; ++i)
+    result += text;
+  return result;
+}
+
+TEST(SceneExpression, DeepNestingIsAnErrorNotAStackOverflow) {
+  const size_t n = 200000;
+  EXPECT_THAT(parseError(repeated("(", n) + "x" + repeated(")", n)),
+              HasSubstr("expression nested too deeply (more than 200 "
+                        "levels)"));
+  EXPECT_THAT(parseError(repeated("-", n) + "x"),
+              HasSubstr("nested too deeply"));
+  EXPECT_THAT(parseError(repeated("not ", n) + "x < 1"),
+              HasSubstr("nested too deeply"));
+  EXPECT_THAT(parseError(repeated("1 if x < 0 else ", n) + "2"),
+              HasSubstr("nested too deeply"));
+  // A long sum nests only in its tree: each '+' holds the sum before it.
+  // The 1000th '+' passes the limit, at column 3 + 4 * 999.
+  EXPECT_THAT(parseError(repeated("x + ", n) + "x"),
+              HasSubstr("column 3999: expression nested too deeply (more "
+                        "than 1000 operators on one path)"));
+  EXPECT_THAT(parseError(repeated("x * ", n) + "x"),
+              HasSubstr("nested too deeply"));
+  EXPECT_THAT(parseError(repeated("x < 1 and ", n) + "true"),
+              HasSubstr("nested too deeply"));
+}
+
+TEST(SceneExpression, NestingBelowTheLimitsEvaluates) {
+  // 100 parentheses and a sum of 900 terms: 900 * x.
+  std::string text = repeated("(", 100) + repeated("x + ", 899) + "x" +
+                     repeated(")", 100);
+  EXPECT_DOUBLE_EQ(eval(text, frame(0.5, 0, 0)), 450.0);
+  EXPECT_DOUBLE_EQ(eval(repeated("-", 100) + "x", frame(0.5, 0, 0)), 0.5);
+}
+
+TEST(SceneExpression, NumbersMustBeFinite) {
+  EXPECT_THAT(parseError("x + 1e999"),
+              HasSubstr("column 5: expected a finite number, found '1e999'"));
+}
+
 } // namespace

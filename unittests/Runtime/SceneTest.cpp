@@ -9,6 +9,7 @@
 #include "llvm/Support/MemoryBuffer.h"
 
 #include <cmath>
+#include <sys/resource.h>
 
 using namespace simit;
 using namespace simit::test;
@@ -399,8 +400,8 @@ TEST_F(SceneTest, MeshAndSetErrors) {
                         "object, found a number"));
   EXPECT_THAT(parseError(R"({"meshes": {"m": {"file": "a", "refine": -1}},
                              "sets": {}})"),
-              HasSubstr("scene.json: meshes.m.refine: expected an integer of "
-                        "at least 0"));
+              HasSubstr("scene.json: meshes.m.refine: expected an integer "
+                        "from 0 to 10"));
   EXPECT_THAT(parseError(R"({"sets": {"p": {"mesh": "nope"}}})"),
               HasSubstr("scene.json: sets.p.mesh: expected the name of a mesh "
                         "in \"meshes\", found \"nope\""));
@@ -641,6 +642,136 @@ TEST_F(SceneTest, GridOfTheWrongSizeIsAnError) {
                              "g": {"grid": [2, 2], "endpoints": "c"}}})"),
               HasSubstr("scene.json: sets.g: grid 'g': the point set 'c' has "
                         "5 points, expected 4"));
+}
+
+TEST_F(SceneTest, NumbersBeyondDoublesNameTheirPath) {
+  EXPECT_THAT(parseError(R"({"sets": {}, "externs": {"h": 1e999}})"),
+              HasSubstr("scene.json: externs.h: invalid JSON: number "
+                        "overflow parsing '1e999'"));
+  EXPECT_THAT(parseError(R"({"sets": {}, "externs": {"g": [0, -1e999]}})"),
+              HasSubstr("scene.json: externs.g[1]: invalid JSON: number "
+                        "overflow parsing '-1e999'"));
+  EXPECT_THAT(parseError(R"({"sets": {"p": {"size": 1, "fields": {"v":
+                             {"value": [[1, 2], [3, 1e400]]}}}}})"),
+              HasSubstr("scene.json: sets.p.fields.v.value[1][1]: invalid "
+                        "JSON: number overflow"));
+}
+
+TEST_F(SceneTest, ValuesOutsideTheirTypeAreErrors) {
+  // 3e9 would wrap to a negative int32 (cgMaxIters: no iterations at all).
+  EXPECT_THAT(parseError(R"({"sets": {}, "externs": {"n": {"type": "int32",
+                             "value": 3e9}}})"),
+              HasSubstr("scene.json: externs.n.value: expected int32 values "
+                        "from -2147483648 to 2147483647, found 3000000000"));
+  EXPECT_THAT(parseError(R"({"sets": {}, "externs": {"n": {"type": "int32",
+                             "value": [1, -2147483649]}}})"),
+              HasSubstr("scene.json: externs.n.value: component 1: expected "
+                        "int32 values"));
+  auto largest = parse(R"({"sets": {}, "externs": {"n": {"type": "int32",
+                          "value": [2147483647, -2147483648]}}})");
+  EXPECT_TRUE(bool(largest)) << llvm::toString(largest.takeError());
+  EXPECT_THAT(parseError(R"({"sets": {}, "externs": {"f": {"type": "float32",
+                             "value": 1e300}}})"),
+              HasSubstr("scene.json: externs.f.value: expected float32 values "
+                        "from -3.402823466e+38 to 3.402823466e+38, found "
+                        "1e+300"));
+  EXPECT_THAT(parseError(fieldScene(R"("c": {"type": "int32",
+                                              "values": [1, 2, 3, 4e10, 5]})")),
+              HasSubstr("scene.json: sets.p.fields.c.values[3]: expected int32 "
+                        "values"));
+  EXPECT_THAT(parseError(R"({"sets": {}, "frames": 3e9, "step": "s"})"),
+              HasSubstr("scene.json: frames: expected an integer of at least "
+                        "0 (and at most 2147483647)"));
+  EXPECT_THAT(parseError(R"({"sets": {}, "frames": 30000000000000000000,
+                             "step": "s"})"),
+              HasSubstr("scene.json: frames: expected an integer"));
+}
+
+TEST_F(SceneTest, DeepJsonNestingIsAnError) {
+  std::string deep = R"({"sets": {}, "externs": {"g": )" +
+                     std::string(100000, '[') + "1" +
+                     std::string(100000, ']') + "}}";
+  std::string err = parseError(deep);
+  EXPECT_THAT(err, HasSubstr("scene.json: externs.g[0][0]"));
+  EXPECT_THAT(err, HasSubstr(": arrays and objects nested too deeply (more "
+                             "than 64 levels)"));
+}
+
+TEST_F(SceneTest, MemoryBeyondTheMachineIsAnError) {
+  EXPECT_THAT(buildError(R"({"sets": {"p": {"size": 2000000000,
+                             "fields": {"f": {"shape": [1000]}}}}})"),
+              HasSubstr("scene.json: sets.p: scene needs 1.49e+04 GiB for "
+                        "the 2000000000 elements of set \"p\" and their "
+                        "fields, more than the "));
+  EXPECT_THAT(buildError(R"({"sets": {"p": {"size": 1, "fields": {"f":
+                             {"shape": [2147483647, 2147483647, 2147483647]}
+                             }}}})"),
+              HasSubstr("scene.json: sets.p: scene needs more than 2^64 bytes "
+                        "for the 1 elements of set \"p\""));
+  EXPECT_THAT(buildError(R"({"sets": {"c": {"size": 1},
+                             "g": {"grid": [2147483647, 2147483647,
+                                            2147483647, 2147483647],
+                                   "endpoints": "c"}}})"),
+              HasSubstr("scene.json: sets.g: scene needs more than 2^64 bytes "
+                        "for the more than 2^64 elements of set \"g\""));
+}
+
+/// Lowers the address-space limit (`ulimit -v`) for the test's duration.
+class AddressSpaceLimit {
+public:
+  explicit AddressSpaceLimit(rlim_t bytes) {
+    getrlimit(RLIMIT_AS, &saved);
+    struct rlimit lower = saved;
+    lower.rlim_cur = std::min(bytes, saved.rlim_cur);
+    setrlimit(RLIMIT_AS, &lower);
+  }
+  ~AddressSpaceLimit() { setrlimit(RLIMIT_AS, &saved); }
+
+private:
+  struct rlimit saved;
+};
+
+TEST_F(SceneTest, RefinementBeyondTheMemoryIsAnError) {
+  // Each level multiplies the 2 tets by 8; level k is estimated at
+  // 2 * 8^(k-1) * 704 bytes, more than 2 GiB first at level 8 (and more
+  // than the 10 levels allowed would take years).
+  AddressSpaceLimit limit(2ull << 30);
+  std::string err = buildError(R"({"meshes": {"m": {"file": "pyramid.node",
+                                    "refine": 10}},
+                                   "sets": {"p": {"mesh": "m"}}})");
+  EXPECT_THAT(err, HasSubstr("scene.json: meshes.m.refine: scene needs "));
+  // Level 8 unless the test process already maps most of the 2 GiB.
+  EXPECT_THAT(err, ::testing::ContainsRegex(
+                       " GiB for refinement level [1-8] of the mesh, more "
+                       "than the [0-9.]+ GiB available"));
+}
+
+TEST_F(SceneTest, DegenerateAndInvertedTetsAreReported) {
+  // Tets 0 and 1 of the pyramid are positive; tet 2 is tet 0 reflected and
+  // tet 3 repeats a vertex (volume 0).
+  dir.write("bad.node", kPyramidNode);
+  dir.write("bad.ele", "4 4 0\n0 0 1 2 3\n1 1 2 3 4\n2 0 2 1 3\n"
+                       "3 0 1 1 3\n");
+  auto scene = parse(R"({"meshes": {"m": "bad.node"},
+                         "sets": {"p": {"mesh": "m"}}})");
+  ASSERT_TRUE(bool(scene)) << llvm::toString(scene.takeError());
+  SetRegistry registry;
+  ::testing::internal::CaptureStderr();
+  llvm::Error err = buildSets(*scene, registry);
+  std::string warning = ::testing::internal::GetCapturedStderr();
+  ASSERT_FALSE(bool(err)) << llvm::toString(std::move(err));
+  EXPECT_THAT(warning, HasSubstr("scene.json: meshes.m: warning: 2 of 4 "
+                                 "tetrahedra are degenerate or inverted (the "
+                                 "first is tetrahedron 2, of volume "
+                                 "-0.166667)"));
+  // The pyramid alone draws no warning.
+  auto good = parse(R"({"meshes": {"m": "pyramid.node"},
+                        "sets": {"p": {"mesh": "m"}}})");
+  ASSERT_TRUE(bool(good));
+  SetRegistry goodRegistry;
+  ::testing::internal::CaptureStderr();
+  ASSERT_FALSE(bool(buildSets(*good, goodRegistry)));
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
 }
 
 } // namespace

@@ -56,6 +56,25 @@ struct HostValue {
   double component(size_t i) const;
 };
 
+/// The error init() returns for an argument that does not fit its binding,
+/// so that a caller can say where the bound value came from (a scene file's
+/// JSON path). Its message is the whole description.
+class ArgumentError : public llvm::ErrorInfo<ArgumentError> {
+public:
+  static char ID;
+  ArgumentError(ArgumentBinding argument, std::string message)
+      : binding(std::move(argument)), text(std::move(message)) {}
+  const ArgumentBinding &argument() const { return binding; }
+  void log(llvm::raw_ostream &os) const override { os << text; }
+  std::error_code convertToErrorCode() const override {
+    return llvm::inconvertibleErrorCode();
+  }
+
+private:
+  ArgumentBinding binding;
+  std::string text;
+};
+
 class Function {
 public:
   Function();
@@ -94,8 +113,8 @@ public:
 
   /// Checks every binding against the program (an unbound extern, a field
   /// of another type or shape, a set of another cardinality are errors
-  /// naming it), builds the sparsity patterns the function assembles into,
-  /// and packs the argument descriptors.
+  /// naming it, as an ArgumentError), builds the sparsity patterns the
+  /// function assembles into, and packs the argument descriptors.
   llvm::Error init();
   /// Runs the function, first calling init() when it has not run or a bound
   /// set changed structure since.

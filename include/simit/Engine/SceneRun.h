@@ -42,6 +42,10 @@ struct SceneRunOptions {
   /// solve (ProgramOptions::timePhases).
   bool timePhases = false;
   bool checkNumerics = false;
+  /// Scan the float fields and externs the functions use for NaN and
+  /// infinity after init and after every frame (simit-run's default;
+  /// --no-check). Implied by checkNumerics, which finds the statement.
+  bool checkFrames = true;
   /// Progress lines on stderr once a run has taken a while.
   bool progress = false;
 };
@@ -53,6 +57,8 @@ struct SceneTimeSummary {
   /// Medians over frames 2..N (frame 1 pays first-touch costs), or frame 1
   /// alone when it is the only one; zero without frames.
   double frameMs = 0, assemblyMs = 0, solveMs = 0;
+  /// The scan of the state after each frame (SceneRunOptions::checkFrames).
+  double checkMs = 0;
   double firstFrameMs = 0;
 };
 
@@ -65,6 +71,8 @@ struct SceneTimes {
   /// Per frame run: the whole step, and its assembly and solve phases
   /// (zero unless SceneRunOptions::timePhases).
   std::vector<double> frameMs, assemblyMs, solveMs;
+  /// Per frame run with SceneRunOptions::checkFrames: the scan of the state.
+  std::vector<double> checkMs;
 
   SceneTimeSummary summarize() const;
 };
@@ -105,6 +113,15 @@ private:
   };
   SceneRunner(SceneDescription scene, const SceneRunOptions &options);
   llvm::Error runAll(std::vector<NamedFunction> &group, int frame);
+  /// Scans what the functions of a frame left in their float fields and
+  /// externs; the error names the frame, the field or extern and the
+  /// element, and how to find the statement that produced the value.
+  llvm::Error checkFrame(const std::vector<NamedFunction> &group, int frame);
+  bool checksFrames() const {
+    return options.checkFrames && !options.checkNumerics;
+  }
+  /// Writes the outputs of `frame`, completing them after the last one.
+  llvm::Error writeFrame(int frame);
 
   SceneDescription description;
   SceneRunOptions options;

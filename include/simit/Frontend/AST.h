@@ -213,6 +213,10 @@ public:
   SMLoc loc;
   TypePtr type; // set by sema
   bool parenthesized = false;
+  /// The longest path to a leaf, counting this node; the parser bounds it
+  /// so that the recursive walks of sema and IR generation cannot exhaust
+  /// the stack.
+  unsigned height = 1;
 };
 
 class IntLiteral : public Expr {

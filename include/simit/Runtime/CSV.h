@@ -33,7 +33,8 @@ llvm::Error writeCSVRows(llvm::raw_ostream &os, const Set &set,
                          llvm::ArrayRef<std::string> fields,
                          std::optional<int> frame);
 
-/// A whole file: the header, then the rows.
+/// A whole file: the header, then the rows. The file is written under a
+/// temporary name and renamed to `path` when complete.
 llvm::Error writeCSV(llvm::StringRef path, const Set &set,
                      llvm::ArrayRef<std::string> fields);
 

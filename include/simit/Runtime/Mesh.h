@@ -3,7 +3,9 @@
 // Point coordinates plus the simplices of a mesh, read from TetGen, Gmsh or
 // Wavefront OBJ files. Every index is 0-based after loading, whatever the
 // file's own convention. Errors are llvm::Error values whose message reads
-// "file:line: what was expected".
+// "file:line: what was expected". The loaders reserve room for no more
+// records than the rest of a file can hold, whatever its header declares,
+// and reject coordinates that are not finite.
 //
 //===----------------------------------------------------------------------===//
 
@@ -26,9 +28,11 @@ struct Mesh {
 };
 
 /// Reads <base>.node and whichever of <base>.ele, <base>.edge and <base>.face
-/// exist. Each file's numbering base (0 or 1) is taken from its first record
-/// index; attribute and boundary-marker columns are skipped, and `#` starts a
-/// comment. Second-order elements keep their four corner vertices.
+/// exist. The first record index of the .node file fixes the numbering base
+/// (0 or 1) of every file: records follow it in order and vertex references
+/// use it. Attribute and boundary-marker columns are skipped, and `#` starts
+/// a comment. Second-order elements keep their four corner vertices.
+/// Tetrahedra need a 3-D .node file.
 llvm::Expected<Mesh> loadTetGen(llvm::StringRef basePath);
 
 /// Reads an ASCII Gmsh file, format 2.x or 4.x: nodes, 2-node lines,

@@ -6,6 +6,11 @@
 // path without {frame} collects every written frame in one file with a
 // frame column.
 //
+// Every file is written under a temporary name in its folder and renamed
+// to its final name when complete (a file that collects frames, when the
+// run finishes), so a run that fails or is killed leaves no truncated file
+// under a final name and keeps what an earlier run wrote there.
+//
 //===----------------------------------------------------------------------===//
 
 #ifndef SIMIT_RUNTIME_SCENEOUTPUT_H
@@ -21,33 +26,44 @@
 #include <vector>
 
 namespace simit {
+namespace detail {
+class AtomicFile;
+} // namespace detail
 
 class SceneOutputWriter {
 public:
-  /// Checks the outputs against the built sets (fields, cells, position) and
-  /// creates `outputDirectory` when needed.
+  /// Checks the outputs against the built sets (fields, cells, position)
+  /// and against each other (no two may write one file in a run of
+  /// `frames` frames), and creates `outputDirectory` when needed.
   static llvm::Expected<std::unique_ptr<SceneOutputWriter>>
   create(const SceneDescription &scene, const SetRegistry &registry,
-         llvm::StringRef outputDirectory);
+         llvm::StringRef outputDirectory, int frames);
+  ~SceneOutputWriter();
 
   /// Writes the outputs due after `frame`; `isLast` marks the final frame.
   llvm::Error writeFrame(int frame, bool isLast);
+
+  /// Completes the files that collect frames; without it (a failed run)
+  /// they are dropped and earlier files of the same name stay.
+  llvm::Error finish();
 
   /// The files written so far, in order.
   const std::vector<std::string> &writtenFiles() const { return written; }
 
 private:
   SceneOutputWriter(const SceneDescription &scene,
-                    const SetRegistry &registry, std::string directory)
-      : scene(scene), registry(registry), directory(std::move(directory)) {}
+                    const SetRegistry &registry, std::string directory,
+                    int frames);
   std::string pathFor(const OutputSpec &output, int frame) const;
   llvm::Error writeOutput(size_t index, int frame);
+  llvm::Error checkCollisions() const;
 
   const SceneDescription &scene;
   const SetRegistry &registry;
   std::string directory;
-  /// Open streams of CSV outputs that gather every frame in one file.
-  std::vector<std::unique_ptr<llvm::raw_fd_ostream>> csvStreams;
+  int frameCount;
+  /// Per output: the open file of a CSV output that gathers every frame.
+  std::vector<std::unique_ptr<detail::AtomicFile>> collectedFiles;
   std::vector<std::string> written;
 };
 

@@ -41,6 +41,7 @@ llvm::Error checkVTKOptions(const Set &points, const VTKOptions &options);
 
 llvm::Error writeVTU(llvm::raw_ostream &os, const Set &points,
                      const VTKOptions &options);
+/// Writes `path` under a temporary name, renamed to `path` when complete.
 llvm::Error writeVTU(llvm::StringRef path, const Set &points,
                      const VTKOptions &options);
 

@@ -53,7 +53,7 @@ llvm::Error provideFields(const SceneDescription &scene, SetRegistry &registry,
       if (llvm::Error err = set->addField(arg.field, type, shape))
         return llvm::createStringError(
             scene.path + ": sets." + arg.set + ": the program's function '" +
-            named.name + "' uses field '" + arg.field + "': " +
+            name + "' uses field '" + arg.field + "': " +
             llvm::toString(std::move(err)));
       continue;
     }

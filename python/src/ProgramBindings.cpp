@@ -142,11 +142,13 @@ void bindParameters(PyFunction &self, const py::args &args) {
       // (re, im) pairs of the part type: the layout of std::complex.
       py::dtype complexType(type == ComponentType::Float32 ? "complex64"
                                                            : "complex128");
-      py::array values(numpy.attr("ascontiguousarray")(args[i], complexType));
+      py::array values(
+          numpy.attr("asarray")(args[i], complexType, py::arg("order") = "C"));
       array = py::array(values.attr("view")(dtypeOf(type)).attr("reshape")(
           py::tuple(py::cast(shapeOf(values))) + py::make_tuple(2)));
     } else {
-      array = py::array(numpy.attr("ascontiguousarray")(args[i], dtypeOf(type)));
+      array = py::array(numpy.attr("asarray")(args[i], dtypeOf(type),
+                                              py::arg("order") = "C"));
     }
     check(self.function.bindParameter(static_cast<unsigned>(i),
                                       array.mutable_data(), type,

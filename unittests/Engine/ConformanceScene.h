@@ -1,9 +1,9 @@
-//===--- ConformanceScene.h - Random sets of the conformance suite -*- C++
-//-*-===//
+//===--- ConformanceScene.h - Random sets for conformance -------*- C++ -*-===//
 //
 // The hypergraph every conformance program runs on: two vertex sets and
-// edge sets of cardinality 2, 3 and 4 over the first, plus heterogeneous
-// edge sets between them, with random field values from a fixed seed. Every
+// edge sets of cardinality 2, 3 and 4 over the first (random endpoints, and
+// one spring joining a vertex to itself), plus heterogeneous edge sets
+// between them, with random field values from a fixed seed. Every
 // element type carries the same fields, so any set can hold any role:
 //
 //   x, w        inputs over the set (float, or vector[3](float))

@@ -72,7 +72,7 @@ enum class Observed {
   /// The matrix M = expression, through M * x and M * w (M stored) and
   /// (expression) * x (fused): outputs y, z, u over M's rows.
   Matrix,
-  /// The statements write output y over the first operand's rows.
+  /// The statements write output y over the first set of Case::shape().
   Vector,
   /// The function returns r = expression.
   Scalar,
@@ -123,11 +123,13 @@ struct Case {
   /// The exported function's name, also the test's:
   /// "sum_springs_tris_3x3".
   std::string name() const;
-  /// The sets of the result (Matrix) or of the output (Vector).
+  /// The row and column sets of the result (Matrix), or the output's set
+  /// and the sets it is computed from (Vector).
   std::pair<SetId, SetId> shape() const;
 };
 
-/// Every case on which the operation is defined, for both block sizes.
+/// Each operation on every tuple of sources it is defined on, for both
+/// block sizes.
 std::vector<Case> allCases();
 
 } // namespace simit::conformance

@@ -4,7 +4,8 @@
 // tuple of matrix storages it is defined on (ConformanceCases.h), run by
 // the JIT on random sets and compared with a dense Eigen evaluation of the
 // same operation on the same data. docs/conformance.md describes the suite
-// and lists the cases the compiler rejects, which are left out here.
+// and lists the cases left out here: those the compiler rejects, and those
+// it gets wrong.
 //
 //===----------------------------------------------------------------------===//
 

@@ -288,6 +288,59 @@ const std::vector<Operation> &simit::conformance::allOperations() {
              .solve(in.xRows);
        },
        1e-9, /*shifted=*/true},
+      // The factorisation intrinsics of section 9, on matrices of scalars.
+      {"luSolve", 1, M::Vector,
+       "  h = lu(A + S);\n"
+       "  $R0.y = lusolve<$R0,$R0>(h, $R0.x);\n"
+       "  lufree(h);\n",
+       "", squareOnVerts,
+       [](const DenseInputs &in) -> Eigen::MatrixXd {
+         return (in.operands[0] + in.shift).lu().solve(in.xRows);
+       },
+       1e-9, /*shifted=*/true, /*scalarBlocksOnly=*/true},
+      {"cholSolve", 1, M::Vector,
+       "  h = chol(A + A' + S);\n"
+       "  $R0.y = lltsolve<$R0,$R0>(h, $R0.x);\n"
+       "  cholfree(h);\n",
+       "", squareOnVerts,
+       [](const DenseInputs &in) -> Eigen::MatrixXd {
+         Eigen::MatrixXd a = in.operands[0];
+         return (a + a.transpose() + in.shift).llt().solve(in.xRows);
+       },
+       1e-9, /*shifted=*/true, /*scalarBlocksOnly=*/true},
+      {"luMatSolve", 2, M::Vector,
+       "  h = lu(A + S);\n"
+       "  X = lumatsolve<$R0,$R0,$R0>(h, B);\n"
+       "  lufree(h);\n"
+       "  $R0.y = X * $R0.x;\n",
+       "", squareOnVerts,
+       [](const DenseInputs &in) -> Eigen::MatrixXd {
+         return (in.operands[0] + in.shift)
+             .lu()
+             .solve(in.operands[1] * in.xRows);
+       },
+       1e-9, /*shifted=*/true, /*scalarBlocksOnly=*/true},
+      {"cholMatSolve", 2, M::Vector,
+       "  h = chol(A + A' + S);\n"
+       "  X = lltmatsolve<$R0,$R0,$R0>(h, B);\n"
+       "  cholfree(h);\n"
+       "  $R0.y = X * $R0.x;\n",
+       "", squareOnVerts,
+       [](const DenseInputs &in) -> Eigen::MatrixXd {
+         Eigen::MatrixXd a = in.operands[0];
+         return (a + a.transpose() + in.shift)
+             .llt()
+             .solve(in.operands[1] * in.xRows);
+       },
+       1e-9, /*shifted=*/true, /*scalarBlocksOnly=*/true},
+      // The lower triangle of the matrix of components.
+      {"triangularSolve", 1, M::Vector,
+       "  $R0.y = triangularSolve<$R0,$R0>(A + S, $R0.x);\n", "", squareOnVerts,
+       [](const DenseInputs &in) -> Eigen::MatrixXd {
+         Eigen::MatrixXd a = in.operands[0] + in.shift;
+         return a.triangularView<Eigen::Lower>().solve(in.xRows);
+       },
+       1e-9, /*shifted=*/true, /*scalarBlocksOnly=*/true},
       {"dot", 1, M::Scalar, "", "dot(A * $C0.x, $R0.w)", ownShape,
        [](const DenseInputs &in) {
          return scalar(in.wRows.dot(in.operands[0] * in.xCols));
@@ -333,6 +386,8 @@ std::vector<Case> simit::conformance::allCases() {
   std::vector<Case> cases;
   for (int blockSize : {1, 3})
     for (const Operation &operation : allOperations()) {
+      if (operation.scalarBlocksOnly && blockSize != 1)
+        continue;
       std::vector<const Source *> prefix;
       addTuples(operation, blockSize, prefix, cases);
     }

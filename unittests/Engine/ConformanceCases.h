@@ -109,6 +109,8 @@ struct Operation {
   double tolerance = 1e-12;
   /// S, the diagonal shift, is assembled too.
   bool shifted = false;
+  /// Defined on matrices of scalars only (the factorisation intrinsics).
+  bool scalarBlocksOnly = false;
 };
 
 const std::vector<Operation> &allOperations();

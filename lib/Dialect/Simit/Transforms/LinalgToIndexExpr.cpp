@@ -36,9 +36,24 @@ Value emitScalar(OpBuilder &b, Location loc, BodyKind kind, ValueRange args) {
   case BodyKind::Mul:
     return isFloat ? arith::MulFOp::create(b, loc, args[0], args[1]).getResult()
                    : arith::MulIOp::create(b, loc, args[0], args[1]).getResult();
-  case BodyKind::Div:
-    return isFloat ? arith::DivFOp::create(b, loc, args[0], args[1]).getResult()
-                   : arith::DivSIOp::create(b, loc, args[0], args[1]).getResult();
+  case BodyKind::Div: {
+    // Components outside a matrix's sparsity read as zero (language.md
+    // 7.5), also where its storage holds a zero block (the diagonal of a
+    // vertex no edge touches): a zero dividend gives zero, not 0/0.
+    Value zero =
+        arith::ConstantOp::create(b, loc, b.getZeroAttr(args[0].getType()));
+    Value quotient =
+        isFloat ? arith::DivFOp::create(b, loc, args[0], args[1]).getResult()
+                : arith::DivSIOp::create(b, loc, args[0], args[1]).getResult();
+    Value isZero =
+        isFloat ? arith::CmpFOp::create(b, loc, arith::CmpFPredicate::OEQ,
+                                        args[0], zero)
+                      .getResult()
+                : arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq,
+                                        args[0], zero)
+                      .getResult();
+    return arith::SelectOp::create(b, loc, isZero, zero, quotient);
+  }
   case BodyKind::Neg: {
     if (isFloat)
       return arith::NegFOp::create(b, loc, args[0]);

@@ -23,6 +23,33 @@ using namespace mlir::simit;
 using namespace mlir::simit::loops;
 
 namespace {
+/// Whether the body multiplies or divides two values that both come from
+/// matrix inputs.
+bool multipliesMatrices(IndexExprOp op) {
+  Block &body = op.getBody().front();
+  auto fromMatrix = [&](Value v) {
+    // The values a body computes from its arguments, seen through one
+    // level of arithmetic.
+    auto isMatrixArg = [&](Value x) {
+      auto arg = dyn_cast<BlockArgument>(x);
+      return arg && arg.getOwner() == &body &&
+             op.getInputIndexList(arg.getArgNumber()).size() == 2;
+    };
+    if (isMatrixArg(v))
+      return true;
+    Operation *def = v.getDefiningOp();
+    return def && llvm::any_of(def->getOperands(), isMatrixArg);
+  };
+  WalkResult walk = body.walk([&](Operation *inner) {
+    if (isa<arith::MulFOp, arith::DivFOp, arith::MulIOp, arith::DivSIOp>(
+            inner) &&
+        fromMatrix(inner->getOperand(0)) && fromMatrix(inner->getOperand(1)))
+      return WalkResult::interrupt();
+    return WalkResult::advance();
+  });
+  return walk.wasInterrupted();
+}
+
 class IndexExprLowering {
 public:
   IndexExprLowering(FunctionLowering &l, IndexExprOp op)
@@ -487,6 +514,17 @@ LogicalResult IndexExprLowering::lowerLocal() {
   for (unsigned v = 0; v < numVars; ++v)
     for (Attribute lvl : op.getDomain(v))
       extents[v] *= cast<IntegerAttr>(lvl).getInt();
+  // An incidence holds a block per (edge, endpoint position); an edge
+  // naming one endpoint twice has two blocks in one column, which sum to
+  // the entry. Sums and scalings of the blocks are right; products and
+  // quotients of two matrices' blocks are not.
+  for (Value input : op.getInputs()) {
+    Storage s = l.storages.lookup(input);
+    if (s.kind == Storage::Kind::Incidence && multipliesMatrices(op))
+      return op.emitError("element-wise products and quotients of matrices "
+                          "stored as ")
+             << s.describe() << " are not supported by the loop lowering yet";
+  }
   swappedLists.resize(op.getInputs().size());
   for (auto [i, input] : llvm::enumerate(op.getInputs())) {
     Storage s = l.storages.lookup(input);
@@ -617,6 +655,17 @@ LogicalResult IndexExprLowering::lower() {
              << i << " is a system matrix of unknown sparsity";
   }
 
+  // An incidence holds a block per (edge, endpoint position); an edge
+  // naming one endpoint twice has two blocks in one column, which sum to
+  // the entry. Sums and scalings of the blocks are right; products and
+  // quotients of two matrices' blocks are not.
+  for (Value input : op.getInputs()) {
+    Storage s = l.storages.lookup(input);
+    if (s.kind == Storage::Kind::Incidence && multipliesMatrices(op))
+      return op.emitError("element-wise products and quotients of matrices "
+                          "stored as ")
+             << s.describe() << " are not supported by the loop lowering yet";
+  }
   swappedLists.resize(op.getInputs().size());
   for (auto [i, input] : llvm::enumerate(op.getInputs())) {
     Storage s = l.storages.lookup(input);
@@ -683,6 +732,7 @@ LogicalResult IndexExprLowering::lower() {
       return op.emitError("a matrix result stored as ")
              << storage->describe()
              << " is not supported by the loop lowering yet";
+
     resultStorage = *storage;
   }
   SmallVector<unsigned> free(resultVars.begin(), resultVars.end());

@@ -187,6 +187,7 @@ llvm::Error simit::runScene(const SceneRunOptions &options) {
   programOptions.precision = options.precision;
   programOptions.timePhases = options.printTimes;
   programOptions.checkNumerics = options.checkNumerics;
+  programOptions.cacheDirectory = options.cacheDirectory;
   Program program(programOptions);
   if (llvm::Error err = program.loadFile(programPath))
     return err;
@@ -255,7 +256,15 @@ llvm::Error simit::runScene(const SceneRunOptions &options) {
 
   if (options.printTimes) {
     llvm::raw_ostream &os = llvm::outs();
-    os << llvm::format("compile:   %10.2f ms\n", compileMs);
+    const CompileTimes &times = program.compileTimes();
+    if (times.cached)
+      os << llvm::format("compile:   %10.2f ms (cached; load %.2f ms)\n",
+                         compileMs, times.loadMs);
+    else
+      os << llvm::format("compile:   %10.2f ms (lowering %.2f, LLVM -O3 "
+                         "%.2f, codegen %.2f, load %.2f ms)\n",
+                         compileMs, times.loweringMs, times.optimizationMs,
+                         times.codegenMs, times.loadMs);
     os << llvm::format("bind/init: %10.2f ms (sets %.2f ms)\n", bindMs,
                        setsMs);
     os << llvm::format("init:      %10.2f ms\n", initMs);

@@ -22,6 +22,8 @@ struct SceneRunOptions {
   FloatPrecision precision = FloatPrecision::Double;
   bool printTimes = false;
   bool checkNumerics = false;
+  /// ProgramOptions::cacheDirectory.
+  std::string cacheDirectory;
   /// Progress lines on stderr once a run has taken a while.
   bool progress = true;
 };

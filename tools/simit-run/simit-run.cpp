@@ -1,6 +1,7 @@
 //===--- simit-run.cpp - JIT-runs Simit programs --------------------------===//
 //
 //   simit-run PROGRAM --scene SCENE.json [--output-dir DIR] [--time]
+//             [--no-cache | --cache-dir DIR]
 //   simit-run --test FILE.sim
 //   simit-run FILE.sim --eval 'f(1.0, [1, 2]')'
 //   simit-run FILE.sim --emit=simit|loops|llvm
@@ -56,6 +57,15 @@ static cl::opt<bool> checkNumerics(cl::cat(runCategory),
              "field or extern"));
 static cl::opt<bool> float32(cl::cat(runCategory), "float32",
                              cl::desc("Compile `float` as single precision"));
+static cl::opt<bool> noCache(cl::cat(runCategory), "no-cache",
+                             cl::desc("Compile the program even when the "
+                                      "compile cache holds it, and store "
+                                      "nothing"));
+static cl::opt<std::string> cacheDir(
+    cl::cat(runCategory), "cache-dir",
+    cl::desc("The compile cache (default: $XDG_CACHE_HOME/simit, else "
+             "~/.cache/simit)"),
+    cl::value_desc("dir"));
 static cl::opt<bool> noProgress(cl::cat(runCategory), "no-progress",
                                 cl::desc("No progress lines on long runs"));
 
@@ -70,16 +80,24 @@ int main(int argc, char **argv) {
   cl::ParseCommandLineOptions(argc, argv, "Simit JIT runner\n");
   FloatPrecision precision =
       float32 ? FloatPrecision::Single : FloatPrecision::Double;
+  if (noCache && cacheDir.getNumOccurrences())
+    return fail(
+        llvm::createStringError("--no-cache and --cache-dir contradict"));
+  std::string cacheDirectory =
+      noCache ? ""
+      : cacheDir.getNumOccurrences() ? std::string(cacheDir)
+                                     : defaultCompileCacheDirectory();
 
   if (testMode) {
     if (programPath.empty())
       return fail(llvm::createStringError("--test needs a .sim file"));
-    return runTests({programPath, precision}, llvm::outs());
+    return runTests({programPath, precision, cacheDirectory}, llvm::outs());
   }
   if (!evalCall.empty()) {
     if (programPath.empty())
       return fail(llvm::createStringError("--eval needs a program file"));
-    return runEval({programPath, evalCall, precision}, llvm::outs());
+    return runEval({programPath, evalCall, precision, cacheDirectory},
+                   llvm::outs());
   }
   if (emitStage.getNumOccurrences()) {
     if (programPath.empty())
@@ -106,6 +124,7 @@ int main(int argc, char **argv) {
   options.printTimes = printTimes;
   options.checkNumerics = checkNumerics;
   options.progress = !noProgress;
+  options.cacheDirectory = cacheDirectory;
   if (llvm::Error err = runScene(options))
     return fail(std::move(err));
   return 0;

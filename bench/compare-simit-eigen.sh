@@ -3,7 +3,8 @@
 # side in one run: ROUNDS alternating runs of each, N frames per run; each run
 # reports the median ms/frame of frames 2..N, and the script prints the median
 # over rounds of both, their ratio (simit / eigen), and each one's assembly
-# and solve parts (simit-run --time; the Eigen step's own timers).
+# and solve parts (simit-run --time; the Eigen step's own timers), and
+# simit-run's compile time without the compile cache (--no-cache).
 #
 #   bench/compare-simit-eigen.sh [build-dir]   (default: <repo>/build)
 #   SCENES="springs-bunny fem-dragon"  FRAMES=20  ROUNDS=3
@@ -32,7 +33,7 @@ for scene in ${SCENES:-springs-bunny fem-dragon}; do
   for f in simit eigen compile simit_asm simit_sol eigen_asm eigen_sol; do : > "$out/$f"; done
   for ((r = 0; r < rounds; r++)); do
     log=$("$build/bin/simit-run" --scene "$(scene_file "$scene")" --frames "$frames" \
-      --time --no-progress --output-dir "$out")
+      --time --no-progress --no-cache --output-dir "$out")
     sed -n 's/^frame: *\([0-9.]*\) ms.*/\1/p' <<<"$log" >> "$out/simit"
     sed -n 's/^  assembly: *\([0-9.]*\) ms.*/\1/p' <<<"$log" >> "$out/simit_asm"
     sed -n 's/^  solve: *\([0-9.]*\) ms.*/\1/p' <<<"$log" >> "$out/simit_sol"

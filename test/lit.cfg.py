@@ -23,6 +23,10 @@ config.substitutions.append(("%simit_python_dir", config.simit_python_install_di
 config.substitutions.append(("%meshes", os.path.join(config.shared_dir, "data", "meshes")))
 
 llvm_config.with_system_environment(["HOME", "INCLUDE", "LIB", "TMP", "TEMP"])
+# simit-run's compile cache defaults to $XDG_CACHE_HOME/simit: the suite's
+# entries stay in the build tree, out of the user's cache.
+config.environment["XDG_CACHE_HOME"] = os.path.join(config.test_exec_root,
+                                                    "xdg-cache")
 llvm_config.use_default_substitutions()
 
 tool_dirs = [config.simit_tools_dir, config.llvm_tools_dir]

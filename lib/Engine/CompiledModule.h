@@ -1,8 +1,8 @@
-//===--- CompiledModule.h - JIT-compiled code shared by Functions ---------===//
+//===--- CompiledModule.h - JIT-loaded code shared by Functions -----------===//
 //
-// The machine code of one lowered module and the host ABI of each of its
-// exported functions. Every Function compiled from a Program holds it, so
-// the code lives as long as the last Function does.
+// The machine code of one lowered module, linked into a JIT, and the host
+// ABI of each of its exported functions. Every Function compiled from a
+// Program holds it, so the code lives as long as the last Function does.
 //
 //===----------------------------------------------------------------------===//
 
@@ -11,9 +11,8 @@
 
 #include "simit/Engine/HostABI.h"
 
-#include "mlir/ExecutionEngine/ExecutionEngine.h"
-
 #include "llvm/ADT/StringMap.h"
+#include "llvm/ExecutionEngine/Orc/LLJIT.h"
 
 #include <memory>
 
@@ -27,13 +26,13 @@ enum class MemRefConvention { Descriptor, BarePointer };
 struct CompiledFunction {
   HostSignature signature;
   MemRefConvention convention = MemRefConvention::Descriptor;
-  /// The packed entry point `_mlir_<name>(void **args)` of the JIT.
+  /// The packed entry point `_mlir_<name>(void **args)` once loaded.
   void (*entry)(void **) = nullptr;
 };
 
 class CompiledModule {
 public:
-  std::unique_ptr<mlir::ExecutionEngine> engine;
+  std::unique_ptr<llvm::orc::LLJIT> jit;
   llvm::StringMap<CompiledFunction> functions;
 };
 

@@ -2,7 +2,7 @@
 
 #include "Lowering.h"
 
-#include "RuntimeSymbols.h"
+#include "Stopwatch.h"
 
 #include "simit/Dialect/Simit/IR/Simit.h"
 #include "simit/Dialect/Simit/Transforms/Passes.h"
@@ -19,18 +19,20 @@
 #include "mlir/Dialect/SCF/IR/SCF.h"
 #include "mlir/Dialect/Tensor/IR/Tensor.h"
 #include "mlir/Dialect/Vector/IR/VectorOps.h"
+#include "mlir/ExecutionEngine/ExecutionEngine.h"
 #include "mlir/ExecutionEngine/OptUtils.h"
 #include "mlir/IR/Diagnostics.h"
 #include "mlir/Pass/PassInstrumentation.h"
 #include "mlir/Pass/PassManager.h"
 #include "mlir/Target/LLVMIR/Dialect/Builtin/BuiltinToLLVMIRTranslation.h"
 #include "mlir/Target/LLVMIR/Dialect/LLVMIR/LLVMToLLVMIRTranslation.h"
+#include "mlir/Target/LLVMIR/Export.h"
 
-#include "llvm/ExecutionEngine/Orc/JITTargetMachineBuilder.h"
-#include "llvm/Support/TargetSelect.h"
+#include "llvm/IR/IRBuilder.h"
+#include "llvm/IR/LegacyPassManager.h"
+#include "llvm/IR/Module.h"
 #include "llvm/Support/raw_ostream.h"
-
-#include <mutex>
+#include "llvm/Target/TargetMachine.h"
 
 using namespace simit;
 
@@ -182,16 +184,37 @@ static size_t loweredArgumentCount(const HostSignature &signature,
   return count;
 }
 
-llvm::Expected<std::shared_ptr<CompiledModule>>
-simit::compileModule(mlir::ModuleOp llvmModule,
-                     const llvm::StringMap<HostSignature> &signatures) {
-  static std::once_flag initialized;
-  std::call_once(initialized, [] {
-    llvm::InitializeNativeTarget();
-    llvm::InitializeNativeTargetAsmPrinter();
-  });
+/// Adds `void _mlir_<name>(void **args)` calling `function` with
+/// `*args[i]` as argument i and storing its result, if any, at `*args[n]`:
+/// the one signature through which the engine calls every function.
+static void addPackedEntryPoint(llvm::Function &function) {
+  llvm::LLVMContext &context = function.getContext();
+  llvm::Type *ptr = llvm::PointerType::getUnqual(context);
+  auto *entry = llvm::Function::Create(
+      llvm::FunctionType::get(llvm::Type::getVoidTy(context), {ptr}, false),
+      llvm::GlobalValue::ExternalLinkage, "_mlir_" + function.getName(),
+      function.getParent());
+  llvm::IRBuilder<> builder(llvm::BasicBlock::Create(context, "", entry));
+  llvm::Value *args = entry->getArg(0);
+  auto slot = [&](unsigned index) {
+    return builder.CreateLoad(ptr,
+                              builder.CreateConstGEP1_64(ptr, args, index));
+  };
+  llvm::SmallVector<llvm::Value *> values;
+  for (llvm::Argument &param : function.args())
+    values.push_back(
+        builder.CreateLoad(param.getType(), slot(param.getArgNo())));
+  llvm::CallInst *call = builder.CreateCall(&function, values);
+  if (!call->getType()->isVoidTy())
+    builder.CreateStore(call, slot(function.arg_size()));
+  builder.CreateRetVoid();
+}
 
-  auto compiled = std::make_shared<CompiledModule>();
+llvm::Expected<ObjectCode>
+simit::compileToObject(mlir::ModuleOp llvmModule,
+                       const llvm::StringMap<HostSignature> &signatures,
+                       CompileTimes &times) {
+  ObjectCode code;
   for (const auto &entry : signatures) {
     auto func = llvmModule.lookupSymbol<mlir::LLVM::LLVMFuncOp>(entry.getKey());
     if (!func)
@@ -211,38 +234,50 @@ simit::compileModule(mlir::ModuleOp llvmModule,
           "function '" + entry.getKey() + "' has " + llvm::Twine(numArgs) +
           " LLVM arguments, which matches neither memref convention of its " +
           llvm::Twine(function.signature.arguments.size()) + " arguments");
-    compiled->functions[entry.getKey()] = std::move(function);
+    code.functions[entry.getKey()] = std::move(function);
   }
 
-  auto targetBuilder = llvm::orc::JITTargetMachineBuilder::detectHost();
-  if (!targetBuilder)
-    return targetBuilder.takeError();
-  targetBuilder->setCodeGenOptLevel(llvm::CodeGenOptLevel::Aggressive);
-  auto targetMachine = targetBuilder->createTargetMachine();
+  auto target = hostTarget();
+  if (!target)
+    return target.takeError();
+  auto targetMachine = target->createTargetMachine();
   if (!targetMachine)
     return targetMachine.takeError();
 
-  auto transformer = mlir::makeOptimizingTransformer(
-      /*optLevel=*/3, /*sizeLevel=*/0, targetMachine->get());
-  mlir::ExecutionEngineOptions options;
-  options.transformer = transformer;
-  options.jitCodeGenOptLevel = llvm::CodeGenOptLevel::Aggressive;
-  options.enableGDBNotificationListener = false;
-  options.enablePerfNotificationListener = false;
-  DiagnosticCollector diagnostics(llvmModule.getContext());
-  auto engine = mlir::ExecutionEngine::create(llvmModule, options,
-                                              std::move(*targetMachine));
-  if (!engine)
-    return diagnostics.error(llvm::toString(engine.takeError()));
-  compiled->engine = std::move(*engine);
-  compiled->engine->registerSymbols(runtimeSymbolMap);
-  compiled->engine->initialize();
-
-  for (auto &entry : compiled->functions) {
-    auto packed = compiled->engine->lookupPacked(entry.getKey());
-    if (!packed)
-      return packed.takeError();
-    entry.getValue().entry = *packed;
+  Stopwatch stopwatch;
+  llvm::LLVMContext llvmContext;
+  std::unique_ptr<llvm::Module> module;
+  {
+    DiagnosticCollector diagnostics(llvmModule.getContext());
+    module = mlir::translateModuleToLLVMIR(llvmModule, llvmContext);
+    if (!module)
+      return diagnostics.error("translation to LLVM IR failed");
   }
-  return compiled;
+  // The JIT runs no initializers (ObjectCode.cpp).
+  if (module->getNamedGlobal("llvm.global_ctors"))
+    return llvm::createStringError(
+        "the module has global constructors, which the engine does not run");
+  mlir::ExecutionEngine::setupTargetTripleAndDataLayout(module.get(),
+                                                        targetMachine->get());
+  for (const auto &entry : code.functions)
+    addPackedEntryPoint(*module->getFunction(entry.getKey()));
+  auto optimize = mlir::makeOptimizingTransformer(
+      /*optLevel=*/3, /*sizeLevel=*/0, targetMachine->get());
+  if (llvm::Error err = optimize(module.get()))
+    return std::move(err);
+  times.optimizationMs = stopwatch.milliseconds();
+
+  stopwatch.restart();
+  llvm::SmallVector<char, 0> object;
+  llvm::raw_svector_ostream os(object);
+  llvm::legacy::PassManager codegen;
+  if ((*targetMachine)
+          ->addPassesToEmitFile(codegen, os, nullptr,
+                                llvm::CodeGenFileType::ObjectFile))
+    return llvm::createStringError("the host target cannot emit objects");
+  codegen.run(*module);
+  code.object.assign(object.begin(), object.end());
+  code.dataLayout = module->getDataLayoutStr();
+  times.codegenMs = stopwatch.milliseconds();
+  return code;
 }

@@ -3,7 +3,9 @@
 #ifndef SIMIT_LIB_ENGINE_LOWERING_H
 #define SIMIT_LIB_ENGINE_LOWERING_H
 
-#include "CompiledModule.h"
+#include "ObjectCode.h"
+
+#include "simit/Engine/Program.h"
 
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
@@ -12,7 +14,6 @@
 #include "llvm/ADT/StringMap.h"
 #include "llvm/Support/Error.h"
 
-#include <memory>
 #include <string>
 
 namespace mlir {
@@ -43,11 +44,14 @@ llvm::Error
 lowerToLLVM(mlir::ModuleOp module, LoweringResult &result,
             mlir::simit::SimitCpuPipelineOptions options = {});
 
-/// JIT-compiles a module in the LLVM dialect at -O3 for the host and looks
-/// up the entry point of every function in `signatures`.
-llvm::Expected<std::shared_ptr<CompiledModule>>
-compileModule(mlir::ModuleOp llvmModule,
-              const llvm::StringMap<HostSignature> &signatures);
+/// Compiles a module in the LLVM dialect at -O3 for the host (hostTarget())
+/// into an object with a packed entry point for every function in
+/// `signatures`; records the time of LLVM's optimization and code
+/// generation in `times`.
+llvm::Expected<ObjectCode>
+compileToObject(mlir::ModuleOp llvmModule,
+                const llvm::StringMap<HostSignature> &signatures,
+                CompileTimes &times);
 
 } // namespace simit
 

@@ -2,9 +2,11 @@
 
 #include "simit/Engine/Program.h"
 
+#include "CompileCache.h"
 #include "CompiledModule.h"
 #include "Lowering.h"
 #include "SimImport.h"
+#include "Stopwatch.h"
 
 #include "simit/Dialect/Simit/IR/Simit.h"
 #include "simit/Frontend/IRGen.h"
@@ -20,39 +22,101 @@
 #include "llvm/Support/Path.h"
 #include "llvm/Support/SourceMgr.h"
 
+#include <optional>
+
 using namespace simit;
+
+namespace {
+/// What was loaded, as given: it is imported when first needed, which a
+/// program found in the compile cache may never be.
+struct Source {
+  enum class Kind { Sim, MLIR };
+  Kind kind = Kind::Sim;
+  std::string name, text;
+};
+} // namespace
 
 struct Program::Impl {
   ProgramOptions options;
-  mlir::MLIRContext context;
-  /// The program in the simit dialect (or loops), as loaded.
+  /// Made on first use: a program loaded from the cache needs none.
+  std::unique_ptr<mlir::MLIRContext> context;
+  std::optional<Source> source;
+  /// The program in the simit dialect (or loops), once imported.
   mlir::OwningOpRef<mlir::ModuleOp> module;
   /// The lowered module and what lowering recorded, once lowered.
   mlir::OwningOpRef<mlir::ModuleOp> llvmModule;
   LoweringResult lowering;
+  /// The compile cache's entry for the source, when it has one.
+  std::optional<ObjectCode> cachedCode;
   std::shared_ptr<CompiledModule> compiled;
+  CompileTimes times;
 
-  explicit Impl(ProgramOptions options)
-      : options(options), context(mlir::MLIRContext::Threading::DISABLED) {
-    mlir::DialectRegistry registry;
-    registerEngineDialects(registry);
-    context.appendDialectRegistry(registry);
-    context.loadAllAvailableDialects();
-    // Diagnostics name the .sim position; the op dump would bury it.
-    context.printOpOnDiagnostic(false);
-    frontend::loadIRGenDialects(context);
+  explicit Impl(ProgramOptions options) : options(std::move(options)) {}
+
+  mlir::MLIRContext &getContext() {
+    if (!context) {
+      context = std::make_unique<mlir::MLIRContext>(
+          mlir::MLIRContext::Threading::DISABLED);
+      mlir::DialectRegistry registry;
+      registerEngineDialects(registry);
+      context->appendDialectRegistry(registry);
+      context->loadAllAvailableDialects();
+      // Diagnostics name the .sim position; the op dump would bury it.
+      context->printOpOnDiagnostic(false);
+      frontend::loadIRGenDialects(*context);
+    }
+    return *context;
   }
 
-  void reset(mlir::OwningOpRef<mlir::ModuleOp> newModule) {
-    module = std::move(newModule);
+  llvm::Expected<mlir::OwningOpRef<mlir::ModuleOp>> import(const Source &from) {
+    if (from.kind == Source::Kind::Sim)
+      return importSimit(from.text, from.name, getContext(), options);
+    llvm::SourceMgr sourceMgr;
+    sourceMgr.AddNewSourceBuffer(
+        llvm::MemoryBuffer::getMemBuffer(from.text, from.name), llvm::SMLoc());
+    std::string diagnostics;
+    llvm::raw_string_ostream os(diagnostics);
+    mlir::SourceMgrDiagnosticHandler handler(sourceMgr, &getContext(), os);
+    mlir::OwningOpRef<mlir::ModuleOp> parsed =
+        mlir::parseSourceFile<mlir::ModuleOp>(sourceMgr, &getContext());
+    if (!parsed)
+      return llvm::createStringError(diagnostics);
+    return parsed;
+  }
+
+  /// Makes `from` the program: from the cache when it holds it, else
+  /// imported now, so that its errors are reported by the load.
+  llvm::Error load(Source from) {
+    Stopwatch cacheRead;
+    std::optional<ObjectCode> code = readCached(from);
+    double cacheMs = cacheRead.milliseconds();
+    mlir::OwningOpRef<mlir::ModuleOp> imported;
+    if (!code) {
+      auto result = import(from);
+      if (!result)
+        return result.takeError();
+      imported = std::move(*result);
+    }
+    source = std::move(from);
+    module = std::move(imported);
     llvmModule = nullptr;
     lowering = LoweringResult();
+    cachedCode = std::move(code);
     compiled = nullptr;
+    times = CompileTimes();
+    times.loadMs = cacheMs;
+    return llvm::Error::success();
   }
 
-  llvm::Error requireModule() const {
-    if (!module)
+  llvm::Error requireModule() {
+    if (module)
+      return llvm::Error::success();
+    if (!source)
       return llvm::createStringError("no program is loaded");
+    auto result = import(*source);
+    if (!result)
+      return result.takeError();
+    module = std::move(*result);
     return llvm::Error::success();
   }
 
@@ -73,21 +137,109 @@ struct Program::Impl {
     return llvm::Error::success();
   }
 
+  /// Everything the code compiled from `from` depends on; empty when the
+  /// cache is off or cannot tell this compiler from others
+  /// (CompileCache.h).
+  std::string cacheKey(const Source &from) const {
+    if (options.cacheDirectory.empty() || compilerIdentity().empty())
+      return "";
+    auto target = hostTarget();
+    if (!target) {
+      llvm::consumeError(target.takeError());
+      return "";
+    }
+    std::vector<std::string> features = target->getFeatures().getFeatures();
+    llvm::sort(features);
+    std::string key;
+    llvm::raw_string_ostream os(key);
+    os << compilerIdentity() << "\ncpu " << target->getCPU() << " "
+       << llvm::join(features, ",") << "\nprecision "
+       << (options.precision == FloatPrecision::Single ? "single" : "double")
+       << "\nhost functions " << llvm::join(options.hostFunctions, ",")
+       << "\ntime phases " << options.timePhases << "\ncheck numerics "
+       << options.checkNumerics << "\n"
+       << (from.kind == Source::Kind::Sim ? "sim " : "mlir ") << from.name
+       << "\n"
+       << from.text;
+    return key;
+  }
+
+  /// The cache's entry for `from`, if it has a sound one.
+  std::optional<ObjectCode> readCached(const Source &from) const {
+    std::string key = cacheKey(from);
+    if (key.empty())
+      return std::nullopt;
+    std::optional<std::string> payload =
+        readCacheEntry(options.cacheDirectory, key);
+    if (!payload)
+      return std::nullopt;
+    llvm::Expected<ObjectCode> code = deserializeObjectCode(*payload);
+    if (!code) {
+      llvm::consumeError(code.takeError());
+      return std::nullopt;
+    }
+    return std::move(*code);
+  }
+
+  /// The fields of each extern set's elements, from the imported module.
+  std::map<std::string, std::vector<std::string>> externSetFieldsOfModule() {
+    std::map<std::string, std::vector<std::string>> fields;
+    for (auto global : module->getOps<mlir::simit::ExternOp>()) {
+      auto set = llvm::dyn_cast<mlir::simit::SetType>(global.getType());
+      if (!set)
+        continue;
+      std::vector<std::string> &names = fields[set.getName().str()];
+      for (mlir::StringAttr name : set.getElement().getFieldNames())
+        names.push_back(name.str());
+    }
+    return fields;
+  }
+
   llvm::Error compile() {
     if (compiled)
       return llvm::Error::success();
+    if (cachedCode) {
+      Stopwatch link;
+      auto loaded = loadObjectCode(*cachedCode);
+      if (loaded) {
+        compiled = std::move(*loaded);
+        times.cached = true;
+        times.loadMs += link.milliseconds();
+        return llvm::Error::success();
+      }
+      // Sound bytes that do not link (e.g. a runtime function this build
+      // lacks): compile as if there were no entry.
+      llvm::consumeError(loaded.takeError());
+      cachedCode.reset();
+    }
+
+    Stopwatch loweringTime;
     if (llvm::Error err = lower())
       return err;
-    auto result = compileModule(*llvmModule, lowering.signatures);
-    if (!result)
-      return result.takeError();
-    compiled = std::move(*result);
+    CompileTimes newTimes;
+    newTimes.loweringMs = loweringTime.milliseconds();
+    auto code = compileToObject(*llvmModule, lowering.signatures, newTimes);
+    if (!code)
+      return code.takeError();
+    code->externSetFields = externSetFieldsOfModule();
+    Stopwatch link;
+    auto loaded = loadObjectCode(*code);
+    if (!loaded)
+      return loaded.takeError();
+    newTimes.loadMs = link.milliseconds();
+    compiled = std::move(*loaded);
+    times = newTimes;
+    // A cache that cannot be written costs the next run its compile time,
+    // nothing else.
+    if (std::string key = cacheKey(*source); !key.empty())
+      llvm::consumeError(writeCacheEntry(options.cacheDirectory, key,
+                                         serializeObjectCode(*code)));
     return llvm::Error::success();
   }
 };
 
 Program::Program(ProgramOptions options)
-    : impl(std::make_unique<Impl>(options)) {}
+    : impl(std::make_unique<Impl>(std::move(options))) {}
 Program::Program(Program &&) = default;
 Program &Program::operator=(Program &&) = default;
 Program::~Program() = default;
@@ -95,8 +247,8 @@ Program::~Program() = default;
 llvm::Error Program::loadFile(llvm::StringRef path) {
   auto buffer = llvm::MemoryBuffer::getFile(path, /*IsText=*/true);
   if (!buffer)
-    return llvm::createStringError(path + ": cannot read the file: " +
-                                   buffer.getError().message());
+    return llvm::createStringError(
+        path + ": cannot read the file: " + buffer.getError().message());
   if (llvm::sys::path::extension(path) == ".mlir")
     return loadMLIR((*buffer)->getBuffer(), path);
   return loadString((*buffer)->getBuffer(), path);
@@ -104,27 +256,12 @@ llvm::Error Program::loadFile(llvm::StringRef path) {
 
 llvm::Error Program::loadString(llvm::StringRef source,
                                 llvm::StringRef bufferName) {
-  auto module = importSimit(source, bufferName, impl->context, impl->options);
-  if (!module)
-    return module.takeError();
-  impl->reset(std::move(*module));
-  return llvm::Error::success();
+  return impl->load({Source::Kind::Sim, bufferName.str(), source.str()});
 }
 
 llvm::Error Program::loadMLIR(llvm::StringRef text,
                               llvm::StringRef bufferName) {
-  llvm::SourceMgr sourceMgr;
-  sourceMgr.AddNewSourceBuffer(
-      llvm::MemoryBuffer::getMemBufferCopy(text, bufferName), llvm::SMLoc());
-  std::string diagnostics;
-  llvm::raw_string_ostream os(diagnostics);
-  mlir::SourceMgrDiagnosticHandler handler(sourceMgr, &impl->context, os);
-  mlir::OwningOpRef<mlir::ModuleOp> module =
-      mlir::parseSourceFile<mlir::ModuleOp>(sourceMgr, &impl->context);
-  if (!module)
-    return llvm::createStringError(diagnostics);
-  impl->reset(std::move(module));
-  return llvm::Error::success();
+  return impl->load({Source::Kind::MLIR, bufferName.str(), text.str()});
 }
 
 llvm::Expected<std::string> Program::emit(Stage stage) {
@@ -154,29 +291,33 @@ llvm::Expected<std::string> Program::emit(Stage stage) {
 }
 
 llvm::Expected<std::vector<std::string>> Program::exportedFunctions() {
-  if (llvm::Error err = impl->lower())
-    return std::move(err);
   std::vector<std::string> names;
-  for (const auto &entry : impl->lowering.signatures)
-    names.push_back(entry.getKey().str());
+  auto addNames = [&](const auto &map) {
+    for (const auto &entry : map)
+      names.push_back(entry.getKey().str());
+  };
+  if (impl->compiled) {
+    addNames(impl->compiled->functions);
+  } else if (impl->cachedCode) {
+    addNames(impl->cachedCode->functions);
+  } else {
+    if (llvm::Error err = impl->lower())
+      return std::move(err);
+    addNames(impl->lowering.signatures);
+  }
   llvm::sort(names);
   return names;
 }
 
+const CompileTimes &Program::compileTimes() const { return impl->times; }
+
 llvm::Expected<std::map<std::string, std::vector<std::string>>>
 Program::externSetFields() {
+  if (impl->cachedCode)
+    return impl->cachedCode->externSetFields;
   if (llvm::Error err = impl->requireModule())
     return std::move(err);
-  std::map<std::string, std::vector<std::string>> fields;
-  for (auto global : impl->module->getOps<mlir::simit::ExternOp>()) {
-    auto set = llvm::dyn_cast<mlir::simit::SetType>(global.getType());
-    if (!set)
-      continue;
-    std::vector<std::string> &names = fields[set.getName().str()];
-    for (mlir::StringAttr name : set.getElement().getFieldNames())
-      names.push_back(name.str());
-  }
-  return fields;
+  return impl->externSetFieldsOfModule();
 }
 
 llvm::Expected<Function> Program::compile(llvm::StringRef name) {
@@ -190,8 +331,7 @@ llvm::Expected<Function> Program::compile(llvm::StringRef name) {
     llvm::sort(names);
     return llvm::createStringError(
         "unknown function '" + name + "' (exported functions: " +
-        (names.empty() ? std::string("none") : llvm::join(names, ", ")) +
-        ")");
+        (names.empty() ? std::string("none") : llvm::join(names, ", ")) + ")");
   }
   return Function(impl->compiled, it->second.signature);
 }

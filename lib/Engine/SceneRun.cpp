@@ -191,7 +191,8 @@ SceneRunner::SceneRunner(SceneDescription scene,
                          const SceneRunOptions &options)
     : description(std::move(scene)), options(options),
       program(ProgramOptions{options.precision, {}, options.timePhases,
-                             options.checkNumerics}) {}
+                             options.checkNumerics,
+                             options.cacheDirectory}) {}
 
 SceneRunner::~SceneRunner() = default;
 

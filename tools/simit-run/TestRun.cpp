@@ -89,6 +89,7 @@ public:
 
     ProgramOptions programOptions;
     programOptions.precision = options.precision;
+    programOptions.cacheDirectory = options.cacheDirectory;
     for (const frontend::TestLine &test : ast->tests)
       if (test.func)
         programOptions.hostFunctions.push_back(test.funcName);
@@ -208,6 +209,7 @@ int simit::runEval(const EvalOptions &options, llvm::raw_ostream &os) {
   ProgramOptions programOptions;
   programOptions.precision = options.precision;
   programOptions.hostFunctions = {call->function};
+  programOptions.cacheDirectory = options.cacheDirectory;
   Program program(programOptions);
   if (llvm::Error err = program.loadFile(options.path)) {
     llvm::errs() << llvm::toString(std::move(err)) << "\n";

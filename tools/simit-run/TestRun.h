@@ -14,6 +14,8 @@ namespace simit {
 struct TestRunOptions {
   std::string path;
   FloatPrecision precision = FloatPrecision::Double;
+  /// ProgramOptions::cacheDirectory of every section's Program.
+  std::string cacheDirectory;
 };
 
 /// Runs the assertions of every enabled section of a .sim file, printing
@@ -26,6 +28,7 @@ struct EvalOptions {
   /// `name(literal, ...)`.
   std::string call;
   FloatPrecision precision = FloatPrecision::Double;
+  std::string cacheDirectory;
 };
 
 /// Calls one function with literal arguments and prints each result as a

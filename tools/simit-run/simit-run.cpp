@@ -1,6 +1,7 @@
 //===--- simit-run.cpp - JIT-runs Simit programs --------------------------===//
 //
 //   simit-run PROGRAM --scene SCENE.json [--output-dir DIR] [--time]
+//             [--no-cache | --cache-dir DIR]
 //   simit-run --test FILE.sim
 //   simit-run FILE.sim --eval 'f(1.0, [1, 2]')'
 //   simit-run FILE.sim --emit=simit|loops|llvm
@@ -65,6 +66,15 @@ static cl::opt<bool>
                      "frame (for benchmarks)"));
 static cl::opt<bool> float32(cl::cat(runCategory), "float32",
                              cl::desc("Compile `float` as single precision"));
+static cl::opt<bool> noCache(cl::cat(runCategory), "no-cache",
+                             cl::desc("Compile the program even when the "
+                                      "compile cache holds it, and store "
+                                      "nothing"));
+static cl::opt<std::string> cacheDir(
+    cl::cat(runCategory), "cache-dir",
+    cl::desc("The compile cache (default: $XDG_CACHE_HOME/simit, else "
+             "~/.cache/simit)"),
+    cl::value_desc("dir"));
 static cl::opt<bool> noProgress(cl::cat(runCategory), "no-progress",
                                 cl::desc("No progress lines on long runs"));
 
@@ -84,9 +94,18 @@ static std::string sceneOutputDirectory() {
   return std::string(directory);
 }
 
-static void printTimeSummary(const SceneTimeSummary &times, int frames) {
+static void printTimeSummary(const SceneTimeSummary &times,
+                             const CompileTimes &compile, int frames) {
   llvm::raw_ostream &os = llvm::outs();
-  os << llvm::format("compile:   %10.2f ms\n", times.compileMs);
+  if (compile.cached)
+    os << llvm::format("compile:   %10.2f ms (cached; load %.2f ms)\n",
+                       times.compileMs, compile.loadMs);
+  else
+    os << llvm::format("compile:   %10.2f ms (lowering %.2f, LLVM -O3 "
+                       "%.2f, codegen %.2f, load %.2f ms)\n",
+                       times.compileMs, compile.loweringMs,
+                       compile.optimizationMs, compile.codegenMs,
+                       compile.loadMs);
   os << llvm::format("bind/init: %10.2f ms (sets %.2f ms)\n", times.bindMs,
                      times.setsMs);
   os << llvm::format("init:      %10.2f ms\n", times.initMs);
@@ -109,7 +128,8 @@ static void printTimeSummary(const SceneTimeSummary &times, int frames) {
 
 /// Builds the scene's sets, compiles the program, runs "init" once and
 /// "step" per frame, and writes the outputs.
-static int runSceneFile(FloatPrecision precision) {
+static int runSceneFile(FloatPrecision precision,
+                        const std::string &cacheDirectory) {
   llvm::Expected<SceneDescription> scene = loadScene(scenePath);
   if (!scene)
     return fail(scene.takeError());
@@ -123,13 +143,15 @@ static int runSceneFile(FloatPrecision precision) {
   options.checkNumerics = checkNumerics;
   options.checkFrames = !noCheck;
   options.progress = !noProgress;
+  options.cacheDirectory = cacheDirectory;
   auto runner = SceneRunner::create(std::move(*scene), options);
   if (!runner)
     return fail(runner.takeError());
   if (llvm::Error err = (*runner)->run())
     return fail(std::move(err));
   if (printTimes)
-    printTimeSummary((*runner)->times().summarize(), (*runner)->frames());
+    printTimeSummary((*runner)->times().summarize(),
+                     (*runner)->compileTimes(), (*runner)->frames());
   return 0;
 }
 
@@ -139,16 +161,24 @@ int main(int argc, char **argv) {
   cl::ParseCommandLineOptions(argc, argv, "Simit JIT runner\n");
   FloatPrecision precision =
       float32 ? FloatPrecision::Single : FloatPrecision::Double;
+  if (noCache && cacheDir.getNumOccurrences())
+    return fail(
+        llvm::createStringError("--no-cache and --cache-dir contradict"));
+  std::string cacheDirectory =
+      noCache ? ""
+      : cacheDir.getNumOccurrences() ? std::string(cacheDir)
+                                     : defaultCompileCacheDirectory();
 
   if (testMode) {
     if (programPath.empty())
       return fail(llvm::createStringError("--test needs a .sim file"));
-    return runTests({programPath, precision}, llvm::outs());
+    return runTests({programPath, precision, cacheDirectory}, llvm::outs());
   }
   if (!evalCall.empty()) {
     if (programPath.empty())
       return fail(llvm::createStringError("--eval needs a program file"));
-    return runEval({programPath, evalCall, precision}, llvm::outs());
+    return runEval({programPath, evalCall, precision, cacheDirectory},
+                   llvm::outs());
   }
   if (emitStage.getNumOccurrences()) {
     if (programPath.empty())
@@ -165,5 +195,5 @@ int main(int argc, char **argv) {
   if (scenePath.empty())
     return fail(llvm::createStringError(
         "nothing to do: give --scene, --test, --eval or --emit"));
-  return runSceneFile(precision);
+  return runSceneFile(precision, cacheDirectory);
 }

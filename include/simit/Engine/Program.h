@@ -3,7 +3,9 @@
 // The paper's section 5 API: a Program holds one Simit program (a .sim
 // source, or MLIR in the simit dialect or already lowered to loops) and
 // compiles its exported functions: frontend -> simit dialect -> simit passes
-// -> loops over sets -> LLVM dialect -> mlir::ExecutionEngine at -O3.
+// -> loops over sets -> LLVM dialect -> LLVM at -O3 -> an object linked into
+// an ORC JIT. With a cache directory, the object is kept on disk and a later
+// Program with the same source and options loads it instead of compiling.
 //
 //   simit::Program program;
 //   if (llvm::Error err = program.loadFile("springs.sim")) ...
@@ -45,6 +47,29 @@ struct ProgramOptions {
   /// (simit-check-numerics; simit::takeNumericsProblem() in
   /// RuntimeFunctions.h reads the first one). Off, nothing is scanned.
   bool checkNumerics = false;
+  /// Where compiled programs are kept between runs, keyed by the compiler,
+  /// the host CPU, the source and the options above (each option that
+  /// changes the code must be part of the key, Program.cpp); empty: every
+  /// Program compiles. defaultCompileCacheDirectory() is the usual place.
+  std::string cacheDirectory;
+};
+
+/// $XDG_CACHE_HOME/simit, else $HOME/.cache/simit; empty when neither
+/// variable is set.
+std::string defaultCompileCacheDirectory();
+
+/// Where the time of compile() went, in milliseconds.
+struct CompileTimes {
+  /// The code came from the cache: nothing was lowered or compiled.
+  bool cached = false;
+  /// The MLIR pipeline down to the LLVM dialect.
+  double loweringMs = 0;
+  /// Translation to LLVM IR and LLVM's -O3 passes.
+  double optimizationMs = 0;
+  /// Machine code for the host CPU.
+  double codegenMs = 0;
+  /// Reading the cache (when used) and linking the object into the JIT.
+  double loadMs = 0;
 };
 
 /// Where --emit stops: the simit dialect as imported, the loops over sets
@@ -76,6 +101,9 @@ public:
 
   /// The exported functions of the compiled module, sorted by name.
   llvm::Expected<std::vector<std::string>> exportedFunctions();
+
+  /// Where the first compile() spent its time (all zero before it).
+  const CompileTimes &compileTimes() const;
 
   /// The fields the element type of each extern set declares, by set name
   /// (empty when the loaded IR has no simit.extern sets, e.g. loops IR).

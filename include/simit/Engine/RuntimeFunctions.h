@@ -1,7 +1,7 @@
 //===--- RuntimeFunctions.h - Host functions of lowered Simit code -*- C++ -*-===//
 //
 // Functions JIT-compiled Simit code calls, with C linkage. The engine
-// registers them with every ExecutionEngine, so lowered code declares them
+// defines them in every JIT it links code into, so lowered code declares them
 // as `func.func private` and calls them by name (docs/api.md lists the MLIR
 // declarations).
 //

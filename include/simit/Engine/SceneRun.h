@@ -48,6 +48,8 @@ struct SceneRunOptions {
   bool checkFrames = true;
   /// Progress lines on stderr once a run has taken a while.
   bool progress = false;
+  /// ProgramOptions::cacheDirectory (empty: no compile cache).
+  std::string cacheDirectory;
 };
 
 /// The medians of SceneTimes, as simit-run --time prints them.
@@ -103,6 +105,8 @@ public:
   const SceneDescription &scene() const { return description; }
   SetRegistry &sets() { return registry; }
   const SceneTimes &times() const { return timings; }
+  /// How the program was compiled (the compile cache, the phases).
+  const CompileTimes &compileTimes() const { return program.compileTimes(); }
   /// The output files written so far.
   const std::vector<std::string> &writtenFiles() const;
 

@@ -1,0 +1,68 @@
+//===--- ObjectCode.cpp - Loading compiled code into a JIT ----------------===//
+
+#include "ObjectCode.h"
+
+#include "RuntimeSymbols.h"
+
+#include "llvm/ExecutionEngine/Orc/LLJIT.h"
+#include "llvm/IR/DataLayout.h"
+#include "llvm/Support/MemoryBuffer.h"
+#include "llvm/Support/TargetSelect.h"
+
+#include <mutex>
+
+using namespace simit;
+
+llvm::Expected<llvm::orc::JITTargetMachineBuilder> simit::hostTarget() {
+  static std::once_flag initialized;
+  std::call_once(initialized, [] {
+    llvm::InitializeNativeTarget();
+    llvm::InitializeNativeTargetAsmPrinter();
+  });
+  auto target = llvm::orc::JITTargetMachineBuilder::detectHost();
+  if (!target)
+    return target.takeError();
+  target->setCodeGenOptLevel(llvm::CodeGenOptLevel::Aggressive);
+  target->setCodeModel(llvm::CodeModel::Small);
+  target->setRelocationModel(llvm::Reloc::PIC_);
+  return target;
+}
+
+llvm::Expected<std::shared_ptr<CompiledModule>>
+simit::loadObjectCode(const ObjectCode &code) {
+  auto target = hostTarget();
+  if (!target)
+    return target.takeError();
+  auto dataLayout = llvm::DataLayout::parse(code.dataLayout);
+  if (!dataLayout)
+    return dataLayout.takeError();
+  // No platform: the object has no initializers to run (Lowering.cpp
+  // rejects modules with global constructors), and setting one up costs
+  // more than the rest of the load.
+  auto jit = llvm::orc::LLJITBuilder()
+                 .setJITTargetMachineBuilder(std::move(*target))
+                 .setDataLayout(std::move(*dataLayout))
+                 .setPlatformSetUp(llvm::orc::setUpInactivePlatform)
+                 .create();
+  if (!jit)
+    return jit.takeError();
+  llvm::orc::MangleAndInterner mangle((*jit)->getExecutionSession(),
+                                      (*jit)->getDataLayout());
+  if (llvm::Error err = (*jit)->getMainJITDylib().define(
+          llvm::orc::absoluteSymbols(runtimeSymbolMap(mangle))))
+    return std::move(err);
+  if (llvm::Error err = (*jit)->addObjectFile(
+          llvm::MemoryBuffer::getMemBufferCopy(code.object, "simit-module.o")))
+    return std::move(err);
+
+  auto compiled = std::make_shared<CompiledModule>();
+  compiled->functions = code.functions;
+  for (auto &entry : compiled->functions) {
+    auto address = (*jit)->lookup(("_mlir_" + entry.getKey()).str());
+    if (!address)
+      return address.takeError();
+    entry.getValue().entry = address->toPtr<void (*)(void **)>();
+  }
+  compiled->jit = std::move(*jit);
+  return compiled;
+}

@@ -19,7 +19,7 @@ func.func @f(%a : !simit.tensor<["points", "points"] x f64, #simit.storage<csr>>
 
 // -----
 
-// expected-error @+1 {{expected a #simit.storage encoding, got 'unit'}}
+// expected-error @+1 {{expected a #simit.storage encoding, got unit}}
 func.func @f(%a : !simit.tensor<["points", "points"] x f64, unit>)
 
 // -----
@@ -56,7 +56,7 @@ func.func @f(%a : !simit.tensor<["points", "nodes"] x f64, #simit.storage<stenci
 // -----
 
 func.func @f(%a : !simit.tensor<["points", "points"] x f64, #simit.storage<pattern("springs", rows [0, 1], cols [0, 1])>>) {
-  // expected-error @+1 {{'pattern("springs", rows [0, 1], cols [0, 1])' does not contain 'pattern("hinges", rows [0, 1], cols [0, 1])'; 'restrict' drops the blocks it does not store}}
+  // expected-error @+1 {{'pattern("hinges", rows [0, 1], cols [0, 1])' does not contain 'pattern("springs", rows [0, 1], cols [0, 1])'; 'restrict' drops the blocks it does not store}}
   %b = simit.convert %a : !simit.tensor<["points", "points"] x f64, #simit.storage<pattern("springs", rows [0, 1], cols [0, 1])>>
       -> !simit.tensor<["points", "points"] x f64, #simit.storage<pattern("hinges", rows [0, 1], cols [0, 1])>>
   return

@@ -40,14 +40,22 @@ func.func private @edge(%s : !Spring, %e : !Ends) -> (!K, !I) {
   return %K, %I : !K, !I
 }
 
+func.func private @hinge(%s : !Spring, %e : !Ends) -> !K {
+  %k = simit.elem_read %s["k"] : !Spring -> f64
+  %a = simit.tuple_get %e[0] : !Ends -> !Point
+  %z = simit.zeros : !K
+  %K = simit.insert %k into %z[%a, %a] : f64 into !K, (!Point, !Point)
+  return %K : !K
+}
+
 // Sums join: the diagonal goes into the pattern (converted up), two
 // patterns make their union. Negation and scaling keep the storage.
 // CHECK-LABEL: func.func @sums
 // CHECK: %[[M:.*]] = simit.assemble @mass
-// CHECK: %[[K:.*]], %{{.*}} = simit.assemble @edge() to %{{.*}} : {{.*}} -> (!simit.tensor<["points", "points"] x f64, #pat_springs>
-// CHECK: %[[H:.*]], %{{.*}} = simit.assemble @edge() to %{{.*}} : {{.*}} -> (!simit.tensor<["points", "points"] x f64, #pat_hinges>
+// CHECK: %[[K:.*]]:2 = simit.assemble @edge() to %{{.*}} : {{.*}} -> (!simit.tensor<["points", "points"] x f64, #pat_springs>
+// CHECK: %[[H:.*]] = simit.assemble @hinge() {{.*}} -> !simit.tensor<["points", "points"] x f64, #pat_hinges>
 // CHECK: %[[MC:.*]] = simit.convert %[[M]] : !simit.tensor<["points", "points"] x f64, #diag_points> -> !simit.tensor<["points", "points"] x f64, #pat_springs>
-// CHECK: %[[A:.*]] = simit.add %[[MC]], %[[K]] : !simit.tensor<["points", "points"] x f64, #pat_springs>
+// CHECK: %[[A:.*]] = simit.add %[[MC]], %[[K]]#0 : !simit.tensor<["points", "points"] x f64, #pat_springs>
 // CHECK: %[[N:.*]] = simit.neg %[[A]] : !simit.tensor<["points", "points"] x f64, #pat_springs>
 // CHECK: %[[S:.*]] = simit.scale %{{.*}}, %[[N]] : f64, !simit.tensor<["points", "points"] x f64, #pat_springs>
 // CHECK: %[[SC:.*]] = simit.convert %[[S]] : {{.*}}#pat_springs> -> {{.*}}#union>
@@ -56,7 +64,7 @@ func.func private @edge(%s : !Spring, %e : !Ends) -> (!K, !I) {
 func.func @sums(%points : !Points, %springs : !Springs, %hinges : !Hinges, %h : f64) -> f64 {
   %M = simit.assemble @mass() to %points reduce <add> : (!Points) -> !K
   %K, %I = simit.assemble @edge() to %springs reduce <add> : (!Springs) -> (!K, !I)
-  %H, %J = simit.assemble @edge() to %hinges reduce <add> : (!Hinges) -> (!K, !simit.tensor<["hinges", "points"] x f64>)
+  %H = simit.assemble @hinge() to %hinges reduce <add> : (!Hinges) -> !K
   %A = simit.add %M, %K : !K
   %N = simit.neg %A : !K
   %S = simit.scale %h, %N : f64, !K
@@ -94,7 +102,7 @@ func.func @products_elementwise(%points : !Points, %springs : !Springs) -> f64 {
 func.func @composition(%points : !Points, %springs : !Springs, %hinges : !Hinges) -> f64 {
   %M = simit.assemble @mass() to %points reduce <add> : (!Points) -> !K
   %K, %I = simit.assemble @edge() to %springs reduce <add> : (!Springs) -> (!K, !I)
-  %H, %J = simit.assemble @edge() to %hinges reduce <add> : (!Hinges) -> (!K, !simit.tensor<["hinges", "points"] x f64>)
+  %H = simit.assemble @hinge() to %hinges reduce <add> : (!Hinges) -> !K
   %T = simit.transpose %I : !I -> !simit.tensor<["points", "springs"] x f64>
   %L = simit.matmul %T, %I : !simit.tensor<["points", "springs"] x f64>, !I -> !K
   %HK = simit.matmul %H, %K : !K, !K -> !K

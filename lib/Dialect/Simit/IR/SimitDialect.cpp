@@ -21,6 +21,39 @@ namespace {
 struct SimitOpAsmInterface : public OpAsmDialectInterface {
   using OpAsmDialectInterface::OpAsmDialectInterface;
 
+  /// Names a storage encoding after its kind and set (`#pat_springs`,
+  /// `#diag_points`, `#inc_springs_t` for a transposed incidence).
+  AliasResult getAlias(Attribute attr, raw_ostream &os) const override {
+    auto encoding = dyn_cast<StorageAttr>(attr);
+    if (!encoding)
+      return AliasResult::NoAlias;
+    bool transposed = encoding.getKind() == StorageKind::Transpose;
+    if (transposed)
+      encoding = encoding.getOperand();
+    switch (encoding.getKind()) {
+    case StorageKind::Dense:
+    case StorageKind::Empty:
+      return AliasResult::NoAlias;
+    case StorageKind::Diag:
+      os << "diag_" << encoding.getSet().getValue();
+      break;
+    case StorageKind::Pattern:
+      os << "pat_" << encoding.getSet().getValue();
+      break;
+    case StorageKind::Incidence:
+      os << "inc_" << encoding.getSet().getValue();
+      break;
+    case StorageKind::Stencil:
+      os << "stencil_" << encoding.getSet().getValue();
+      break;
+    default:
+      os << stringifyStorageKind(encoding.getKind());
+    }
+    if (transposed)
+      os << "_t";
+    return AliasResult::OverridableAlias;
+  }
+
   AliasResult getAlias(Type type, raw_ostream &os) const override {
     if (auto element = dyn_cast<ElementType>(type)) {
       os << element.getName().getValue();

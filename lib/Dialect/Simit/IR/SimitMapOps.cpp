@@ -8,7 +8,7 @@
 //
 //===----------------------------------------------------------------------===//
 
-#include "simit/Dialect/Simit/IR/Simit.h"
+#include "simit/Dialect/Simit/IR/SimitStorage.h"
 
 #include "SetChecks.h"
 #include "mlir/Interfaces/FunctionInterfaces.h"
@@ -154,7 +154,8 @@ static LogicalResult verifyMapLike(Operation *op,
                                << " must be a tensor, a scalar or an opaque "
                                   "handle, got "
                                << type;
-    if (type != params[i])
+    // Element functions read matrix arguments in any storage.
+    if (!isSameUpToStorage(type, params[i]))
       return op->emitOpError()
              << "passes extra argument #" << i << " of type " << extra.getType()
              << " but " << callee << " expects " << params[i];
@@ -190,9 +191,14 @@ static LogicalResult verifyMapLike(Operation *op,
     return op->emitOpError() << callee << " has " << params.size()
                              << " parameters but the map passes " << numPassed;
 
-  // Results: the function's, over the set, its endpoint sets or ranges.
+  // Results: the function's, over the set, its endpoint sets or ranges. The
+  // function returns one element's contributions, which have no storage;
+  // the map's results may carry the encoding simit-assign-storage gives them.
   ArrayRef<Type> functionResults = function.getResultTypes();
-  if (TypeRange(functionResults) != resultTypes)
+  if (functionResults.size() != resultTypes.size() ||
+      !llvm::all_of(llvm::zip(functionResults, resultTypes), [](auto types) {
+        return isSameUpToStorage(std::get<0>(types), std::get<1>(types));
+      }))
     return op->emitOpError() << "result types must be the result types of "
                              << callee;
   for (auto [i, type] : llvm::enumerate(resultTypes)) {

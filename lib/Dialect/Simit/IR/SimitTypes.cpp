@@ -242,11 +242,25 @@ Type SystemTensorType::parse(AsmParser &parser) {
   };
   if (parser.parseLess() ||
       parser.parseCommaSeparatedList(AsmParser::Delimiter::Square, parseDim) ||
-      parser.parseKeyword("x") || parser.parseType(blockType) ||
-      parser.parseGreater())
+      parser.parseKeyword("x") || parser.parseType(blockType))
+    return {};
+  StorageAttr encoding;
+  if (succeeded(parser.parseOptionalComma())) {
+    SMLoc encodingLoc = parser.getCurrentLocation();
+    Attribute attr;
+    if (parser.parseAttribute(attr))
+      return {};
+    encoding = dyn_cast<StorageAttr>(attr);
+    if (!encoding) {
+      parser.emitError(encodingLoc, "expected a #simit.storage encoding, got ")
+          << attr;
+      return {};
+    }
+  }
+  if (parser.parseGreater())
     return {};
   return getChecked([&] { return parser.emitError(parser.getNameLoc()); }, ctx,
-                    ArrayAttr::get(ctx, dims), blockType);
+                    ArrayAttr::get(ctx, dims), blockType, encoding);
 }
 
 void SystemTensorType::print(AsmPrinter &printer) const {
@@ -257,12 +271,53 @@ void SystemTensorType::print(AsmPrinter &printer) const {
     else
       printer << cast<IntegerAttr>(dim).getInt();
   });
-  printer << "] x " << getBlockType() << ">";
+  printer << "] x " << getBlockType();
+  if (getEncoding())
+    printer << ", " << getEncoding();
+  printer << ">";
+}
+
+/// Checks that `encoding` fits a matrix over (`rows`, `cols`) as far as the
+/// set names tell: the sets of a diagonal, a stencil and an incidence.
+static LogicalResult
+verifyEncodingSets(function_ref<InFlightDiagnostic()> emitError,
+                   StorageAttr encoding, StringAttr rows, StringAttr cols) {
+  auto mismatch = [&]() {
+    return emitError() << "storage '" << encoding.str()
+                       << "' does not fit a matrix over (\"" << rows.getValue()
+                       << "\", \"" << cols.getValue() << "\")";
+  };
+  switch (encoding.getKind()) {
+  case StorageKind::Diag:
+    if (rows != encoding.getSet() || cols != encoding.getSet())
+      return mismatch();
+    return success();
+  case StorageKind::Stencil:
+    if (rows != cols)
+      return mismatch();
+    return success();
+  case StorageKind::Incidence:
+    if (rows != encoding.getSet() || cols == encoding.getSet())
+      return mismatch();
+    return success();
+  case StorageKind::Transpose:
+    return verifyEncodingSets(emitError, encoding.getOperand(), cols, rows);
+  case StorageKind::LowRank:
+    return verifyEncodingSets(emitError, encoding.getOperand(), rows, cols);
+  case StorageKind::Union:
+    for (unsigned i = 0, e = encoding.getMembers().size(); i < e; ++i)
+      if (failed(verifyEncodingSets(emitError, encoding.getMember(i), rows,
+                                    cols)))
+        return failure();
+    return success();
+  default:
+    return success();
+  }
 }
 
 LogicalResult
 SystemTensorType::verify(function_ref<InFlightDiagnostic()> emitError,
-                         ArrayAttr dims, Type blockType) {
+                         ArrayAttr dims, Type blockType, StorageAttr encoding) {
   if (dims.empty())
     return emitError() << "!simit.tensor needs at least one dimension";
   bool hasSet = false;
@@ -280,6 +335,14 @@ SystemTensorType::verify(function_ref<InFlightDiagnostic()> emitError,
     if (size.getInt() <= 0)
       return emitError() << "range dimension must be positive, got "
                          << size.getInt();
+  }
+  if (encoding) {
+    auto rows = dims.size() == 2 ? dyn_cast<StringAttr>(dims[0]) : nullptr;
+    auto cols = dims.size() == 2 ? dyn_cast<StringAttr>(dims[1]) : nullptr;
+    if (!rows || !cols)
+      return emitError() << "a storage encoding needs a matrix over two sets";
+    if (failed(verifyEncodingSets(emitError, encoding, rows, cols)))
+      return failure();
   }
   if (isScalarType(blockType)) {
     if (!hasSet)
@@ -310,6 +373,11 @@ bool SystemTensorType::isSystem() const {
     return true;
   auto block = dyn_cast<SystemTensorType>(getBlockType());
   return block && block.isSystem();
+}
+
+bool SystemTensorType::isSetMatrix() const {
+  return getOrder() == 2 && isa<StringAttr>(getDims()[0]) &&
+         isa<StringAttr>(getDims()[1]);
 }
 
 Type SystemTensorType::getComponentType() const {

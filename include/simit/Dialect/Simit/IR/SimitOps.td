@@ -819,5 +819,6 @@ def Simit_StringCmpOp : Simit_Op<"string_cmp", [Pure]> {
 }
 
 include "simit/Dialect/Simit/IR/SimitFusionOps.td"
+include "simit/Dialect/Simit/IR/SimitStorageOps.td"
 
 #endif // SIMIT_DIALECT_SIMIT_IR_SIMITOPS_TD

@@ -109,8 +109,25 @@ def Simit_SystemTensorType : Simit_Type<"SystemTensor", "tensor"> {
 
     A tensor of integer ranges with a scalar block is a builtin tensor
     (`tensor<8xf64>`), so this type requires a set dimension or a tensor block.
+
+    A matrix over two sets may carry a trailing storage encoding
+    (`#simit.storage`, assigned by `simit-assign-storage`); without one its
+    storage is not assigned yet:
+
+    ```mlir
+    !simit.tensor<["points", "points"] x tensor<3x3xf64>,
+                  #simit.storage<pattern("springs", rows [0, 1], cols [0, 1])>>
+    ```
   }];
-  let parameters = (ins "::mlir::ArrayAttr":$dims, "::mlir::Type":$blockType);
+  let parameters = (ins "::mlir::ArrayAttr":$dims, "::mlir::Type":$blockType,
+                        OptionalParameter<"StorageAttr", "the storage encoding">:$encoding);
+  let skipDefaultBuilders = 1;
+  let builders = [
+    TypeBuilder<(ins "::mlir::ArrayAttr":$dims, "::mlir::Type":$blockType,
+                     CArg<"StorageAttr", "{}">:$encoding), [{
+      return $_get($_ctxt, dims, blockType, encoding);
+    }]>
+  ];
   let hasCustomAssemblyFormat = 1;
   let genVerifyDecl = 1;
   let extraClassDeclaration = [{
@@ -123,6 +140,13 @@ def Simit_SystemTensorType : Simit_Type<"SystemTensor", "tensor"> {
     /// The shape of the block (empty for a scalar block); a nested
     /// `!simit.tensor` block contributes its outer integer dimensions.
     ::llvm::SmallVector<int64_t> getBlockShape() const;
+    /// This type with another encoding (null: none).
+    SystemTensorType withEncoding(StorageAttr encoding) const {
+      return get(getContext(), getDims(), getBlockType(), encoding);
+    }
+    /// Whether this is a matrix whose two outer dimensions are sets: the
+    /// tensors that may carry an encoding.
+    bool isSetMatrix() const;
   }];
 }
 

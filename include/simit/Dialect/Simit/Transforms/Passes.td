@@ -39,6 +39,29 @@ def SimitInlineFunctions : Pass<"simit-inline-functions", "::mlir::ModuleOp"> {
                            "::mlir::func::FuncDialect"];
 }
 
+def SimitAssignStorage : Pass<"simit-assign-storage", "::mlir::ModuleOp"> {
+  let summary = "Gives every system matrix its storage encoding";
+  let description = [{
+    A sparse forward data-flow analysis over the `#simit.storage` lattice
+    (docs/storage.md), then a rewrite that puts the encodings into the types
+    of results, block arguments and `!simit.ref` slots of matrices over two
+    sets, and inserts `simit.convert` where an operand is widened (or, for
+    `simit.mul` and `simit.div`, restricted) to the encoding its use needs.
+    Assemblies and maps give `diag`, `pattern`, `incidence` or its
+    transpose from the set types, and `stencil` from the offsets the element
+    function writes through a grid; `add`/`sub` join, `mul` keeps the
+    smaller storage, `matmul` composes (`product`), `transpose` is a view,
+    `zeros` is `empty`, variables and `scf` values join what reaches them.
+    What has no storage (element-wise products of unrelated storages,
+    matrices passed to or returned from exported functions, loops whose
+    storage keeps growing) is reported once, where it arises, with notes at
+    the operations the operands' storage comes from. Element functions are
+    left as they are: they return one element's contributions. Run it after
+    simit-inline-functions; it is not part of the pipelines yet.
+  }];
+  let dependentDialects = ["::mlir::simit::SimitDialect"];
+}
+
 def SimitLinalgToIndexExpr : Pass<"simit-linalg-to-index-expr", "::mlir::ModuleOp"> {
   let summary = "Rewrites linear algebra on system tensors as index expressions";
   let description = [{

@@ -63,20 +63,30 @@ bool fail(const char *where, const llvm::Twine &message) {
   return false;
 }
 
-/// x = A \ b into x, or false with runFailure set; `where` names the
+/// A solve of the runtime on a square BCSR matrix: x = solve(A, b).
+template <typename T>
+using BCSRSolve = llvm::Error (*)(const simit::SquareBCSRView<T> &, const T *,
+                                  T *);
+
+/// `\`: simit::solveChecked, whose report the lowered code does not use.
+template <typename T>
+llvm::Error checkedSolve(const simit::SquareBCSRView<T> &a, const T *b, T *x) {
+  llvm::Expected<simit::SolveReport> report = simit::solveChecked(a, b, x);
+  return report ? llvm::Error::success() : report.takeError();
+}
+
+/// x = solve(A, b) into x, or false with runFailure set; `where` names the
 /// statement.
 template <typename T>
 bool solveInto(const simit::SquareBCSRView<T> &a,
                StridedMemRefType<T, 2> *b, StridedMemRefType<T, 2> *x,
-               const char *where) {
+               const char *where, BCSRSolve<T> solve) {
   if (!isContiguous(*b) || !isContiguous(*x) ||
       b->sizes[0] * b->sizes[1] != a.size() ||
       x->sizes[0] * x->sizes[1] != a.size())
     return fail(where, "vector size does not match the matrix");
-  llvm::Expected<simit::SolveReport> report =
-      simit::solveChecked(a, b->data + b->offset, x->data + x->offset);
-  if (!report)
-    return fail(where, llvm::toString(report.takeError()));
+  if (llvm::Error err = solve(a, b->data + b->offset, x->data + x->offset))
+    return fail(where, llvm::toString(std::move(err)));
   return true;
 }
 
@@ -102,33 +112,12 @@ template <typename T>
 void solveBCSR(StridedMemRefType<int32_t, 1> *rowptr,
                StridedMemRefType<int32_t, 1> *colidx,
                StridedMemRefType<T, 3> *values, StridedMemRefType<T, 2> *b,
-               StridedMemRefType<T, 2> *x, const char *where) {
+               StridedMemRefType<T, 2> *x, const char *where,
+               BCSRSolve<T> solve) {
   simit::SquareBCSRView<T> view;
   if (!bcsrView(rowptr, colidx, values, where, view) ||
-      !solveInto(view, b, x, where))
+      !solveInto(view, b, x, where, solve))
     abandonRun();
-}
-
-template <typename T>
-void triangularSolveBCSR(StridedMemRefType<int32_t, 1> *rowptr,
-                         StridedMemRefType<int32_t, 1> *colidx,
-                         StridedMemRefType<T, 3> *values,
-                         StridedMemRefType<T, 2> *b, StridedMemRefType<T, 2> *x,
-                         const char *where) {
-  simit::SquareBCSRView<T> view;
-  if (!bcsrView(rowptr, colidx, values, where, view))
-    abandonRun();
-  if (!isContiguous(*b) || !isContiguous(*x) ||
-      b->sizes[0] * b->sizes[1] != view.size() ||
-      x->sizes[0] * x->sizes[1] != view.size()) {
-    fail(where, "vector size does not match the matrix");
-    abandonRun();
-  }
-  if (llvm::Error err = simit::solveLowerTriangular(
-          view, b->data + b->offset, x->data + x->offset)) {
-    fail(where, llvm::toString(std::move(err)));
-    abandonRun();
-  }
 }
 
 /// A block diagonal matrix is the BCSR matrix of the identity pattern.
@@ -148,7 +137,7 @@ bool solveDiagonalInto(StridedMemRefType<T, 3> *values,
                                     {rows}, {1}};
   simit::SquareBCSRView<T> view;
   return bcsrView(&ptr, &idx, values, where, view) &&
-         solveInto(view, b, x, where);
+         solveInto(view, b, x, where, &checkedSolve<T>);
 }
 
 template <typename T>
@@ -228,14 +217,14 @@ extern "C" void _mlir_ciface_simit_rt_solve_bcsr(
     StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
     StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *b,
     StridedMemRefType<double, 2> *x, const char *where) {
-  solveBCSR(rowptr, colidx, values, b, x, where);
+  solveBCSR(rowptr, colidx, values, b, x, where, &checkedSolve<double>);
 }
 
 extern "C" void _mlir_ciface_simit_rt_solve_bcsr_f32(
     StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
     StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *b,
     StridedMemRefType<float, 2> *x, const char *where) {
-  solveBCSR(rowptr, colidx, values, b, x, where);
+  solveBCSR(rowptr, colidx, values, b, x, where, &checkedSolve<float>);
 }
 
 extern "C" void _mlir_ciface_simit_rt_matmul_bcsr(
@@ -270,14 +259,16 @@ extern "C" void _mlir_ciface_simit_rt_triangular_solve_bcsr(
     StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
     StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *b,
     StridedMemRefType<double, 2> *x, const char *where) {
-  triangularSolveBCSR(rowptr, colidx, values, b, x, where);
+  solveBCSR(rowptr, colidx, values, b, x, where,
+            &simit::solveLowerTriangular<double>);
 }
 
 extern "C" void _mlir_ciface_simit_rt_triangular_solve_bcsr_f32(
     StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
     StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *b,
     StridedMemRefType<float, 2> *x, const char *where) {
-  triangularSolveBCSR(rowptr, colidx, values, b, x, where);
+  solveBCSR(rowptr, colidx, values, b, x, where,
+            &simit::solveLowerTriangular<float>);
 }
 
 extern "C" void _mlir_ciface_simit_rt_solve_diag(

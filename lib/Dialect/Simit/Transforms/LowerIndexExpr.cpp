@@ -514,24 +514,6 @@ LogicalResult IndexExprLowering::lowerLocal() {
   for (unsigned v = 0; v < numVars; ++v)
     for (Attribute lvl : op.getDomain(v))
       extents[v] *= cast<IntegerAttr>(lvl).getInt();
-  // An incidence holds a block per (edge, endpoint position); an edge
-  // naming one endpoint twice has two blocks in one column, which sum to
-  // the entry. Sums and scalings of the blocks are right; products and
-  // quotients of two matrices' blocks are not.
-  for (Value input : op.getInputs()) {
-    Storage s = l.storages.lookup(input);
-    if (s.kind == Storage::Kind::Incidence && multipliesMatrices(op))
-      return op.emitError("element-wise products and quotients of matrices "
-                          "stored as ")
-             << s.describe() << " are not supported by the loop lowering yet";
-  }
-  swappedLists.resize(op.getInputs().size());
-  for (auto [i, input] : llvm::enumerate(op.getInputs())) {
-    Storage s = l.storages.lookup(input);
-    if (s.kind == Storage::Kind::Incidence && s.transposed)
-      swappedLists[i] = {op.getInputIndexList(i)[1], op.getInputIndexList(i)[0]};
-  }
-
   ArrayRef<int64_t> resultVars = op.getResultIndices();
   SmallVector<unsigned> summed;
   for (unsigned v = 0; v < numVars; ++v)

@@ -34,6 +34,8 @@ class CompiledModule {
 public:
   std::unique_ptr<llvm::orc::LLJIT> jit;
   llvm::StringMap<CompiledFunction> functions;
+  /// The threads its parallel regions run on (1: it has none).
+  int threads = 1;
 };
 
 } // namespace simit

@@ -13,7 +13,9 @@
 #include "simit/Engine/RuntimeFunctions.h"
 
 #include "CompiledModule.h"
+#include "Threads.h"
 
+#include "simit/Runtime/ElementColouring.h"
 #include "simit/Runtime/PatternAlgebra.h"
 #include "simit/Runtime/SparsityPattern.h"
 
@@ -26,6 +28,7 @@
 #include <cmath>
 #include <map>
 #include <cstring>
+#include <limits>
 
 using namespace simit;
 
@@ -148,6 +151,8 @@ struct Function::Impl {
   /// sets), rows and cols, and the gather maps into them.
   std::map<std::string, std::shared_ptr<const SparsityPattern>> unions;
   std::vector<std::vector<int32_t>> gathers;
+  /// Colourings of the edge sets that scatter loops run colour by colour.
+  std::vector<std::shared_ptr<const ElementColouring>> colourings;
   /// Descriptors and scalar slots; args points into it, so it is sized once
   /// per init() and never reallocated afterwards.
   std::vector<int64_t> words;
@@ -375,6 +380,21 @@ llvm::Error Function::Impl::prepareArgument(const ArgumentBinding &arg,
       pushMemRef(word, p.columnIndices().data(), {p.numBlocks()});
     return llvm::Error::success();
   }
+  case Kind::ElementColours: {
+    llvm::Expected<Set *> set = boundSet(arg.set);
+    if (!set)
+      return set.takeError();
+    if ((*set)->cardinality() == 0)
+      return error(arg.describe() + ": set '" + arg.set +
+                   "' is not an edge set");
+    if (arg.chunk < 1 || arg.chunk > std::numeric_limits<int>::max())
+      return error(arg.describe() + ": the chunk size must be positive");
+    colourings.push_back(
+        ElementColouring::get(**set, static_cast<int>(arg.chunk)));
+    llvm::ArrayRef<int32_t> words = colourings.back()->words();
+    pushMemRef(word, words.data(), {static_cast<int64_t>(words.size())});
+    return llvm::Error::success();
+  }
   case Kind::Extern:
   case Kind::Parameter: {
     auto it = buffers.find(arg.bufferKey());
@@ -476,6 +496,7 @@ llvm::Error Function::Impl::init() {
   patterns.clear();
   unions.clear();
   gathers.clear();
+  colourings.clear();
   args.clear();
   vectorCopies.clear();
   vectorBytes = 0;
@@ -666,6 +687,10 @@ llvm::Error Function::run() {
   for (const VectorCopy &copy : impl->vectorCopies)
     std::memcpy(impl->vectorStorage.data() + copy.offset, copy.source,
                 copy.bytes);
+  // The count belongs to the calling thread, and Functions of programs
+  // compiled for different counts may share it.
+  if (impl->module->threads > 1)
+    useThreads(impl->module->threads);
   if (llvm::Error err =
           runGuarded(impl->compiled->entry, impl->args.data()))
     return err;

@@ -11,6 +11,8 @@
 #include "llvm/ADT/StringSwitch.h"
 #include "llvm/Support/raw_ostream.h"
 
+#include <limits>
+
 using namespace simit;
 
 size_t simit::scalarSize(ScalarKind kind) {
@@ -203,6 +205,9 @@ std::string ArgumentBinding::describe() const {
            llvm::join(edgeSets, "', '") + "' over ('" + rows + "', '" + cols +
            "') to the pattern of '" + llvm::join(partSets, "', '") + "'" +
            (partTransposed ? " read transposed" : "");
+  case Kind::ElementColours:
+    return "element colouring of set '" + set + "' in chunks of " +
+           std::to_string(chunk);
   case Kind::Extern:
     return "extern '" + name + "'";
   case Kind::Parameter:
@@ -262,6 +267,7 @@ public:
                       .Case("union_gather", Kind::UnionGather)
                       .Case("product_rowptr", Kind::ProductRowPtr)
                       .Case("product_colidx", Kind::ProductColIdx)
+                      .Case("element_colours", Kind::ElementColours)
                       .Case("extern", Kind::Extern)
                       .Case("param", Kind::Parameter)
                       .Default(std::nullopt);
@@ -320,6 +326,14 @@ public:
       if (llvm::Error err = get("cols", binding.cols))
         return err;
       return get("mid", binding.mid);
+    }
+    case Kind::ElementColours: {
+      auto chunk = dict.getAs<mlir::IntegerAttr>("chunk");
+      if (!chunk || chunk.getInt() < 1 ||
+          chunk.getInt() > std::numeric_limits<int32_t>::max())
+        return error("expected a positive 32-bit integer 'chunk'");
+      binding.chunk = chunk.getInt();
+      return get("set", binding.set);
     }
     case Kind::Extern:
       return get("name", binding.name);
@@ -380,6 +394,7 @@ static llvm::Error checkKindType(const HostSignature &signature,
   case Kind::UnionGather:
   case Kind::ProductRowPtr:
   case Kind::ProductColIdx:
+  case Kind::ElementColours:
     if (!type.isMemRef || type.rank() != 1 || type.scalar != ScalarKind::Int32)
       return fail("memref<?xi32>");
     return llvm::Error::success();

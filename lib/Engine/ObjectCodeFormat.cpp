@@ -5,7 +5,7 @@
 //
 //   dataLayout, object, functions, then per function: name, convention,
 //   arguments (kind, set, field, rows, cols, name, mid, the edge sets of
-//   union, gather and product bindings, index, type), results
+//   union, gather and product bindings, index, chunk, type), results
 //   (type); a type is scalar, isMemRef, isVector, isComplex, shape; then
 //   extern sets, each a name and its field names.
 //
@@ -124,6 +124,7 @@ std::string simit::serializeObjectCode(const ObjectCode &code) {
       }
       out.integer(arg.partTransposed);
       out.integer(arg.index);
+      out.integer(arg.chunk);
       out.type(arg.type);
     }
     out.integer<uint64_t>(function.signature.results.size());
@@ -166,6 +167,7 @@ llvm::Expected<ObjectCode> simit::deserializeObjectCode(llvm::StringRef bytes) {
       }
       arg.partTransposed = in.integer<bool>();
       arg.index = in.integer<int64_t>();
+      arg.chunk = in.integer<int64_t>();
       arg.type = in.type();
     }
     function.signature.results.resize(in.count(sizeof(uint64_t)));

@@ -51,7 +51,21 @@ struct Program::Impl {
   std::shared_ptr<CompiledModule> compiled;
   CompileTimes times;
 
-  explicit Impl(ProgramOptions options) : options(std::move(options)) {}
+  /// options.threads resolved (resolveThreadCount()); a malformed request
+  /// is reported by the first lowering or compile.
+  int threads = 1;
+  std::string threadsError;
+
+  explicit Impl(ProgramOptions options) : options(std::move(options)) {
+    llvm::Expected<int> resolved = resolveThreadCount(this->options.threads);
+    if (resolved)
+      threads = *resolved;
+    else
+      threadsError = llvm::toString(resolved.takeError());
+  }
+
+  /// One thread compiles code without parallel regions.
+  bool openmp() const { return threads > 1; }
 
   mlir::MLIRContext &getContext() {
     if (!context) {
@@ -123,6 +137,8 @@ struct Program::Impl {
   llvm::Error lower() {
     if (llvmModule)
       return llvm::Error::success();
+    if (!threadsError.empty())
+      return llvm::createStringError(threadsError);
     if (llvm::Error err = requireModule())
       return err;
     mlir::OwningOpRef<mlir::ModuleOp> clone = module->clone();
@@ -130,6 +146,7 @@ struct Program::Impl {
     mlir::simit::SimitCpuPipelineOptions pipelineOptions;
     pipelineOptions.timePhases = options.timePhases;
     pipelineOptions.checkNumerics = options.checkNumerics;
+    pipelineOptions.openmp = openmp();
     if (llvm::Error err = lowerToLLVM(*clone, result, pipelineOptions))
       return err;
     llvmModule = std::move(clone);
@@ -157,7 +174,7 @@ struct Program::Impl {
        << (options.precision == FloatPrecision::Single ? "single" : "double")
        << "\nhost functions " << llvm::join(options.hostFunctions, ",")
        << "\ntime phases " << options.timePhases << "\ncheck numerics "
-       << options.checkNumerics << "\n"
+       << options.checkNumerics << "\nopenmp " << openmp() << "\n"
        << (from.kind == Source::Kind::Sim ? "sim " : "mlir ") << from.name
        << "\n"
        << from.text;
@@ -198,11 +215,14 @@ struct Program::Impl {
   llvm::Error compile() {
     if (compiled)
       return llvm::Error::success();
+    if (!threadsError.empty())
+      return llvm::createStringError(threadsError);
     if (cachedCode) {
       Stopwatch link;
       auto loaded = loadObjectCode(*cachedCode);
       if (loaded) {
         compiled = std::move(*loaded);
+        compiled->threads = threads;
         times.cached = true;
         times.loadMs += link.milliseconds();
         return llvm::Error::success();
@@ -228,6 +248,7 @@ struct Program::Impl {
       return loaded.takeError();
     newTimes.loadMs = link.milliseconds();
     compiled = std::move(*loaded);
+    compiled->threads = threads;
     times = newTimes;
     // A cache that cannot be written costs the next run its compile time,
     // nothing else.

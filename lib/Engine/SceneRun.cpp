@@ -191,7 +191,7 @@ SceneRunner::SceneRunner(SceneDescription scene,
                          const SceneRunOptions &options)
     : description(std::move(scene)), options(options),
       program(ProgramOptions{options.precision, {}, options.timePhases,
-                             options.checkNumerics,
+                             options.checkNumerics, options.threads,
                              options.cacheDirectory}) {}
 
 SceneRunner::~SceneRunner() = default;

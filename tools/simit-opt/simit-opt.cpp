@@ -13,6 +13,7 @@
 #include "mlir/Dialect/Linalg/IR/Linalg.h"
 #include "mlir/Dialect/Math/IR/Math.h"
 #include "mlir/Dialect/MemRef/IR/MemRef.h"
+#include "mlir/Dialect/OpenMP/OpenMPDialect.h"
 #include "mlir/Dialect/SCF/IR/SCF.h"
 #include "mlir/Dialect/Tensor/IR/Tensor.h"
 #include "mlir/Dialect/Vector/IR/VectorOps.h"
@@ -30,7 +31,8 @@ int main(int argc, char **argv) {
                   mlir::memref::MemRefDialect, mlir::complex::ComplexDialect,
                   mlir::linalg::LinalgDialect, mlir::affine::AffineDialect,
                   mlir::cf::ControlFlowDialect, mlir::LLVM::LLVMDialect,
-                  mlir::gpu::GPUDialect, mlir::vector::VectorDialect>();
+                  mlir::gpu::GPUDialect, mlir::vector::VectorDialect,
+                  mlir::omp::OpenMPDialect>();
   return mlir::asMainReturnCode(
       mlir::MlirOptMain(argc, argv, "Simit optimizer driver\n", registry));
 }

@@ -16,6 +16,8 @@ struct TestRunOptions {
   FloatPrecision precision = FloatPrecision::Double;
   /// ProgramOptions::cacheDirectory of every section's Program.
   std::string cacheDirectory;
+  /// ProgramOptions::threads of every section's Program.
+  int threads = 0;
 };
 
 /// Runs the assertions of every enabled section of a .sim file, printing
@@ -29,6 +31,7 @@ struct EvalOptions {
   std::string call;
   FloatPrecision precision = FloatPrecision::Double;
   std::string cacheDirectory;
+  int threads = 0;
 };
 
 /// Calls one function with literal arguments and prints each result as a

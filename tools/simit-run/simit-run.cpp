@@ -1,7 +1,7 @@
 //===--- simit-run.cpp - JIT-runs Simit programs --------------------------===//
 //
 //   simit-run PROGRAM --scene SCENE.json [--output-dir DIR] [--time]
-//             [--no-cache | --cache-dir DIR]
+//             [--no-cache | --cache-dir DIR] [--threads N]
 //   simit-run --test FILE.sim
 //   simit-run FILE.sim --eval 'f(1.0, [1, 2]')'
 //   simit-run FILE.sim --emit=simit|loops|llvm
@@ -75,6 +75,25 @@ static cl::opt<std::string> cacheDir(
     cl::desc("The compile cache (default: $XDG_CACHE_HOME/simit, else "
              "~/.cache/simit)"),
     cl::value_desc("dir"));
+/// --threads. Debian's libLLVM registers an undocumented integer option of
+/// that name (nothing here reads it), so it is renamed first and this
+/// option is made afterwards, in main().
+static cl::opt<int> &threadsOption() {
+  static bool renamed = [] {
+    cl::Option *taken = cl::getRegisteredOptions().lookup("threads");
+    if (taken)
+      taken->setArgStr("llvm-threads");
+    return taken != nullptr;
+  }();
+  (void)renamed;
+  static cl::opt<int> threads(
+      cl::cat(runCategory), "threads",
+      cl::desc("Threads that run the set loops (default: "
+               "$SIMIT_NUM_THREADS, else every core); the results are the "
+               "same for every count"),
+      cl::value_desc("N"), cl::init(0));
+  return threads;
+}
 static cl::opt<bool> noProgress(cl::cat(runCategory), "no-progress",
                                 cl::desc("No progress lines on long runs"));
 
@@ -144,6 +163,7 @@ static int runSceneFile(FloatPrecision precision,
   options.checkFrames = !noCheck;
   options.progress = !noProgress;
   options.cacheDirectory = cacheDirectory;
+  options.threads = threadsOption();
   auto runner = SceneRunner::create(std::move(*scene), options);
   if (!runner)
     return fail(runner.takeError());
@@ -157,10 +177,15 @@ static int runSceneFile(FloatPrecision precision,
 
 int main(int argc, char **argv) {
   llvm::InitLLVM init(argc, argv);
+  cl::opt<int> &threads = threadsOption();
   cl::HideUnrelatedOptions(runCategory);
   cl::ParseCommandLineOptions(argc, argv, "Simit JIT runner\n");
   FloatPrecision precision =
       float32 ? FloatPrecision::Single : FloatPrecision::Double;
+  if (threads.getNumOccurrences() && threads < 1)
+    return fail(llvm::createStringError(
+        "--threads must be a positive number of threads, not " +
+        llvm::Twine(threads)));
   if (noCache && cacheDir.getNumOccurrences())
     return fail(
         llvm::createStringError("--no-cache and --cache-dir contradict"));
@@ -172,18 +197,23 @@ int main(int argc, char **argv) {
   if (testMode) {
     if (programPath.empty())
       return fail(llvm::createStringError("--test needs a .sim file"));
-    return runTests({programPath, precision, cacheDirectory}, llvm::outs());
+    return runTests({programPath, precision, cacheDirectory, threads},
+                    llvm::outs());
   }
   if (!evalCall.empty()) {
     if (programPath.empty())
       return fail(llvm::createStringError("--eval needs a program file"));
-    return runEval({programPath, evalCall, precision, cacheDirectory},
-                   llvm::outs());
+    return runEval(
+        {programPath, evalCall, precision, cacheDirectory, threads},
+        llvm::outs());
   }
   if (emitStage.getNumOccurrences()) {
     if (programPath.empty())
       return fail(llvm::createStringError("--emit needs a program file"));
-    Program program(ProgramOptions{precision, {}});
+    ProgramOptions programOptions;
+    programOptions.precision = precision;
+    programOptions.threads = threads;
+    Program program(programOptions);
     if (llvm::Error err = program.loadFile(programPath))
       return fail(std::move(err));
     llvm::Expected<std::string> text = program.emit(emitStage);

@@ -106,6 +106,8 @@ struct ArgumentBinding {
                       // `edgeSets` over (rows, mid) and `rightSets` over
                       // (mid, cols)
     ProductColIdx,    // memref<?xi32>: its block columns
+    ElementColours,   // memref<?xi32>: the colouring of edge set `set` in
+                      // chunks of `chunk` elements (ElementColouring.h)
     Extern,           // an extern tensor `name`
     Parameter,        // the function's own parameter number `index`
   };
@@ -122,6 +124,8 @@ struct ArgumentBinding {
   std::string mid;
   /// Parameter: its position among the Simit function's parameters.
   int64_t index = -1;
+  /// ElementColours: elements per chunk.
+  int64_t chunk = 0;
   ValueType type;
 
   /// The key Function binds it under: the extern's name, or "#<index>" for

@@ -47,12 +47,23 @@ struct ProgramOptions {
   /// (simit-check-numerics; simit::takeNumericsProblem() in
   /// RuntimeFunctions.h reads the first one). Off, nothing is scanned.
   bool checkNumerics = false;
+  /// Threads that run the set loops (docs/threads.md): 0 takes
+  /// $SIMIT_NUM_THREADS when set, else every core (resolveThreadCount()).
+  /// With one thread the code has no parallel regions; the results are the
+  /// same, bit for bit, for every number of threads.
+  int threads = 0;
   /// Where compiled programs are kept between runs, keyed by the compiler,
   /// the host CPU, the source and the options above (each option that
   /// changes the code must be part of the key, Program.cpp); empty: every
   /// Program compiles. defaultCompileCacheDirectory() is the usual place.
   std::string cacheDirectory;
 };
+
+/// The number of threads `requested` stands for: itself when positive;
+/// when 0, $SIMIT_NUM_THREADS when it is set (it must be a positive
+/// integer), else the number of cores this process may run on. A negative
+/// number, or a malformed variable, is an error naming it.
+llvm::Expected<int> resolveThreadCount(int requested);
 
 /// $XDG_CACHE_HOME/simit, else $HOME/.cache/simit; empty when neither
 /// variable is set.

@@ -48,6 +48,8 @@ struct SceneRunOptions {
   bool checkFrames = true;
   /// Progress lines on stderr once a run has taken a while.
   bool progress = false;
+  /// ProgramOptions::threads (0: $SIMIT_NUM_THREADS, else every core).
+  int threads = 0;
   /// ProgramOptions::cacheDirectory (empty: no compile cache).
   std::string cacheDirectory;
 };

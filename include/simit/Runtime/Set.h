@@ -46,6 +46,7 @@
 
 namespace simit {
 
+class ElementColouring;
 class SparsityPattern;
 
 enum class ComponentType : uint8_t { Float64, Float32, Int32, Bool };
@@ -208,6 +209,7 @@ private:
   template <typename T>
   void checkFieldType(llvm::StringRef name, llvm::ArrayRef<int> shape);
 
+  friend class ElementColouring;
   friend class SparsityPattern;
 
   std::string setName;
@@ -223,6 +225,9 @@ private:
   mutable std::map<std::pair<const Set *, const Set *>,
                    std::shared_ptr<const SparsityPattern>>
       patternCache;
+  /// Colourings of this edge set's elements, keyed by chunk size.
+  mutable std::map<int, std::shared_ptr<const ElementColouring>>
+      colouringCache;
 };
 
 //===--- Typed field handles ----------------------------------------------===//

@@ -40,10 +40,19 @@ void mlir::simit::buildSimitCpuPipeline(
   // (complex.create/re/im/constant, complex<T> as a struct) goes to LLVM
   // below.
   pm.addPass(createConvertComplexToStandardPass());
-  // scf.parallel runs sequentially below: its stack slots are made once.
-  pm.addNestedPass<func::FuncOp>(createSimitHoistParallelAllocas());
+  // Which set loops may run on all cores, made independent of the number of
+  // threads: with or without OpenMP, the same chunks and colours.
+  SimitParallelLoopsOptions parallelOptions;
+  parallelOptions.reductionChunk = options.reductionChunk;
+  parallelOptions.scatterChunk = options.scatterChunk;
+  pm.addPass(createSimitParallelLoops(parallelOptions));
   // Temporaries of system tensors are freed once no value needs them.
   bufferization::buildBufferDeallocationPipeline(pm);
+  if (options.openmp)
+    pm.addPass(createSimitParallelLoopsToOpenMP());
+  // Other scf.parallel loops run sequentially below: their stack slots are
+  // made once.
+  pm.addNestedPass<func::FuncOp>(createSimitHoistParallelAllocas());
   // Prints of vectors (test drivers) become loops of scalar prints.
   pm.addPass(createConvertVectorToSCFPass());
   pm.addPass(createSCFToControlFlowPass());
@@ -62,6 +71,8 @@ void mlir::simit::buildSimitCpuPipeline(
   FinalizeMemRefToLLVMConversionPassOptions memrefOptions;
   memrefOptions.useGenericFunctions = options.runtimeAllocator;
   pm.addPass(createFinalizeMemRefToLLVMConversionPass(memrefOptions));
+  if (options.openmp)
+    pm.addPass(createConvertOpenMPToLLVMPass());
   pm.addPass(createConvertFuncToLLVMPass());
   pm.addPass(createConvertControlFlowToLLVMPass());
   pm.addPass(createReconcileUnrealizedCastsPass());
@@ -71,15 +82,19 @@ void mlir::simit::buildSimitCpuPipeline(
 namespace {
 struct CpuPipeline : public simit::impl::SimitCpuPipelineBase<CpuPipeline> {
   using Base::Base;
+  SimitCpuPipelineOptions options() const {
+    return {timePhases,     checkNumerics, runtimeAllocator,
+            openmp,         reductionChunk, scatterChunk};
+  }
   void getDependentDialects(DialectRegistry &registry) const override {
     OpPassManager pm(ModuleOp::getOperationName());
-    buildSimitCpuPipeline(pm, {timePhases, checkNumerics, runtimeAllocator});
+    buildSimitCpuPipeline(pm, options());
     pm.getDependentDialects(registry);
   }
 
   void runOnOperation() override {
     OpPassManager pm(ModuleOp::getOperationName());
-    buildSimitCpuPipeline(pm, {timePhases, checkNumerics, runtimeAllocator});
+    buildSimitCpuPipeline(pm, options());
     if (failed(runPipeline(pm, getOperation())))
       signalPassFailure();
   }

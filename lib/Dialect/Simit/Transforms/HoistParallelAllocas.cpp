@@ -23,6 +23,7 @@ struct HoistParallelAllocas
     SmallVector<memref::AllocaOp> slots;
     function.walk([&](memref::AllocaOp alloca) {
       if (alloca->getParentOfType<scf::ParallelOp>() &&
+          !alloca->getParentOfType<omp::ParallelOp>() &&
           alloca.getType().hasStaticShape() && alloca->getNumOperands() == 0)
         slots.push_back(alloca);
     });

@@ -12,6 +12,7 @@
 #include "mlir/Dialect/LLVMIR/LLVMDialect.h"
 #include "mlir/Dialect/Math/IR/Math.h"
 #include "mlir/Dialect/MemRef/IR/MemRef.h"
+#include "mlir/Dialect/OpenMP/OpenMPDialect.h"
 #include "mlir/Dialect/SCF/IR/SCF.h"
 #include "mlir/Dialect/Vector/IR/VectorOps.h"
 #include "mlir/IR/BuiltinOps.h"
@@ -31,6 +32,12 @@ namespace simit {
 /// convert-simit-to-loops scans for NaN and infinity: {op = "<what and
 /// where>", results = [<result names>]}.
 constexpr llvm::StringLiteral kCheckNumericsAttr = "simit.check_numerics";
+
+/// The attribute simit-parallel-loops gives the scf.parallel loops whose
+/// iterations may run concurrently: "owned", "reduction" (a loop over
+/// chunks of a reduction) or "scatter" (a loop over the chunks of one colour
+/// of a scatter loop).
+constexpr llvm::StringLiteral kParallelLoopAttr = "simit.parallel";
 
 /// Whether `function` is an entry point the host calls: it carries the
 /// `simit.export` unit attribute (the frontend's `export func`).

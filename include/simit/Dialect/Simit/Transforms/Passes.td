@@ -115,6 +115,64 @@ def ConvertSimitToLoops : Pass<"convert-simit-to-loops", "::mlir::ModuleOp"> {
                            "::mlir::LLVM::LLVMDialect"];
 }
 
+def SimitParallelLoops : Pass<"simit-parallel-loops", "::mlir::ModuleOp"> {
+  let summary = "Marks the set loops that may run on all cores, deterministically";
+  let description = [{
+    Classifies every outermost `scf.parallel` of a function by the memory
+    its body touches, and marks those whose iterations may run concurrently
+    with `simit.parallel = "<kind>"` (simit-parallel-loops-to-openmp runs
+    them on all cores); the results do not depend on the number of threads.
+    - owned: every memref the loop writes is indexed, in every access, at
+      one position by an induction variable or by a block of the
+      iteration's row (`for k = rowptr[i] to rowptr[i + 1]`, from a
+      `*_rowptr` binding): the loop is marked as it is.
+    - reduction: an owned loop with `scf.reduce` results whose combiners
+      are single arith operations with a neutral element becomes an
+      `scf.parallel` over chunks of `reduction-chunk` iterations (marked),
+      each reducing its iterations in order from the neutral element into a
+      partial, then an `scf.for` that combines the loop's initial values
+      with the partials in chunk order.
+    - scatter: a loop over all elements of a set (`0 to set_size`) whose
+      other written memrefs are indexed, in every access, at one position by
+      an endpoint of the element (`endpoints[e, k]`) or by the location of a
+      block between its endpoints (`pattern_locations[e, k]`) runs colour by
+      colour: the function gets an `element_colours` binding of the set
+      (chunks of `scatter-chunk` consecutive elements, coloured by the host
+      so that no two chunks of a colour share an endpoint), an `scf.for`
+      over the colours runs a marked `scf.parallel` over the colour's
+      chunks, which runs the original loop on the chunk's elements.
+    Every other loop stays as it is and runs sequentially: loops with calls,
+    with accesses the pass cannot place, through two views of one buffer,
+    with small constant trip counts, or with other combiners. Nested loops
+    run inside their outermost loop's iteration. Distinct arguments are
+    assumed not to overlap (the host binds distinct arrays).
+  }];
+  let options = [
+    Option<"reductionChunk", "reduction-chunk", "int64_t", /*default=*/"1024",
+           "Iterations reduced in order into one partial result">,
+    Option<"scatterChunk", "scatter-chunk", "int64_t", /*default=*/"64",
+           "Consecutive elements per coloured chunk of a scatter loop">,
+  ];
+  let dependentDialects = ["::mlir::arith::ArithDialect",
+                           "::mlir::memref::MemRefDialect",
+                           "::mlir::scf::SCFDialect"];
+}
+
+def SimitParallelLoopsToOpenMP : Pass<"simit-parallel-loops-to-openmp", "::mlir::ModuleOp"> {
+  let summary = "Runs the loops simit-parallel-loops marked on OpenMP threads";
+  let description = [{
+    Every `scf.parallel` with the `simit.parallel` attribute (and no
+    results) becomes an `omp.parallel` region holding an `omp.wsloop` over
+    an `omp.loop_nest` with the loop's bounds and body. The static stack
+    slots (`memref.alloca`) of the body move to the start of the parallel
+    region: each thread reuses one set for its iterations. Other loops are
+    left to run sequentially. The number of threads is the OpenMP runtime's
+    (the engine sets it, docs/threads.md).
+  }];
+  let dependentDialects = ["::mlir::omp::OpenMPDialect",
+                           "::mlir::memref::MemRefDialect"];
+}
+
 def SimitHoistParallelAllocas : Pass<"simit-hoist-parallel-allocas", "::mlir::func::FuncOp"> {
   let summary = "Moves stack slots out of scf.parallel bodies (CPU, sequential)";
   let description = [{
@@ -124,8 +182,10 @@ def SimitHoistParallelAllocas : Pass<"simit-hoist-parallel-allocas", "::mlir::fu
     loops sequentially (scf-to-cf), which keeps no per-iteration stack
     scope, so without this every element of a set would add its local
     variables to the stack. One slot for all iterations is only correct when
-    the iterations run one after another; GPU and threaded backends keep the
-    slots in the loop body.
+    the iterations run one after another: slots inside an `omp.parallel`
+    region stay there (simit-parallel-loops-to-openmp already put them at
+    its start, one set per thread); the GPU backend keeps the slots in the
+    loop body.
   }];
   let dependentDialects = ["::mlir::memref::MemRefDialect"];
 }
@@ -170,11 +230,14 @@ def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
   let summary = "Runs every Simit lowering down to the LLVM dialect";
   let description = [{
     Inlines functions, rewrites linear algebra as index expressions, fuses
-    them, lowers to loops, moves the stack slots out of the (sequential)
-    parallel loops, frees temporaries, and lowers to the LLVM dialect (vector
-    to scf, scf to cf, vector, math, arith, index, memref, func and cf to
-    LLVM, reconcile casts). The pipeline is buildSimitCpuPipeline(), which
-    the JIT runs as well.
+    them, lowers to loops, marks the set loops that may run on all cores and
+    makes their results independent of the number of threads
+    (simit-parallel-loops), frees temporaries, with `openmp` runs the marked
+    loops on OpenMP threads (simit-parallel-loops-to-openmp), moves the stack
+    slots out of the sequential parallel loops, and lowers to the LLVM
+    dialect (vector to scf, scf to cf, vector, math, arith, index, memref,
+    OpenMP, func and cf to LLVM, reconcile casts). The pipeline is
+    buildSimitCpuPipeline(), which the JIT runs as well.
   }];
   let options = [
     Option<"timePhases", "time-phases", "bool", /*default=*/"false",
@@ -187,6 +250,16 @@ def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
            "Allocate heap memory through the Simit runtime's "
            "_mlir_memref_to_llvm_alloc/free (the JIT's block cache) instead "
            "of malloc/free">,
+    Option<"openmp", "openmp", "bool", /*default=*/"false",
+           "Run the loops simit-parallel-loops marks on OpenMP threads "
+           "(simit-parallel-loops-to-openmp); off, they run sequentially in "
+           "the same order of chunks and colours">,
+    Option<"reductionChunk", "reduction-chunk", "int64_t",
+           /*default=*/"1024",
+           "simit-parallel-loops: iterations per partial of a reduction">,
+    Option<"scatterChunk", "scatter-chunk", "int64_t", /*default=*/"64",
+           "simit-parallel-loops: elements per coloured chunk of a scatter "
+           "loop">,
   ];
 }
 

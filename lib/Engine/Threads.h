@@ -1,0 +1,14 @@
+//===--- Threads.h - The OpenMP threads of compiled set loops --------------===//
+
+#ifndef SIMIT_LIB_ENGINE_THREADS_H
+#define SIMIT_LIB_ENGINE_THREADS_H
+
+namespace simit {
+
+/// Makes the parallel regions that the calling thread starts use `threads`
+/// threads (OpenMP's nthreads-var of the calling thread).
+void useThreads(int threads);
+
+} // namespace simit
+
+#endif // SIMIT_LIB_ENGINE_THREADS_H

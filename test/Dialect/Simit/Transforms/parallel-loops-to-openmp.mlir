@@ -1,0 +1,44 @@
+// RUN: simit-opt %s --simit-parallel-loops-to-openmp | FileCheck %s
+
+// A marked loop becomes a parallel region with a worksharing loop over its
+// bounds (no barrier: the region's end joins the threads); its stack slots
+// move to the start of the region, one set per thread. Unmarked loops, and
+// loops nested in marked ones, stay scf.parallel (run sequentially).
+
+// CHECK-LABEL: func.func @marked(
+// CHECK-SAME: %[[N:[^:]*]]: index, %[[A:[^:]*]]: memref<?x3xf64>)
+// CHECK: omp.parallel {
+// CHECK-NEXT: %[[SLOT:.*]] = memref.alloca() : memref<3xf64>
+// CHECK-NEXT: omp.wsloop nowait {
+// CHECK-NEXT: omp.loop_nest (%[[I:.*]], %[[J:.*]]) : index = (%{{.*}}, %{{.*}}) to (%[[N]], %{{.*}}) step (%{{.*}}, %{{.*}}) {
+// CHECK: memref.store %{{.*}}, %[[SLOT]][%[[J]]]
+// CHECK: scf.parallel
+// CHECK: memref.store %{{.*}}, %[[A]][%[[I]], %[[J]]]
+// CHECK: omp.yield
+// CHECK: omp.terminator
+// CHECK-NOT: omp.parallel
+// CHECK: scf.parallel
+// CHECK-NOT: simit.parallel
+// CHECK: return
+func.func @marked(%n : index, %a : memref<?x3xf64>) {
+  %c0 = arith.constant 0 : index
+  %c1 = arith.constant 1 : index
+  %c3 = arith.constant 3 : index
+  %one = arith.constant 1.0 : f64
+  scf.parallel (%i, %j) = (%c0, %c0) to (%n, %c3) step (%c1, %c1) {
+    %slot = memref.alloca() : memref<3xf64>
+    memref.store %one, %slot[%j] : memref<3xf64>
+    scf.parallel (%k) = (%c0) to (%c3) step (%c1) {
+      memref.store %one, %slot[%k] : memref<3xf64>
+      scf.reduce
+    }
+    %v = memref.load %slot[%j] : memref<3xf64>
+    memref.store %v, %a[%i, %j] : memref<?x3xf64>
+    scf.reduce
+  } {simit.parallel = "owned"}
+  scf.parallel (%i) = (%c0) to (%n) step (%c1) {
+    memref.store %one, %a[%c0, %c0] : memref<?x3xf64>
+    scf.reduce
+  }
+  return
+}

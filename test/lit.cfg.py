@@ -22,7 +22,10 @@ config.substitutions.append(("%python3", config.python3_executable))
 config.substitutions.append(("%simit_python_dir", config.simit_python_install_dir))
 config.substitutions.append(("%meshes", os.path.join(config.shared_dir, "data", "meshes")))
 
-llvm_config.with_system_environment(["HOME", "INCLUDE", "LIB", "TMP", "TEMP"])
+# SIMIT_NUM_THREADS reaches simit-run, so that scripts/test can run the
+# suite on a given number of threads.
+llvm_config.with_system_environment(["HOME", "INCLUDE", "LIB", "TMP", "TEMP",
+                                     "SIMIT_NUM_THREADS"])
 # simit-run's compile cache defaults to $XDG_CACHE_HOME/simit: the suite's
 # entries stay in the build tree, out of the user's cache.
 config.environment["XDG_CACHE_HOME"] = os.path.join(config.test_exec_root,

@@ -3,7 +3,9 @@
 #include "ObjectCode.h"
 
 #include "RuntimeSymbols.h"
+#include "Threads.h"
 
+#include "llvm/ExecutionEngine/Orc/ExecutionUtils.h"
 #include "llvm/ExecutionEngine/Orc/LLJIT.h"
 #include "llvm/IR/DataLayout.h"
 #include "llvm/Support/MemoryBuffer.h"
@@ -51,6 +53,17 @@ simit::loadObjectCode(const ObjectCode &code) {
   if (llvm::Error err = (*jit)->getMainJITDylib().define(
           llvm::orc::absoluteSymbols(runtimeSymbolMap(mangle))))
     return std::move(err);
+  // OpenMP calls (__kmpc_*) go to the runtime the engine is linked with,
+  // looked up in its own file: a process that loaded the engine locally
+  // (Python's extension modules) does not export its symbols.
+  std::string openMP = openMPLibraryPath();
+  if (openMP.empty())
+    return llvm::createStringError("the OpenMP runtime cannot be found");
+  auto openMPSymbols = llvm::orc::DynamicLibrarySearchGenerator::Load(
+      openMP.c_str(), (*jit)->getDataLayout().getGlobalPrefix());
+  if (!openMPSymbols)
+    return openMPSymbols.takeError();
+  (*jit)->getMainJITDylib().addGenerator(std::move(*openMPSymbols));
   if (llvm::Error err = (*jit)->addObjectFile(
           llvm::MemoryBuffer::getMemBufferCopy(code.object, "simit-module.o")))
     return std::move(err);

@@ -7,6 +7,8 @@
 #include "llvm/ADT/StringRef.h"
 #include "llvm/Support/Process.h"
 
+#include <dlfcn.h>
+
 // libomp's API (omp.h is not among the installed headers of every system).
 extern "C" {
 void omp_set_num_threads(int threads);
@@ -16,6 +18,14 @@ int omp_get_num_procs(void);
 using namespace simit;
 
 void simit::useThreads(int threads) { omp_set_num_threads(threads); }
+
+std::string simit::openMPLibraryPath() {
+  Dl_info info;
+  if (!dladdr(reinterpret_cast<void *>(&omp_set_num_threads), &info) ||
+      !info.dli_fname)
+    return "";
+  return info.dli_fname;
+}
 
 llvm::Expected<int> simit::resolveThreadCount(int requested) {
   if (requested < 0)

@@ -322,8 +322,9 @@ compiled on first use: program.step, program["step"]. program.bind(...)
 binds externs for all of them at once.
 )doc")
       .def(py::init([](bool float32, bool time, bool checkNumerics,
-                       std::vector<std::string> hostFunctions) {
+                       std::vector<std::string> hostFunctions, int threads) {
              ProgramOptions options;
+             options.threads = threads;
              options.precision =
                  float32 ? FloatPrecision::Single : FloatPrecision::Double;
              options.timePhases = time;
@@ -333,7 +334,8 @@ binds externs for all of them at once.
            }),
            py::kw_only(), py::arg("float32") = false, py::arg("time") = false,
            py::arg("check_numerics") = false,
-           py::arg("host_functions") = std::vector<std::string>{})
+           py::arg("host_functions") = std::vector<std::string>{},
+           py::arg("threads") = 0)
       .def("load_file",
            [](PyProgram &self, const py::object &path) {
              std::string file =

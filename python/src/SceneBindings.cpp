@@ -97,7 +97,8 @@ against `directory`, default the current directory). Outputs are written to
       .def(py::init([](const py::object &scene, const py::object &program,
                        const py::object &directory,
                        const py::object &outputDir, std::optional<int> frames,
-                       bool float32, bool time, bool checkNumerics) {
+                       bool float32, bool time, bool checkNumerics,
+                       int threads) {
              SceneDescription description = describe(scene, directory);
              py::module_ os = py::module_::import("os");
              SceneRunOptions options;
@@ -111,6 +112,7 @@ against `directory`, default the current directory). Outputs are written to
                  float32 ? FloatPrecision::Single : FloatPrecision::Double;
              options.timePhases = time;
              options.checkNumerics = checkNumerics;
+             options.threads = threads;
              auto runner = [&] {
                py::gil_scoped_release release;
                return SceneRunner::create(std::move(description), options);
@@ -120,7 +122,8 @@ against `directory`, default the current directory). Outputs are written to
            py::arg("scene"), py::kw_only(), py::arg("program") = py::none(),
            py::arg("directory") = py::none(), py::arg("output_dir") = py::none(),
            py::arg("frames") = py::none(), py::arg("float32") = false,
-           py::arg("time") = false, py::arg("check_numerics") = false)
+           py::arg("time") = false, py::arg("check_numerics") = false,
+           py::arg("threads") = 0)
       .def("init",
            [](PyScene &self) {
              runFrames(self, [](SceneRunner &r) { return r.init(); });

@@ -120,3 +120,21 @@ def test_scene_errors_name_the_scene_and_the_json_path():
     with pytest.raises(simit.Error) as info:
         simit.Scene(RUN_INPUTS / "no-such-scene.json")
     assert info.value.file.endswith("no-such-scene.json")
+
+
+def test_the_same_bits_on_one_and_two_threads():
+    """fem-bar (Neo-Hookean, 2k tets: several chunks and colours) gives
+    bit-identical positions on one and on two threads (docs/threads.md)."""
+    positions = []
+    for threads in (1, 2):
+        scene = simit.Scene(RUN_INPUTS / "fem-bar-converged.json", frames=2,
+                            threads=threads)
+        scene.run()
+        positions.append(np.array(scene.sets["verts"]["x"]))
+    assert positions[0].tobytes() == positions[1].tobytes()
+    assert not np.array_equal(positions[0], np.zeros_like(positions[0]))
+
+
+def test_threads_must_be_positive():
+    with pytest.raises(simit.Error, match="number of threads must be positive"):
+        simit.Scene(PAIR, threads=-1)

@@ -148,7 +148,7 @@ static void printTimeSummary(const SceneTimeSummary &times,
 /// Builds the scene's sets, compiles the program, runs "init" once and
 /// "step" per frame, and writes the outputs.
 static int runSceneFile(FloatPrecision precision,
-                        const std::string &cacheDirectory) {
+                        const std::string &cacheDirectory, int threads) {
   llvm::Expected<SceneDescription> scene = loadScene(scenePath);
   if (!scene)
     return fail(scene.takeError());
@@ -163,7 +163,7 @@ static int runSceneFile(FloatPrecision precision,
   options.checkFrames = !noCheck;
   options.progress = !noProgress;
   options.cacheDirectory = cacheDirectory;
-  options.threads = threadsOption();
+  options.threads = threads;
   auto runner = SceneRunner::create(std::move(*scene), options);
   if (!runner)
     return fail(runner.takeError());
@@ -186,6 +186,10 @@ int main(int argc, char **argv) {
     return fail(llvm::createStringError(
         "--threads must be a positive number of threads, not " +
         llvm::Twine(threads)));
+  // $SIMIT_NUM_THREADS is checked before anything is loaded.
+  llvm::Expected<int> threadCount = resolveThreadCount(threads);
+  if (!threadCount)
+    return fail(threadCount.takeError());
   if (noCache && cacheDir.getNumOccurrences())
     return fail(
         llvm::createStringError("--no-cache and --cache-dir contradict"));
@@ -197,14 +201,14 @@ int main(int argc, char **argv) {
   if (testMode) {
     if (programPath.empty())
       return fail(llvm::createStringError("--test needs a .sim file"));
-    return runTests({programPath, precision, cacheDirectory, threads},
+    return runTests({programPath, precision, cacheDirectory, *threadCount},
                     llvm::outs());
   }
   if (!evalCall.empty()) {
     if (programPath.empty())
       return fail(llvm::createStringError("--eval needs a program file"));
     return runEval(
-        {programPath, evalCall, precision, cacheDirectory, threads},
+        {programPath, evalCall, precision, cacheDirectory, *threadCount},
         llvm::outs());
   }
   if (emitStage.getNumOccurrences()) {
@@ -212,7 +216,7 @@ int main(int argc, char **argv) {
       return fail(llvm::createStringError("--emit needs a program file"));
     ProgramOptions programOptions;
     programOptions.precision = precision;
-    programOptions.threads = threads;
+    programOptions.threads = *threadCount;
     Program program(programOptions);
     if (llvm::Error err = program.loadFile(programPath))
       return fail(std::move(err));
@@ -225,5 +229,5 @@ int main(int argc, char **argv) {
   if (scenePath.empty())
     return fail(llvm::createStringError(
         "nothing to do: give --scene, --test, --eval or --emit"));
-  return runSceneFile(precision, cacheDirectory);
+  return runSceneFile(precision, cacheDirectory, *threadCount);
 }

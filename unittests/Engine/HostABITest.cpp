@@ -112,6 +112,29 @@ TEST_F(HostABITest, ReadsComplexScalarsAndVectors) {
       << error;
 }
 
+TEST_F(HostABITest, ReadsAnElementColouring) {
+  auto signature = read(R"mlir(
+    func.func private @f(memref<?xi32>) attributes {simit.bindings = [
+        {kind = "element_colours", set = "tets", chunk = 64 : i64}]}
+  )mlir");
+  ASSERT_TRUE(!!signature) << llvm::toString(signature.takeError());
+  const ArgumentBinding &colours = signature->arguments[0];
+  EXPECT_EQ(colours.kind, ArgumentBinding::Kind::ElementColours);
+  EXPECT_EQ(colours.set, "tets");
+  EXPECT_EQ(colours.chunk, 64);
+  EXPECT_EQ(colours.describe(), "element colouring of set 'tets' in chunks of 64");
+  EXPECT_EQ(readError(R"mlir(func.func private @f(memref<?xi32>)
+      attributes {simit.bindings = [
+        {kind = "element_colours", set = "tets", chunk = 0 : i64}]})mlir"),
+            "function 'f': simit.bindings entry 0: expected a positive "
+            "32-bit integer 'chunk'");
+  EXPECT_EQ(readError(R"mlir(func.func private @f(memref<?xf64>)
+      attributes {simit.bindings = [
+        {kind = "element_colours", set = "tets", chunk = 8 : i64}]})mlir"),
+            "function 'f': element colouring of set 'tets' in chunks of 8 has "
+            "type memref<?xf64>, expected memref<?xi32>");
+}
+
 TEST_F(HostABITest, RequiresTheBindingsAttribute) {
   EXPECT_EQ(readError("func.func private @f(f64) -> i32"),
             "function 'f' has no simit.bindings attribute");

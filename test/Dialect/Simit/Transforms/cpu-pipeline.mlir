@@ -7,6 +7,18 @@
 // RUN: simit-opt %S/Inputs/neo-hookean-frontend.mlir --simit-cpu-pipeline \
 // RUN:   | mlir-translate --mlir-to-llvmir | FileCheck %s --check-prefix=FEM
 // RUN: simit-opt %s --simit-cpu-pipeline | FileCheck %s --check-prefix=LLVM
+// With openmp, the set loops of the springs program run in parallel regions
+// of LLVM's OpenMP runtime; without, there is none.
+// RUN: simit-opt %S/Inputs/springs-frontend.mlir --simit-cpu-pipeline=openmp=1 \
+// RUN:   | mlir-translate --mlir-to-llvmir | FileCheck %s --check-prefix=OMP
+// RUN: simit-opt %S/Inputs/springs-frontend.mlir --simit-cpu-pipeline \
+// RUN:   | mlir-translate --mlir-to-llvmir | FileCheck %s --check-prefix=SERIAL
+
+// OMP-LABEL: define void @step(
+// OMP: call void (ptr, i32, ptr, ...) @__kmpc_fork_call(
+// OMP: define internal void @step..omp_par
+// OMP: call void @__kmpc_for_static_init_8u(
+// SERIAL-NOT: __kmpc
 
 // SPRINGS-DAG: define void @init(
 // SPRINGS-DAG: define void @_mlir_ciface_init(

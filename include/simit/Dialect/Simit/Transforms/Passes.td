@@ -150,7 +150,7 @@ def SimitParallelLoops : Pass<"simit-parallel-loops", "::mlir::ModuleOp"> {
   let options = [
     Option<"reductionChunk", "reduction-chunk", "int64_t", /*default=*/"1024",
            "Iterations reduced in order into one partial result">,
-    Option<"scatterChunk", "scatter-chunk", "int64_t", /*default=*/"64",
+    Option<"scatterChunk", "scatter-chunk", "int64_t", /*default=*/"8",
            "Consecutive elements per coloured chunk of a scatter loop">,
   ];
   let dependentDialects = ["::mlir::arith::ArithDialect",
@@ -257,7 +257,7 @@ def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
     Option<"reductionChunk", "reduction-chunk", "int64_t",
            /*default=*/"1024",
            "simit-parallel-loops: iterations per partial of a reduction">,
-    Option<"scatterChunk", "scatter-chunk", "int64_t", /*default=*/"64",
+    Option<"scatterChunk", "scatter-chunk", "int64_t", /*default=*/"8",
            "simit-parallel-loops: elements per coloured chunk of a scatter "
            "loop">,
   ];

@@ -381,7 +381,7 @@ llvm::Error SceneParser::parseMeshes(const Json &value,
         return error(path, llvm::Twine("expected a file name or an object, "
                                        "found ") +
                                jsonKind(entry));
-      if (auto err = checkKeys(entry, path, {"file", "refine"}))
+      if (auto err = checkKeys(entry, path, {"file", "refine", "strict"}))
         return err;
       if (!entry.contains("file"))
         return error(path, "expected a \"file\"");
@@ -395,6 +395,13 @@ llvm::Error SceneParser::parseMeshes(const Json &value,
         if (!refine)
           return refine.takeError();
         mesh.refine = *refine;
+      }
+      if (entry.contains("strict")) {
+        if (!entry["strict"].is_boolean())
+          return error(child(path, "strict"),
+                       llvm::Twine("expected true or false, found ") +
+                           jsonKind(entry["strict"]));
+        mesh.strict = entry["strict"].get<bool>();
       }
     }
     scene.meshes.push_back(std::move(mesh));

@@ -227,7 +227,8 @@ int simit::runEval(const EvalOptions &options, llvm::raw_ostream &os) {
     return 1;
   }
   if (llvm::Error err = function->run()) {
-    llvm::errs() << llvm::toString(std::move(err)) << "\n";
+    llvm::errs() << options.path << ": function '" << call->function
+                 << "': " << llvm::toString(std::move(err)) << "\n";
     return 1;
   }
   for (const HostValue &result : function->results())

@@ -32,6 +32,7 @@ struct MeshSpec {
   std::string name;
   std::string path; // resolved against the scene file's directory
   int refine = 0;   // times to apply refineTets
+  bool strict = false; // degenerate or inverted tets are an error
 };
 
 /// How one field's initial values are computed.

@@ -36,6 +36,10 @@ void mlir::simit::buildSimitCpuPipeline(
   pm.addPass(createConvertSimitToLoops());
   pm.addPass(createCanonicalizerPass());
   pm.addPass(createCSEPass());
+  // Checks that remain after folding (dynamic indices, divisors) end the
+  // run with their source position instead of trapping or reading poison.
+  pm.addNestedPass<func::FuncOp>(createSimitGuardIntegerDivision());
+  pm.addPass(createSimitLowerAssertions());
   // Complex arithmetic becomes arith and math on the parts; what is left
   // (complex.create/re/im/constant, complex<T> as a struct) goes to LLVM
   // below.

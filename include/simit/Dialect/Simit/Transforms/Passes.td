@@ -130,6 +130,41 @@ def SimitHoistParallelAllocas : Pass<"simit-hoist-parallel-allocas", "::mlir::fu
   let dependentDialects = ["::mlir::memref::MemRefDialect"];
 }
 
+def SimitGuardIntegerDivision : Pass<"simit-guard-integer-division", "::mlir::func::FuncOp"> {
+  let summary = "Asserts that integer divisions and mods cannot trap";
+  let description = [{
+    Before every `arith` integer division or remainder on integers (not
+    `index`) whose divisor is not a constant, inserts `cf.assert`s that the
+    divisor is not zero and, for signed division, that the quotient does not
+    overflow (the minimum integer divided by -1). Both trap on x86 (SIGFPE)
+    and are undefined in LLVM, so without the check a program could kill
+    the process that runs it. A signed remainder by -1 is 0 and needs no
+    error: its divisor becomes 1 instead. The messages name the operation's
+    source position. Run it after convert-simit-to-loops.
+  }];
+  let dependentDialects = ["::mlir::arith::ArithDialect",
+                           "::mlir::cf::ControlFlowDialect",
+                           "::mlir::vector::VectorDialect"];
+}
+
+def SimitLowerAssertions : Pass<"simit-lower-assertions", "::mlir::ModuleOp"> {
+  let summary = "Turns cf.assert into a call of the runtime's simit_rt_fail";
+  let description = [{
+    `cf.assert %ok, "message"` becomes
+    `scf.if (not %ok) { func.call @simit_rt_fail(<message>) }`, declaring
+    `func.func private @simit_rt_fail(!llvm.ptr)`. The runtime ends the run
+    of the exported function in progress with the message as its error and
+    the host keeps running, where the control-flow dialect's own lowering
+    would abort the process. The assertions come from the loop lowering
+    (dynamic indices into local tensors) and simit-guard-integer-division.
+    Assertions inside `gpu` ops (launches, kernels) are left to the GPU
+    lowering, which makes them device assertions.
+  }];
+  let dependentDialects = ["::mlir::scf::SCFDialect",
+                           "::mlir::func::FuncDialect",
+                           "::mlir::LLVM::LLVMDialect"];
+}
+
 def SimitTimePhases : Pass<"simit-time-phases", "::mlir::ModuleOp"> {
   let summary = "Times the assemblies and solves of exported functions";
   let description = [{

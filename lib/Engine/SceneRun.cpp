@@ -278,7 +278,9 @@ llvm::Error SceneRunner::runAll(std::vector<NamedFunction> &group,
     if (std::optional<std::string> problem = takeNumericsProblem())
       return llvm::createStringError("check-numerics: " + where + ": " +
                                      *problem);
+    Clock::time_point scanStart = Clock::now();
     std::string problem = named.function.findNonFinite();
+    stateScanMs += millisecondsSince(scanStart);
     if (!problem.empty())
       return llvm::createStringError("check-numerics: after " + where + ": " +
                                      problem);
@@ -312,8 +314,11 @@ llvm::Error SceneRunner::step(int count) {
     int frame = ++currentFrame;
     resetPhaseTimes();
     Clock::time_point frameStart = Clock::now();
+    stateScanMs = 0;
     if (llvm::Error err = runAll(stepFunctions, frame))
       return err;
+    if (options.checkNumerics)
+      timings.checkMs.push_back(stateScanMs);
     if (checksFrames()) {
       Clock::time_point checkStart = Clock::now();
       if (llvm::Error err = checkFrame(stepFunctions, frame))

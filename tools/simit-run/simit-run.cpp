@@ -58,12 +58,12 @@ static cl::opt<bool> printTimes(cl::cat(runCategory), "time",
                                          "per-frame times"));
 static cl::opt<bool> checkNumerics(cl::cat(runCategory), 
     "check-numerics",
-    cl::desc("Stop at the first NaN or infinity a function leaves in a bound "
-             "field or extern"));
+    cl::desc("Stop at the first NaN or infinity an assembly, a solve or a "
+             "function leaves (the default)"));
 static cl::opt<bool>
     noCheck(cl::cat(runCategory), "no-check",
-            cl::desc("Do not scan the state for NaN or infinity after every "
-                     "frame (for benchmarks)"));
+            cl::desc("Do not scan assemblies, solves and the state for NaN "
+                     "or infinity (for benchmarks)"));
 static cl::opt<bool> float32(cl::cat(runCategory), "float32",
                              cl::desc("Compile `float` as single precision"));
 static cl::opt<bool> noCache(cl::cat(runCategory), "no-cache",
@@ -140,7 +140,12 @@ static int runSceneFile(FloatPrecision precision,
     options.frames = frames;
   options.precision = precision;
   options.timePhases = printTimes;
-  options.checkNumerics = checkNumerics;
+  if (checkNumerics && noCheck)
+    return fail(
+        llvm::createStringError("--check-numerics and --no-check contradict"));
+  // Checked by default: every assembly and solve, then what each function
+  // leaves in the state (--check-numerics only says so explicitly).
+  options.checkNumerics = !noCheck;
   options.checkFrames = !noCheck;
   options.progress = !noProgress;
   options.cacheDirectory = cacheDirectory;

@@ -117,6 +117,8 @@ private:
   };
   SceneRunner(SceneDescription scene, const SceneRunOptions &options);
   llvm::Error runAll(std::vector<NamedFunction> &group, int frame);
+  /// Time runAll spent scanning the state with checkNumerics (ms).
+  double stateScanMs = 0;
   /// Scans what the functions of a frame left in their float fields and
   /// externs; the error names the frame, the field or extern and the
   /// element, and how to find the statement that produced the value.

@@ -18,6 +18,7 @@
 #include "mlir/Parser/Parser.h"
 
 #include "llvm/ADT/StringExtras.h"
+#include "llvm/Support/DynamicLibrary.h"
 #include "llvm/Support/MemoryBuffer.h"
 #include "llvm/Support/Path.h"
 #include "llvm/Support/SourceMgr.h"
@@ -198,6 +199,15 @@ struct Program::Impl {
   llvm::Error compile() {
     if (compiled)
       return llvm::Error::success();
+    // Their symbols join the process's, where the JIT looks for what the
+    // runtime does not define.
+    for (const std::string &library : options.hostLibraries) {
+      std::string why;
+      if (llvm::sys::DynamicLibrary::LoadLibraryPermanently(library.c_str(),
+                                                            &why))
+        return llvm::createStringError("cannot load the host library '" +
+                                       library + "': " + why);
+    }
     if (cachedCode) {
       Stopwatch link;
       auto loaded = loadObjectCode(*cachedCode);

@@ -187,12 +187,20 @@ SceneTimeSummary SceneTimes::summarize() const {
   return summary;
 }
 
+static ProgramOptions
+programOptionsOf(const SceneRunOptions &options,
+                 const std::vector<std::string> &sceneLibraries) {
+  ProgramOptions program{options.precision, {}, options.timePhases,
+                         options.checkNumerics, options.cacheDirectory,
+                         options.hostLibraries};
+  llvm::append_range(program.hostLibraries, sceneLibraries);
+  return program;
+}
+
 SceneRunner::SceneRunner(SceneDescription scene,
                          const SceneRunOptions &options)
     : description(std::move(scene)), options(options),
-      program(ProgramOptions{options.precision, {}, options.timePhases,
-                             options.checkNumerics,
-                             options.cacheDirectory}) {}
+      program(programOptionsOf(options, description.libraries)) {}
 
 SceneRunner::~SceneRunner() = default;
 

@@ -940,14 +940,21 @@ llvm::Error SceneParser::parse(const Json &root, SceneDescription &scene) {
     return llvm::createStringError(name + ": expected a JSON object, found " +
                                    jsonKind(root));
   if (auto err = checkKeys(root, "",
-                           {"program", "meshes", "sets", "externs", "init",
-                            "step", "frames", "outputs"}))
+                           {"program", "libraries", "meshes", "sets",
+                            "externs", "init", "step", "frames", "outputs"}))
     return err;
   if (root.contains("program")) {
     auto program = getString(root["program"], "program");
     if (!program)
       return program.takeError();
     scene.program = resolve(*program);
+  }
+  if (root.contains("libraries")) {
+    auto libraries = getNames(root["libraries"], "libraries");
+    if (!libraries)
+      return libraries.takeError();
+    for (const std::string &library : *libraries)
+      scene.libraries.push_back(resolve(library));
   }
   if (root.contains("meshes"))
     if (auto err = parseMeshes(root["meshes"], scene))

@@ -90,6 +90,7 @@ public:
     ProgramOptions programOptions;
     programOptions.precision = options.precision;
     programOptions.cacheDirectory = options.cacheDirectory;
+    programOptions.hostLibraries = options.hostLibraries;
     for (const frontend::TestLine &test : ast->tests)
       if (test.func)
         programOptions.hostFunctions.push_back(test.funcName);
@@ -210,6 +211,7 @@ int simit::runEval(const EvalOptions &options, llvm::raw_ostream &os) {
   programOptions.precision = options.precision;
   programOptions.hostFunctions = {call->function};
   programOptions.cacheDirectory = options.cacheDirectory;
+  programOptions.hostLibraries = options.hostLibraries;
   Program program(programOptions);
   if (llvm::Error err = program.loadFile(options.path)) {
     llvm::errs() << llvm::toString(std::move(err)) << "\n";

@@ -8,6 +8,7 @@
 #include "llvm/Support/raw_ostream.h"
 
 #include <string>
+#include <vector>
 
 namespace simit {
 
@@ -16,6 +17,8 @@ struct TestRunOptions {
   FloatPrecision precision = FloatPrecision::Double;
   /// ProgramOptions::cacheDirectory of every section's Program.
   std::string cacheDirectory;
+  /// ProgramOptions::hostLibraries (--extern-lib).
+  std::vector<std::string> hostLibraries;
 };
 
 /// Runs the assertions of every enabled section of a .sim file, printing
@@ -29,6 +32,7 @@ struct EvalOptions {
   std::string call;
   FloatPrecision precision = FloatPrecision::Double;
   std::string cacheDirectory;
+  std::vector<std::string> hostLibraries;
 };
 
 /// Calls one function with literal arguments and prints each result as a

@@ -77,6 +77,11 @@ static cl::opt<std::string> cacheDir(
     cl::value_desc("dir"));
 static cl::opt<bool> noProgress(cl::cat(runCategory), "no-progress",
                                 cl::desc("No progress lines on long runs"));
+static cl::list<std::string>
+    externLibraries(cl::cat(runCategory), "extern-lib",
+                    cl::desc("A shared library with the C functions of the "
+                             "program's extern funcs (repeatable)"),
+                    cl::value_desc("lib.so"));
 
 static int fail(llvm::Error err) {
   llvm::errs() << "simit-run: " << llvm::toString(std::move(err)) << "\n";
@@ -149,6 +154,7 @@ static int runSceneFile(FloatPrecision precision,
   options.checkFrames = !noCheck;
   options.progress = !noProgress;
   options.cacheDirectory = cacheDirectory;
+  options.hostLibraries = externLibraries;
   auto runner = SceneRunner::create(std::move(*scene), options);
   if (!runner)
     return fail(runner.takeError());
@@ -177,13 +183,15 @@ int main(int argc, char **argv) {
   if (testMode) {
     if (programPath.empty())
       return fail(llvm::createStringError("--test needs a .sim file"));
-    return runTests({programPath, precision, cacheDirectory}, llvm::outs());
+    return runTests({programPath, precision, cacheDirectory, externLibraries},
+                    llvm::outs());
   }
   if (!evalCall.empty()) {
     if (programPath.empty())
       return fail(llvm::createStringError("--eval needs a program file"));
-    return runEval({programPath, evalCall, precision, cacheDirectory},
-                   llvm::outs());
+    return runEval(
+        {programPath, evalCall, precision, cacheDirectory, externLibraries},
+        llvm::outs());
   }
   if (emitStage.getNumOccurrences()) {
     if (programPath.empty())

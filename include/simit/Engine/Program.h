@@ -52,6 +52,10 @@ struct ProgramOptions {
   /// changes the code must be part of the key, Program.cpp); empty: every
   /// Program compiles. defaultCompileCacheDirectory() is the usual place.
   std::string cacheDirectory;
+  /// Shared libraries that define the C functions of the program's
+  /// `extern func`s (docs/lowering.md, "Host functions"), loaded into the
+  /// process when the Program is made.
+  std::vector<std::string> hostLibraries;
 };
 
 /// $XDG_CACHE_HOME/simit, else $HOME/.cache/simit; empty when neither

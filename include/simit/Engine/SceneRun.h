@@ -50,6 +50,8 @@ struct SceneRunOptions {
   bool progress = false;
   /// ProgramOptions::cacheDirectory (empty: no compile cache).
   std::string cacheDirectory;
+  /// ProgramOptions::hostLibraries, with the scene's "libraries" after them.
+  std::vector<std::string> hostLibraries;
 };
 
 /// The medians of SceneTimes, as simit-run --time prints them.

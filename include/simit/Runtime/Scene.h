@@ -123,6 +123,9 @@ struct SceneDescription {
   std::string path;      // the scene file
   std::string directory; // its directory, for relative inputs
   std::string program;   // optional .sim file (resolved)
+  /// Shared libraries with the C functions of the program's extern funcs
+  /// (resolved).
+  std::vector<std::string> libraries;
   std::vector<MeshSpec> meshes;
   std::vector<SetSpec> sets;
   std::vector<std::pair<std::string, ExternTensor>> externs;

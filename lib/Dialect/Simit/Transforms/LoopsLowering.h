@@ -345,6 +345,9 @@ private:
   /// Calls of the dense solver runtime functions (lu, chol, lusolve, ...):
   /// local tensors go through memref<?xf64>, handles are !llvm.ptr.
   LogicalResult lowerSolverCall(func::CallOp call, func::FuncOp callee);
+  /// Calls of host functions (`extern func`, LowerHostCalls.cpp) with the
+  /// original Simit runtime's C conventions.
+  LogicalResult lowerHostCall(func::CallOp call, func::FuncOp callee);
   /// simit.print and strings (C strings as !llvm.ptr) through runtime
   /// functions (simit_rt_print_*, simit_rt_string_*).
   LogicalResult lowerPrintOrString(Operation *op);

@@ -50,8 +50,11 @@ struct Program::Impl {
   std::optional<ObjectCode> cachedCode;
   std::shared_ptr<CompiledModule> compiled;
   CompileTimes times;
+  std::shared_ptr<SolveSession> solver;
 
-  explicit Impl(ProgramOptions options) : options(std::move(options)) {}
+  explicit Impl(ProgramOptions options)
+      : options(std::move(options)),
+        solver(std::make_shared<SolveSession>(this->options.solver)) {}
 
   mlir::MLIRContext &getContext() {
     if (!context) {
@@ -203,6 +206,7 @@ struct Program::Impl {
       auto loaded = loadObjectCode(*cachedCode);
       if (loaded) {
         compiled = std::move(*loaded);
+        compiled->solver = solver;
         times.cached = true;
         times.loadMs += link.milliseconds();
         return llvm::Error::success();
@@ -228,6 +232,7 @@ struct Program::Impl {
       return loaded.takeError();
     newTimes.loadMs = link.milliseconds();
     compiled = std::move(*loaded);
+    compiled->solver = solver;
     times = newTimes;
     // A cache that cannot be written costs the next run its compile time,
     // nothing else.
@@ -319,6 +324,8 @@ Program::externSetFields() {
     return std::move(err);
   return impl->externSetFieldsOfModule();
 }
+
+SolveSession &Program::solver() { return *impl->solver; }
 
 llvm::Expected<Function> Program::compile(llvm::StringRef name) {
   if (llvm::Error err = impl->compile())

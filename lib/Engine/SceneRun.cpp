@@ -191,8 +191,8 @@ SceneRunner::SceneRunner(SceneDescription scene,
                          const SceneRunOptions &options)
     : description(std::move(scene)), options(options),
       program(ProgramOptions{options.precision, {}, options.timePhases,
-                             options.checkNumerics,
-                             options.cacheDirectory}) {}
+                             options.checkNumerics, options.cacheDirectory,
+                             options.solver.appliedTo(description.solver)}) {}
 
 SceneRunner::~SceneRunner() = default;
 

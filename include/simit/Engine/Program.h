@@ -20,6 +20,7 @@
 #define SIMIT_ENGINE_PROGRAM_H
 
 #include "simit/Engine/Function.h"
+#include "simit/Runtime/SolveSession.h"
 
 #include "llvm/ADT/StringRef.h"
 #include "llvm/Support/Error.h"
@@ -52,6 +53,10 @@ struct ProgramOptions {
   /// changes the code must be part of the key, Program.cpp); empty: every
   /// Program compiles. defaultCompileCacheDirectory() is the usual place.
   std::string cacheDirectory;
+  /// How `x = A \ b` and chol/lu on system matrices solve (docs/solvers.md).
+  /// Read at run time, not compiled in: Program::solver() changes it
+  /// between runs without a recompile.
+  SolveSettings solver;
 };
 
 /// $XDG_CACHE_HOME/simit, else $HOME/.cache/simit; empty when neither
@@ -101,6 +106,11 @@ public:
 
   /// The exported functions of the compiled module, sorted by name.
   llvm::Expected<std::vector<std::string>> exportedFunctions();
+
+  /// The solver of this program's solves: its settings, its factorisation
+  /// cache, and its statistics per solve statement. Shared by every
+  /// Function the program compiles.
+  SolveSession &solver();
 
   /// Where the first compile() spent its time (all zero before it).
   const CompileTimes &compileTimes() const;

@@ -44,7 +44,7 @@ Value FunctionLowering::asRuntimeBlocks(Location loc, Value array,
   return memref::CastOp::create(b, loc, target, array);
 }
 
-/// The runtime's conjugate gradient solvers (lib/Engine/RuntimeFunctions).
+/// `\`: the runtime's SolveSession (lib/Engine/RuntimeFunctions).
 LogicalResult FunctionLowering::lowerSolve(SolveOp op) {
   return lowerSystemSolve(op, op.getMatrix(), op.getRhs(), "solve");
 }
@@ -171,8 +171,14 @@ LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
   auto values = MemRefType::get({dyn, dyn, dyn}, b.getF64Type());
   auto vector = MemRefType::get({dyn, dyn}, b.getF64Type());
   std::string runtimeName = (name + "_bcsr").str();
+  // The runtime ends the run with `where` ("chol (file:line:col)") when the
+  // factorisation or solve fails, and names the statement in statistics.
+  Value where = stringConstant(
+      loc, name.drop_front(StringRef("simit_rt_").size()).str() +
+               sourcePositionSuffix(call));
   if (factorise) {
-    auto type = FunctionType::get(ctx, {indexArray, indexArray, values}, {ptr});
+    auto type =
+        FunctionType::get(ctx, {indexArray, indexArray, values, ptr}, {ptr});
     func::FuncOp callee = declareRuntime(loc, runtimeName, type);
     if (!callee)
       return call.emitError("@") << runtimeName
@@ -180,11 +186,11 @@ LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
     auto lowered = func::CallOp::create(
         b, loc, callee,
         ValueRange{rowPointers(storage), columnIndices(storage),
-                   asRuntimeBlocks(loc, lookup(matrix), values)});
+                   asRuntimeBlocks(loc, lookup(matrix), values), where});
     map(call.getResult(0), lowered.getResult(0));
     return success();
   }
-  auto type = FunctionType::get(ctx, {ptr, vector, vector}, {});
+  auto type = FunctionType::get(ctx, {ptr, vector, vector, ptr}, {});
   func::FuncOp callee = declareRuntime(loc, runtimeName, type);
   if (!callee)
     return call.emitError("@") << runtimeName
@@ -195,7 +201,7 @@ LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
       b, loc, callee,
       ValueRange{lookup(call.getOperand(0)),
                  asRuntimeBlocks(loc, lookup(call.getOperand(1)), vector),
-                 asRuntimeBlocks(loc, x, vector)});
+                 asRuntimeBlocks(loc, x, vector), where});
   storages[call.getResult(0)] = Storage::dense();
   map(call.getResult(0), x);
   return success();

@@ -372,6 +372,7 @@ template llvm::Expected<FactorLookup>
 FactorCache::factorise(FactorKind, const SquareBCSRView<float> &);
 
 std::string simit::sparseDirectBLAS() {
+  // "OpenBLAS 0.3.21 DYNAMIC_ARCH ... Zen MAX_THREADS=64".
   const char *config = openblas_get_config();
-  return std::string("OpenBLAS ") + (config ? config : "");
+  return config ? config : "OpenBLAS";
 }

@@ -17,11 +17,14 @@
 #include "simit/Engine/SceneRun.h"
 
 #include "llvm/ADT/SmallString.h"
+#include "llvm/ADT/StringMap.h"
 #include "llvm/Support/CommandLine.h"
 #include "llvm/Support/Format.h"
 #include "llvm/Support/InitLLVM.h"
 #include "llvm/Support/Path.h"
 #include "llvm/Support/raw_ostream.h"
+
+#include <optional>
 
 using namespace simit;
 
@@ -95,10 +98,9 @@ static cl::opt<bool> solverStrict(
     cl::cat(runCategory), "solver-strict",
     cl::desc("An iterative solve stopped by the cap is an error, not a "
              "warning"));
-static cl::opt<bool> printStats(
-    cl::cat(runCategory), "stats",
-    cl::desc("Print per solve statement: method, iterations, relative "
-             "residual, factorisations and their times"));
+/// --stats: registered in main, in place of LLVM's -stats (pass statistics,
+/// which this tool has no use for).
+static std::optional<cl::opt<bool>> printStats;
 
 static int fail(llvm::Error err) {
   llvm::errs() << "simit-run: " << llvm::toString(std::move(err)) << "\n";
@@ -248,7 +250,7 @@ static int runSceneFile(FloatPrecision precision,
     return fail(runner.takeError());
   llvm::Error runError = (*runner)->run();
   // The statistics also tell what the solves did before a failure.
-  if (printStats)
+  if (*printStats)
     printSolveStats((*runner)->solver());
   if (runError)
     return fail(std::move(runError));
@@ -262,6 +264,12 @@ static int runSceneFile(FloatPrecision precision,
 int main(int argc, char **argv) {
   llvm::InitLLVM init(argc, argv);
   cl::HideUnrelatedOptions(runCategory);
+  if (cl::Option *llvmStats = cl::getRegisteredOptions().lookup("stats"))
+    llvmStats->removeArgument();
+  printStats.emplace(cl::cat(runCategory), "stats",
+                     cl::desc("Print per solve statement: method, "
+                              "iterations, relative residual, "
+                              "factorisations and their times"));
   cl::ParseCommandLineOptions(argc, argv, "Simit JIT runner\n");
   FloatPrecision precision =
       float32 ? FloatPrecision::Single : FloatPrecision::Double;

@@ -164,7 +164,7 @@ private:
   std::vector<bool> warned;
 };
 
-/// "OpenBLAS <version and build>": the BLAS the direct solvers run on.
+/// OpenBLAS's version and build: the BLAS the direct solvers run on.
 std::string sparseDirectBLAS();
 
 } // namespace simit

@@ -48,7 +48,16 @@ const std::pair<SolveMethod, llvm::StringRef> kMethodNames[] = {
     {SolveMethod::Cholesky, "cholesky"},
     {SolveMethod::LDLT, "ldlt"},
     {SolveMethod::LU, "lu"},
+    {SolveMethod::ShermanMorrison, "sherman-morrison"},
+    {SolveMethod::BorderedLU, "bordered-lu"},
 };
+
+template <typename T> double dot(const T *u, const T *v, int64_t n) {
+  double sum = 0;
+  for (int64_t i = 0; i < n; ++i)
+    sum += static_cast<double>(u[i]) * v[i];
+  return sum;
+}
 
 template <typename T> double norm(const T *v, int64_t n) {
   double sum = 0;
@@ -109,7 +118,8 @@ llvm::StringRef simit::solveMethodName(SolveMethod method) {
 
 std::optional<SolveMethod> simit::parseSolveMethod(llvm::StringRef name) {
   for (auto [m, text] : kMethodNames)
-    if (text == name)
+    if (text == name && m != SolveMethod::ShermanMorrison &&
+        m != SolveMethod::BorderedLU)
       return m;
   return std::nullopt;
 }
@@ -317,6 +327,96 @@ SolveSession::solve(const SquareBCSRView<double> &, const double *, double *,
 template llvm::Expected<SolveReport>
 SolveSession::solve(const SquareBCSRView<float> &, const float *, float *,
                     llvm::StringRef);
+
+/// The scalar matrix [A u; v^T -1] in BCSR arrays of 1x1 blocks.
+template <typename T> struct BorderedMatrix {
+  std::vector<int32_t> rowptr{0}, colidx;
+  std::vector<T> values;
+  SquareBCSRView<T> view;
+
+  BorderedMatrix(const SquareBCSRView<T> &a, const T *u, const T *v) {
+    int64_t bs = a.blockSize, n = a.size();
+    for (int64_t r = 0; r < a.rows; ++r)
+      for (int64_t i = 0; i < bs; ++i) {
+        for (int32_t k = a.rowptr[r]; k < a.rowptr[r + 1]; ++k)
+          for (int64_t j = 0; j < bs; ++j) {
+            colidx.push_back(static_cast<int32_t>(a.colidx[k] * bs + j));
+            values.push_back(a.values[(static_cast<int64_t>(k) * bs + i) * bs +
+                                      j]);
+          }
+        colidx.push_back(static_cast<int32_t>(n));
+        values.push_back(u[r * bs + i]);
+        rowptr.push_back(static_cast<int32_t>(colidx.size()));
+      }
+    for (int64_t j = 0; j <= n; ++j) {
+      colidx.push_back(static_cast<int32_t>(j));
+      values.push_back(j < n ? v[j] : T(-1));
+    }
+    rowptr.push_back(static_cast<int32_t>(colidx.size()));
+    view.rows = n + 1;
+    view.rowptr = rowptr.data();
+    view.colidx = colidx.data();
+    view.values = values.data();
+  }
+};
+
+template <typename T>
+llvm::Expected<SolveReport>
+SolveSession::shermanMorrison(const SquareBCSRView<T> &a, const T *u,
+                              const T *v, const T *b, const T *w, const T *c,
+                              T *x, llvm::StringRef statement) {
+  SolveStatementStats &stats = statsOf(statement);
+  int64_t n = a.size();
+  Clock::time_point start = Clock::now();
+  double denominator = 1 + dot(v, w, n);
+  double scale = norm(v, n) * norm(w, n);
+  SolveReport report;
+  if (std::abs(denominator) > Tolerances<T>::accept * scale &&
+      std::isfinite(denominator)) {
+    report.method = SolveMethod::ShermanMorrison;
+    T factor = static_cast<T>(dot(v, c, n) / denominator);
+    for (int64_t i = 0; i < n; ++i)
+      x[i] = c[i] - factor * w[i];
+    report.solveMs = millisecondsSince(start);
+  } else {
+    // Dividing by 1 + v.w would amplify its rounding error by |v||w| / |1 +
+    // v.w|: solve the bordered system, whose LU pivots around it.
+    BorderedMatrix<T> bordered(a, u, v);
+    std::vector<T> rhs(b, b + n), solution(static_cast<size_t>(n + 1));
+    rhs.push_back(T(0));
+    auto solved = direct(FactorKind::LU, bordered.view, rhs.data(),
+                         solution.data());
+    if (!solved)
+      return solved.takeError();
+    report = *solved;
+    report.method = SolveMethod::BorderedLU;
+    std::copy(solution.begin(), solution.begin() + n, x);
+  }
+  // ||b - A x - u (v.x)|| / ||b||.
+  std::vector<T> ax(static_cast<size_t>(n));
+  multiply(a, x, ax.data());
+  double vx = dot(v, x, n), rr = 0, bNorm = norm(b, n);
+  for (int64_t i = 0; i < n; ++i) {
+    double r = static_cast<double>(b[i]) - ax[i] - u[i] * vx;
+    rr += r * r;
+  }
+  report.relativeResidual = bNorm == 0 ? std::sqrt(rr) : std::sqrt(rr) / bNorm;
+  bool iterativeParts = !factorKindOf(current.method) &&
+                        current.method != SolveMethod::Auto;
+  if (!std::isfinite(report.relativeResidual) ||
+      (!iterativeParts && !(report.relativeResidual <= Tolerances<T>::accept)))
+    return notAccepted(report.relativeResidual);
+  record(stats, report);
+  return report;
+}
+
+template llvm::Expected<SolveReport> SolveSession::shermanMorrison(
+    const SquareBCSRView<double> &, const double *, const double *,
+    const double *, const double *, const double *, double *,
+    llvm::StringRef);
+template llvm::Expected<SolveReport> SolveSession::shermanMorrison(
+    const SquareBCSRView<float> &, const float *, const float *,
+    const float *, const float *, const float *, float *, llvm::StringRef);
 
 llvm::Expected<std::shared_ptr<const SparseFactorisation>>
 SolveSession::factorise(FactorKind kind, const SquareBCSRView<double> &a,

@@ -340,6 +340,84 @@ TEST(SolveSession, HeldFactorisationOutlivesNewValues) {
               HasSubstr("not symmetric"));
 }
 
+/// (A + u v^T) x = b through shermanMorrison, against `exact` to
+/// `tolerance` relative to its norm; returns the method of the last step.
+SolveMethod expectShermanMorrison(SolveSession &session,
+                                  const BandSystem<double> &system,
+                                  const Eigen::VectorXd &u,
+                                  const Eigen::VectorXd &v,
+                                  const Eigen::VectorXd &b,
+                                  const Eigen::VectorXd &exact,
+                                  double tolerance) {
+  int64_t n = system.view.size();
+  std::vector<double> w(n), c(n), x(n);
+  auto solveA = [&](const Eigen::VectorXd &rhs, std::vector<double> &out) {
+    auto report = session.solve(system.view, rhs.data(), out.data(), "A");
+    ASSERT_TRUE(bool(report)) << llvm::toString(report.takeError());
+  };
+  solveA(u, w);
+  solveA(b, c);
+  auto report = session.shermanMorrison(system.view, u.data(), v.data(),
+                                        b.data(), w.data(), c.data(),
+                                        x.data(), "rank one");
+  if (!report) {
+    ADD_FAILURE() << llvm::toString(report.takeError());
+    return SolveMethod::Auto;
+  }
+  for (int64_t i = 0; i < n; ++i)
+    EXPECT_NEAR(x[i], exact[i], tolerance * exact.norm()) << i;
+  Eigen::VectorXd xv = Eigen::Map<Eigen::VectorXd>(x.data(), n);
+  double residual = (b - system.dense * xv - u * v.dot(xv)).norm() / b.norm();
+  EXPECT_NEAR(report->relativeResidual, residual, 1e-14);
+  EXPECT_LE(residual, 1e-12);
+  return report->method;
+}
+
+TEST(SolveSession, ShermanMorrisonMatchesADenseSolve) {
+  for (SolveMethod method : {SolveMethod::Cholesky, SolveMethod::Auto}) {
+    SolveSession session(settingsOf(method));
+    BandSystem<double> system(kBlocks, 3, spd(3, 20));
+    Eigen::VectorXd u = randomVector(kBlocks * 3, 21),
+                    v = randomVector(kBlocks * 3, 22),
+                    b = randomVector(kBlocks * 3, 23);
+    Eigen::MatrixXd full = system.dense + u * v.transpose();
+    EXPECT_EQ(expectShermanMorrison(session, system, u, v, b,
+                                    full.fullPivLu().solve(b), 1e-9),
+              SolveMethod::ShermanMorrison);
+    if (method == SolveMethod::Cholesky) {
+      // Both solves with A share one factorisation.
+      EXPECT_EQ(session.factorisationCounts().factorisations, 1);
+      EXPECT_EQ(session.factorisationCounts().reuses, 1);
+    }
+  }
+}
+
+TEST(SolveSession, ShermanMorrisonFallsBackToTheBorderedSystem) {
+  // v = -(1 - 1e-10) w / |w|^2 for w = A^-1 u, plus a part orthogonal to
+  // w: 1 + v.w = 1e-10 while |v||w| is about 1, so the formula would
+  // divide by a number tiny next to the terms it came from. A + u v^T is
+  // regular (det = 1e-10 det A) but ill-conditioned; with b = (A + u v^T) x
+  // for a known x, LU on the bordered system (backward stable) keeps the
+  // residual at rounding level and x to 1e-4.
+  SolveSession session(settingsOf(SolveMethod::LU));
+  BandSystem<double> system(kBlocks, 3, nonSymmetric(3, 24));
+  Eigen::VectorXd u = randomVector(kBlocks * 3, 25),
+                  x = randomVector(kBlocks * 3, 26);
+  Eigen::VectorXd w = system.dense.fullPivLu().solve(u);
+  Eigen::VectorXd other = randomVector(kBlocks * 3, 27);
+  other -= other.dot(w) / w.squaredNorm() * w;
+  Eigen::VectorXd v = -(1 - 1e-10) * w / w.squaredNorm() +
+                      0.5 * other / (other.norm() * w.norm());
+  Eigen::VectorXd b = system.dense * x + u * v.dot(x);
+  EXPECT_EQ(expectShermanMorrison(session, system, u, v, b, x, 1e-4),
+            SolveMethod::BorderedLU);
+  std::vector<SolveStatementStats> stats = session.statistics();
+  ASSERT_EQ(stats.size(), 2u);
+  EXPECT_EQ(stats[1].statement, "rank one");
+  EXPECT_EQ(stats[1].methods,
+            std::vector<SolveMethod>{SolveMethod::BorderedLU});
+}
+
 TEST(SolveSession, ZeroRightHandSideGivesZero) {
   SolveSession session(settingsOf(SolveMethod::Cholesky));
   BandSystem<double> system(kBlocks, 3, spd(3, 5));

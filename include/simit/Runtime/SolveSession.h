@@ -41,9 +41,14 @@ enum class SolveMethod {
   Cholesky,
   LDLT,
   LU,
+  /// Reported, not chosen: the two ways of the Sherman–Morrison rewrite's
+  /// last step (x from A^-1 u and A^-1 b, or the bordered system).
+  ShermanMorrison,
+  BorderedLU,
 };
 
-/// "auto", "cg", "pcg-jacobi", "pcg-block-jacobi", "cholesky", "ldlt", "lu".
+/// "auto", "cg", "pcg-jacobi", "pcg-block-jacobi", "cholesky", "ldlt", "lu"
+/// (the methods a user chooses), "sherman-morrison", "bordered-lu".
 llvm::StringRef solveMethodName(SolveMethod method);
 std::optional<SolveMethod> parseSolveMethod(llvm::StringRef name);
 /// The names above, comma separated, for messages.
@@ -137,6 +142,20 @@ public:
   llvm::Expected<SolveReport> solveWith(const SparseFactorisation &factor,
                                         const double *b, double *x,
                                         llvm::StringRef statement);
+
+  /// The last step of `(A + u v^T) \ b` rewritten by simit-sherman-morrison:
+  /// given w = A^-1 u and c = A^-1 b (solved with A's one factorisation),
+  /// x = c - w (v.c) / (1 + v.w). When |1 + v.w| <= 1e-8 |v| |w| (f32:
+  /// 1e-3) that division would lose the answer (or A + u v^T is near
+  /// singular): x comes from the bordered system [A u; v^T -1] [x; y] =
+  /// [b; 0] by LU instead. The residual ||b - (A + u v^T) x|| / ||b|| is
+  /// checked like a direct solve's unless the settings' method is
+  /// iterative (w and c are then only as good as its tolerance).
+  template <typename T>
+  llvm::Expected<SolveReport>
+  shermanMorrison(const SquareBCSRView<T> &a, const T *u, const T *v,
+                  const T *b, const T *w, const T *c, T *x,
+                  llvm::StringRef statement);
 
   /// Per statement, in the order they first ran.
   std::vector<SolveStatementStats> statistics() const;

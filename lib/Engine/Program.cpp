@@ -133,6 +133,7 @@ struct Program::Impl {
     mlir::simit::SimitCpuPipelineOptions pipelineOptions;
     pipelineOptions.timePhases = options.timePhases;
     pipelineOptions.checkNumerics = options.checkNumerics;
+    pipelineOptions.shermanMorrison = options.shermanMorrison;
     if (llvm::Error err = lowerToLLVM(*clone, result, pipelineOptions))
       return err;
     llvmModule = std::move(clone);
@@ -160,7 +161,8 @@ struct Program::Impl {
        << (options.precision == FloatPrecision::Single ? "single" : "double")
        << "\nhost functions " << llvm::join(options.hostFunctions, ",")
        << "\ntime phases " << options.timePhases << "\ncheck numerics "
-       << options.checkNumerics << "\n"
+       << options.checkNumerics << "\nsherman-morrison "
+       << options.shermanMorrison << "\n"
        << (from.kind == Source::Kind::Sim ? "sim " : "mlir ") << from.name
        << "\n"
        << from.text;

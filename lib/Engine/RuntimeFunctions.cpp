@@ -129,6 +129,31 @@ void solveBCSR(StridedMemRefType<int32_t, 1> *rowptr,
     abandonRun();
 }
 
+/// The last step of the Sherman–Morrison rewrite into x, or false with
+/// runFailure set.
+template <typename T>
+bool shermanMorrisonInto(StridedMemRefType<int32_t, 1> *rowptr,
+                         StridedMemRefType<int32_t, 1> *colidx,
+                         StridedMemRefType<T, 3> *values,
+                         StridedMemRefType<T, 2> *const (&vectors)[6],
+                         const char *where) {
+  simit::SquareBCSRView<T> view;
+  if (!bcsrView(rowptr, colidx, values, where, view))
+    return false;
+  // u, v, b, w, c, x.
+  T *data[6];
+  for (int i = 0; i < 6; ++i) {
+    if (!isContiguous(*vectors[i]) ||
+        vectors[i]->sizes[0] * vectors[i]->sizes[1] != view.size())
+      return fail(where, "vector size does not match the matrix");
+    data[i] = vectors[i]->data + vectors[i]->offset;
+  }
+  auto report = solver().shermanMorrison(
+      view, data[0], data[1], data[2], data[3], data[4], data[5],
+      where ? where : "Sherman-Morrison");
+  return report ? true : fail(where, llvm::toString(report.takeError()));
+}
+
 /// A block diagonal matrix is the BCSR matrix of the identity pattern.
 template <typename T>
 bool solveDiagonalInto(StridedMemRefType<T, 3> *values,
@@ -239,6 +264,28 @@ extern "C" void _mlir_ciface_simit_rt_solve_bcsr_f32(
     StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *b,
     StridedMemRefType<float, 2> *x, const char *where) {
   solveBCSR<float>(rowptr, colidx, values, b, x, where, nullptr);
+}
+
+extern "C" void _mlir_ciface_simit_rt_sherman_morrison_bcsr(
+    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
+    StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *u,
+    StridedMemRefType<double, 2> *v, StridedMemRefType<double, 2> *b,
+    StridedMemRefType<double, 2> *w, StridedMemRefType<double, 2> *c,
+    StridedMemRefType<double, 2> *x, const char *where) {
+  StridedMemRefType<double, 2> *const vectors[6] = {u, v, b, w, c, x};
+  if (!shermanMorrisonInto(rowptr, colidx, values, vectors, where))
+    abandonRun();
+}
+
+extern "C" void _mlir_ciface_simit_rt_sherman_morrison_bcsr_f32(
+    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
+    StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *u,
+    StridedMemRefType<float, 2> *v, StridedMemRefType<float, 2> *b,
+    StridedMemRefType<float, 2> *w, StridedMemRefType<float, 2> *c,
+    StridedMemRefType<float, 2> *x, const char *where) {
+  StridedMemRefType<float, 2> *const vectors[6] = {u, v, b, w, c, x};
+  if (!shermanMorrisonInto(rowptr, colidx, values, vectors, where))
+    abandonRun();
 }
 
 extern "C" void _mlir_ciface_simit_rt_matmul_bcsr(
@@ -702,6 +749,11 @@ simit::runtimeSymbolMap(llvm::orc::MangleAndInterner interner) {
       reinterpret_cast<void *>(&_mlir_ciface_simit_rt_solve_bcsr));
   add("_mlir_ciface_simit_rt_solve_bcsr_f32",
       reinterpret_cast<void *>(&_mlir_ciface_simit_rt_solve_bcsr_f32));
+  add("_mlir_ciface_simit_rt_sherman_morrison_bcsr",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_sherman_morrison_bcsr));
+  add("_mlir_ciface_simit_rt_sherman_morrison_bcsr_f32",
+      reinterpret_cast<void *>(
+          &_mlir_ciface_simit_rt_sherman_morrison_bcsr_f32));
   add("_mlir_ciface_simit_rt_matmul_bcsr",
       reinterpret_cast<void *>(&_mlir_ciface_simit_rt_matmul_bcsr));
   add("_mlir_ciface_simit_rt_matmul_bcsr_f32",

@@ -192,7 +192,8 @@ SceneRunner::SceneRunner(SceneDescription scene,
     : description(std::move(scene)), options(options),
       program(ProgramOptions{options.precision, {}, options.timePhases,
                              options.checkNumerics, options.cacheDirectory,
-                             options.solver.appliedTo(description.solver)}) {}
+                             options.solver.appliedTo(description.solver),
+                             options.shermanMorrison}) {}
 
 SceneRunner::~SceneRunner() = default;
 

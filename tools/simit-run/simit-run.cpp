@@ -3,6 +3,7 @@
 //   simit-run PROGRAM --scene SCENE.json [--output-dir DIR] [--time]
 //             [--no-cache | --cache-dir DIR] [--stats]
 //             [--solver METHOD] [--tol T] [--max-iters N] [--solver-strict]
+//             [--no-sherman-morrison]
 //   simit-run --test FILE.sim
 //   simit-run FILE.sim --eval 'f(1.0, [1, 2]')'
 //   simit-run FILE.sim --emit=simit|loops|llvm
@@ -98,6 +99,10 @@ static cl::opt<bool> solverStrict(
     cl::cat(runCategory), "solver-strict",
     cl::desc("An iterative solve stopped by the cap is an error, not a "
              "warning"));
+static cl::opt<bool> noShermanMorrison(
+    cl::cat(runCategory), "no-sherman-morrison",
+    cl::desc("Solve (A + u*v') \\ b as written instead of by "
+             "Sherman-Morrison"));
 /// --stats: registered in main, in place of LLVM's -stats (pass statistics,
 /// which this tool has no use for).
 static std::optional<cl::opt<bool>> printStats;
@@ -245,6 +250,7 @@ static int runSceneFile(FloatPrecision precision,
   if (!solver)
     return fail(solver.takeError());
   options.solver = *solver;
+  options.shermanMorrison = !noShermanMorrison;
   auto runner = SceneRunner::create(std::move(*scene), options);
   if (!runner)
     return fail(runner.takeError());

@@ -57,6 +57,9 @@ struct ProgramOptions {
   /// Read at run time, not compiled in: Program::solver() changes it
   /// between runs without a recompile.
   SolveSettings solver;
+  /// Solve `(A + u v^T) \ b` by Sherman–Morrison (simit-sherman-morrison);
+  /// off, A + u v^T is formed and solved as it is.
+  bool shermanMorrison = true;
 };
 
 /// $XDG_CACHE_HOME/simit, else $HOME/.cache/simit; empty when neither

@@ -43,6 +43,26 @@ void _mlir_ciface_simit_rt_solve_bcsr_f32(
     StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
     StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *b,
     StridedMemRefType<float, 2> *x, const char *where);
+/// The last step of `(A + u v^T) \ b` rewritten by simit-sherman-morrison
+/// (SolveSession::shermanMorrison): given w = A^-1 u and c = A^-1 b, x =
+/// c - w (v.c) / (1 + v.w), or the bordered system [A u; v^T -1] by LU when
+/// 1 + v.w is tiny; the residual checked. A BCSR as for @simit_rt_solve_bcsr,
+/// the vectors memref<?xBxf64>, `where` "Sherman-Morrison (file:line:col)".
+/// MLIR: @simit_rt_sherman_morrison_bcsr(memref<?xi32>, memref<?xi32>,
+///   memref<?x?x?xf64>, memref<?x?xf64> u, v, b, w, c, x, !llvm.ptr), and
+///   _f32.
+void _mlir_ciface_simit_rt_sherman_morrison_bcsr(
+    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
+    StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *u,
+    StridedMemRefType<double, 2> *v, StridedMemRefType<double, 2> *b,
+    StridedMemRefType<double, 2> *w, StridedMemRefType<double, 2> *c,
+    StridedMemRefType<double, 2> *x, const char *where);
+void _mlir_ciface_simit_rt_sherman_morrison_bcsr_f32(
+    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
+    StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *u,
+    StridedMemRefType<float, 2> *v, StridedMemRefType<float, 2> *b,
+    StridedMemRefType<float, 2> *w, StridedMemRefType<float, 2> *c,
+    StridedMemRefType<float, 2> *x, const char *where);
 /// triangularSolve(A, b) on a square BCSR system matrix (arguments as for
 /// @simit_rt_solve_bcsr): forward substitution with A's lower triangle; a
 /// zero diagonal entry ends the run with `where`.

@@ -52,6 +52,8 @@ struct SceneRunOptions {
   std::string cacheDirectory;
   /// Overrides the scene's "solver" (simit-run --solver, --tol, ...).
   SolveSettingsOverride solver;
+  /// ProgramOptions::shermanMorrison (simit-run --no-sherman-morrison).
+  bool shermanMorrison = true;
 };
 
 /// The medians of SceneTimes, as simit-run --time prints them.

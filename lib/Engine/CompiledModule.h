@@ -10,6 +10,7 @@
 #define SIMIT_LIB_ENGINE_COMPILEDMODULE_H
 
 #include "simit/Engine/HostABI.h"
+#include "simit/Runtime/SolveSession.h"
 
 #include "llvm/ADT/StringMap.h"
 #include "llvm/ExecutionEngine/Orc/LLJIT.h"
@@ -34,6 +35,8 @@ class CompiledModule {
 public:
   std::unique_ptr<llvm::orc::LLJIT> jit;
   llvm::StringMap<CompiledFunction> functions;
+  /// The solver of the Program that compiled the module.
+  std::shared_ptr<SolveSession> solver;
 };
 
 } // namespace simit

@@ -667,7 +667,8 @@ llvm::Error Function::run() {
     std::memcpy(impl->vectorStorage.data() + copy.offset, copy.source,
                 copy.bytes);
   if (llvm::Error err =
-          runGuarded(impl->compiled->entry, impl->args.data()))
+          runGuarded(impl->compiled->entry, impl->args.data(),
+                     impl->module->solver.get()))
     return err;
   impl->decodeResults();
   return llvm::Error::success();

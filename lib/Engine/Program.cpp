@@ -51,8 +51,11 @@ struct Program::Impl {
   std::optional<ObjectCode> cachedCode;
   std::shared_ptr<CompiledModule> compiled;
   CompileTimes times;
+  std::shared_ptr<SolveSession> solver;
 
-  explicit Impl(ProgramOptions options) : options(std::move(options)) {}
+  explicit Impl(ProgramOptions options)
+      : options(std::move(options)),
+        solver(std::make_shared<SolveSession>(this->options.solver)) {}
 
   mlir::MLIRContext &getContext() {
     if (!context) {
@@ -131,6 +134,7 @@ struct Program::Impl {
     mlir::simit::SimitCpuPipelineOptions pipelineOptions;
     pipelineOptions.timePhases = options.timePhases;
     pipelineOptions.checkNumerics = options.checkNumerics;
+    pipelineOptions.shermanMorrison = options.shermanMorrison;
     if (llvm::Error err = lowerToLLVM(*clone, result, pipelineOptions))
       return err;
     llvmModule = std::move(clone);
@@ -158,7 +162,8 @@ struct Program::Impl {
        << (options.precision == FloatPrecision::Single ? "single" : "double")
        << "\nhost functions " << llvm::join(options.hostFunctions, ",")
        << "\ntime phases " << options.timePhases << "\ncheck numerics "
-       << options.checkNumerics << "\n"
+       << options.checkNumerics << "\nsherman-morrison "
+       << options.shermanMorrison << "\n"
        << (from.kind == Source::Kind::Sim ? "sim " : "mlir ") << from.name
        << "\n"
        << from.text;
@@ -213,6 +218,7 @@ struct Program::Impl {
       auto loaded = loadObjectCode(*cachedCode);
       if (loaded) {
         compiled = std::move(*loaded);
+        compiled->solver = solver;
         times.cached = true;
         times.loadMs += link.milliseconds();
         return llvm::Error::success();
@@ -238,6 +244,7 @@ struct Program::Impl {
       return loaded.takeError();
     newTimes.loadMs = link.milliseconds();
     compiled = std::move(*loaded);
+    compiled->solver = solver;
     times = newTimes;
     // A cache that cannot be written costs the next run its compile time,
     // nothing else.
@@ -329,6 +336,8 @@ Program::externSetFields() {
     return std::move(err);
   return impl->externSetFieldsOfModule();
 }
+
+SolveSession &Program::solver() { return *impl->solver; }
 
 llvm::Expected<Function> Program::compile(llvm::StringRef name) {
   if (llvm::Error err = impl->compile())

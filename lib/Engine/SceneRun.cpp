@@ -187,20 +187,24 @@ SceneTimeSummary SceneTimes::summarize() const {
   return summary;
 }
 
-static ProgramOptions
-programOptionsOf(const SceneRunOptions &options,
-                 const std::vector<std::string> &sceneLibraries) {
-  ProgramOptions program{options.precision, {}, options.timePhases,
-                         options.checkNumerics, options.cacheDirectory,
+static ProgramOptions programOptionsOf(const SceneRunOptions &options,
+                                       const SceneDescription &scene) {
+  ProgramOptions program{options.precision,
+                         {},
+                         options.timePhases,
+                         options.checkNumerics,
+                         options.cacheDirectory,
+                         options.solver.appliedTo(scene.solver),
+                         options.shermanMorrison,
                          options.hostLibraries};
-  llvm::append_range(program.hostLibraries, sceneLibraries);
+  llvm::append_range(program.hostLibraries, scene.libraries);
   return program;
 }
 
 SceneRunner::SceneRunner(SceneDescription scene,
                          const SceneRunOptions &options)
     : description(std::move(scene)), options(options),
-      program(programOptionsOf(options, description.libraries)) {}
+      program(programOptionsOf(options, description)) {}
 
 SceneRunner::~SceneRunner() = default;
 

@@ -50,6 +50,10 @@ struct SceneRunOptions {
   bool progress = false;
   /// ProgramOptions::cacheDirectory (empty: no compile cache).
   std::string cacheDirectory;
+  /// Overrides the scene's "solver" (simit-run --solver, --tol, ...).
+  SolveSettingsOverride solver;
+  /// ProgramOptions::shermanMorrison (simit-run --no-sherman-morrison).
+  bool shermanMorrison = true;
   /// ProgramOptions::hostLibraries, with the scene's "libraries" after them.
   std::vector<std::string> hostLibraries;
 };
@@ -109,6 +113,8 @@ public:
   const SceneTimes &times() const { return timings; }
   /// How the program was compiled (the compile cache, the phases).
   const CompileTimes &compileTimes() const { return program.compileTimes(); }
+  /// The program's solver: its settings and statistics (--stats).
+  SolveSession &solver() { return program.solver(); }
   /// The output files written so far.
   const std::vector<std::string> &writtenFiles() const;
 

@@ -15,6 +15,7 @@
 #include "simit/Runtime/Mesh.h"
 #include "simit/Runtime/SceneExpression.h"
 #include "simit/Runtime/Set.h"
+#include "simit/Runtime/SolveSession.h"
 
 #include "llvm/ADT/StringMap.h"
 #include "llvm/ADT/StringRef.h"
@@ -132,6 +133,8 @@ struct SceneDescription {
   std::vector<std::string> init, step;
   int frames = 0;
   std::vector<OutputSpec> outputs;
+  /// "solver": how `x = A \ b` solves (docs/solvers.md).
+  SolveSettings solver;
 
   const SetSpec *findSet(llvm::StringRef name) const;
 };

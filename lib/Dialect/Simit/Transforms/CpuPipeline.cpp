@@ -27,6 +27,8 @@ using namespace mlir::simit;
 void mlir::simit::buildSimitCpuPipeline(
     OpPassManager &pm, const SimitCpuPipelineOptions &options) {
   pm.addPass(createSimitInlineFunctions());
+  if (options.shermanMorrison)
+    pm.addPass(createSimitShermanMorrison());
   if (options.timePhases)
     pm.addPass(createSimitTimePhases());
   if (options.checkNumerics)
@@ -77,13 +79,15 @@ struct CpuPipeline : public simit::impl::SimitCpuPipelineBase<CpuPipeline> {
   using Base::Base;
   void getDependentDialects(DialectRegistry &registry) const override {
     OpPassManager pm(ModuleOp::getOperationName());
-    buildSimitCpuPipeline(pm, {timePhases, checkNumerics, runtimeAllocator});
+    buildSimitCpuPipeline(
+        pm, {timePhases, checkNumerics, runtimeAllocator, shermanMorrison});
     pm.getDependentDialects(registry);
   }
 
   void runOnOperation() override {
     OpPassManager pm(ModuleOp::getOperationName());
-    buildSimitCpuPipeline(pm, {timePhases, checkNumerics, runtimeAllocator});
+    buildSimitCpuPipeline(
+        pm, {timePhases, checkNumerics, runtimeAllocator, shermanMorrison});
     if (failed(runPipeline(pm, getOperation())))
       signalPassFailure();
   }

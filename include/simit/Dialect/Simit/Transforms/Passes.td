@@ -39,6 +39,31 @@ def SimitInlineFunctions : Pass<"simit-inline-functions", "::mlir::ModuleOp"> {
                            "::mlir::func::FuncDialect"];
 }
 
+def SimitShermanMorrison : Pass<"simit-sherman-morrison", "::mlir::ModuleOp"> {
+  let summary = "Solves a sparse matrix plus an outer product by Sherman–Morrison";
+  let description = [{
+    Rewrites `simit.solve (A + u v^T), b` — a `simit.add` of a system matrix
+    A and a `simit.outer` of two system vectors, in either order — into
+    two solves with A and the runtime's last step:
+
+    ```mlir
+    %w = simit.solve %A, %u {simit.solve_note = "Sherman-Morrison A^-1 u"}
+    %c = simit.solve %A, %b {simit.solve_note = "Sherman-Morrison A^-1 b"}
+    %x = func.call @simit_rt_sherman_morrison(%A, %u, %v, %b, %w, %c)
+    ```
+
+    so the dense matrix A + u v^T is never formed. With a direct solver
+    both solves use one factorisation of A (the SolveSession's cache); the
+    last step computes x = c - w (v.c) / (1 + v.w), or, when |1 + v.w| is
+    tiny next to |v||w|, solves the bordered system [A u; v^T -1] instead
+    of dividing (docs/solvers.md). A that itself holds an outer product (the
+    rank-k form A + u1 v1^T + u2 v2^T) is left alone, as are differences
+    and other forms. Run it after simit-inline-functions.
+  }];
+  let dependentDialects = ["::mlir::simit::SimitDialect",
+                           "::mlir::func::FuncDialect"];
+}
+
 def SimitAssignStorage : Pass<"simit-assign-storage", "::mlir::ModuleOp"> {
   let summary = "Gives every system matrix its storage encoding";
   let description = [{
@@ -204,7 +229,8 @@ def SimitCheckNumerics : Pass<"simit-check-numerics", "::mlir::ModuleOp"> {
 def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
   let summary = "Runs every Simit lowering down to the LLVM dialect";
   let description = [{
-    Inlines functions, rewrites linear algebra as index expressions, fuses
+    Inlines functions, solves sparse-plus-outer-product systems by
+    Sherman–Morrison, rewrites linear algebra as index expressions, fuses
     them, lowers to loops, moves the stack slots out of the (sequential)
     parallel loops, frees temporaries, and lowers to the LLVM dialect (vector
     to scf, scf to cf, vector, math, arith, index, memref, func and cf to
@@ -222,6 +248,9 @@ def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
            "Allocate heap memory through the Simit runtime's "
            "_mlir_memref_to_llvm_alloc/free (the JIT's block cache) instead "
            "of malloc/free">,
+    Option<"shermanMorrison", "sherman-morrison", "bool", /*default=*/"true",
+           "Solve sparse-plus-outer-product systems by Sherman–Morrison "
+           "(simit-sherman-morrison)">,
   ];
 }
 

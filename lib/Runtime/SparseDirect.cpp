@@ -37,6 +37,14 @@ struct Common {
     c.print = 0; // errors come back as llvm::Error, not on stderr
   }
   ~Common() { cholmod_l_finish(&c); }
+  /// The settings of `kind`: supernodal LL^T for Cholesky, simplicial
+  /// LDL^T otherwise.
+  cholmod_common &configuredFor(FactorKind kind) {
+    c.supernodal = kind == FactorKind::Cholesky ? CHOLMOD_SUPERNODAL
+                                                : CHOLMOD_SIMPLICIAL;
+    c.final_ll = kind == FactorKind::Cholesky;
+    return c;
+  }
 };
 
 /// The symbolic analysis of one pattern for one kind.
@@ -286,10 +294,7 @@ FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
                           status)
                 .str());
     } else {
-      cholmod_common &c = common->c;
-      c.supernodal = kind == FactorKind::Cholesky ? CHOLMOD_SUPERNODAL
-                                                  : CHOLMOD_SIMPLICIAL;
-      c.final_ll = kind == FactorKind::Cholesky;
+      cholmod_common &c = common->configuredFor(kind);
       cholmod_sparse view = analysis->view(nullptr);
       view.xtype = CHOLMOD_PATTERN;
       analysis->symbolic = cholmod_l_analyze(&view, &c);
@@ -346,10 +351,7 @@ FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
                               status)
                     .str());
   } else {
-    cholmod_common &c = common->c;
-    c.supernodal = kind == FactorKind::Cholesky ? CHOLMOD_SUPERNODAL
-                                                : CHOLMOD_SIMPLICIAL;
-    c.final_ll = kind == FactorKind::Cholesky;
+    cholmod_common &c = common->configuredFor(kind);
     if (!factor->cholmodFactor)
       factor->cholmodFactor = cholmod_l_copy_factor(analysis.symbolic, &c);
     auto *cholmodFactor = static_cast<cholmod_factor *>(factor->cholmodFactor);

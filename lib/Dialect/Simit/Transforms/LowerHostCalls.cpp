@@ -30,15 +30,6 @@ using namespace mlir::simit;
 using namespace mlir::simit::loops;
 
 namespace {
-/// The component type of a parameter or result type of a host function.
-Type componentTypeOf(Type type) {
-  if (auto system = dyn_cast<SystemTensorType>(type))
-    return system.getComponentType();
-  if (auto shaped = dyn_cast<ShapedType>(type))
-    return shaped.getElementType();
-  return type;
-}
-
 /// The shim `name`(args) -> i32 that passes its memref arguments to the
 /// host symbol as pointers to their first component.
 func::FuncOp getOrCreateShim(OpBuilder &b, ModuleOp module, Location loc,
@@ -116,7 +107,7 @@ LogicalResult FunctionLowering::lowerHostCall(func::CallOp call,
   std::string symbol = name.str();
   for (Type type : llvm::concat<const Type>(callee.getArgumentTypes(),
                                             callee.getResultTypes()))
-    if (Type c = componentTypeOf(type); isa<FloatType>(c)) {
+    if (Type c = getComponentType(type); isa<FloatType>(c)) {
       symbol = (c.isF32() ? "s" : "d") + symbol;
       break;
     }

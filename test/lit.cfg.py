@@ -19,6 +19,8 @@ config.substitutions.append(("%shared", config.shared_dir))
 if config.simit_build_python:
     config.available_features.add("simit-python")
 config.substitutions.append(("%python3", config.python3_executable))
+# Builds shared libraries of host functions (extern func) for the tests.
+config.substitutions.append(("%host_cxx", config.host_cxx))
 config.substitutions.append(("%simit_python_dir", config.simit_python_install_dir))
 config.substitutions.append(("%meshes", os.path.join(config.shared_dir, "data", "meshes")))
 

@@ -10,6 +10,7 @@
 #define SIMIT_LIB_ENGINE_COMPILEDMODULE_H
 
 #include "simit/Engine/HostABI.h"
+#include "simit/Runtime/SolveSession.h"
 
 #include "llvm/ADT/StringMap.h"
 #include "llvm/ExecutionEngine/Orc/LLJIT.h"
@@ -36,6 +37,8 @@ public:
   llvm::StringMap<CompiledFunction> functions;
   /// The threads its parallel regions run on (1: it has none).
   int threads = 1;
+  /// The solver of the Program that compiled the module.
+  std::shared_ptr<SolveSession> solver;
 };
 
 } // namespace simit

@@ -692,7 +692,8 @@ llvm::Error Function::run() {
   if (impl->module->threads > 1)
     useThreads(impl->module->threads);
   if (llvm::Error err =
-          runGuarded(impl->compiled->entry, impl->args.data()))
+          runGuarded(impl->compiled->entry, impl->args.data(),
+                     impl->module->solver.get()))
     return err;
   impl->decodeResults();
   return llvm::Error::success();

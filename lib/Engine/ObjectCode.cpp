@@ -7,6 +7,8 @@
 
 #include "llvm/ExecutionEngine/Orc/ExecutionUtils.h"
 #include "llvm/ExecutionEngine/Orc/LLJIT.h"
+#include "llvm/Object/ObjectFile.h"
+#include "llvm/Support/DynamicLibrary.h"
 #include "llvm/IR/DataLayout.h"
 #include "llvm/Support/MemoryBuffer.h"
 #include "llvm/Support/TargetSelect.h"
@@ -30,6 +32,36 @@ llvm::Expected<llvm::orc::JITTargetMachineBuilder> simit::hostTarget() {
   return target;
 }
 
+/// Names the symbols the object needs that neither the runtime nor the
+/// process (its libraries, and the host libraries loaded for `extern
+/// func`s) defines, before the JIT would fail on them less clearly.
+static llvm::Error checkExternalSymbols(llvm::StringRef object,
+                                        const llvm::orc::SymbolMap &runtime,
+                                        llvm::orc::MangleAndInterner &mangle) {
+  auto file = llvm::object::ObjectFile::createObjectFile(
+      llvm::MemoryBufferRef(object, "simit-module.o"));
+  if (!file)
+    return file.takeError();
+  std::string missing;
+  for (const llvm::object::SymbolRef &symbol : (*file)->symbols()) {
+    auto flags = symbol.getFlags();
+    if (!flags || !(*flags & llvm::object::SymbolRef::SF_Undefined))
+      continue;
+    auto name = symbol.getName();
+    if (!name || name->empty() || runtime.count(mangle(*name)) ||
+        llvm::sys::DynamicLibrary::SearchForAddressOfSymbol(name->str()))
+      continue;
+    missing += (missing.empty() ? "" : ", ") + name->str();
+  }
+  if (missing.empty())
+    return llvm::Error::success();
+  return llvm::createStringError(
+      "host functions not found: " + missing +
+      " (the C functions of the program's extern funcs; give the shared "
+      "library that defines them: simit-run --extern-lib, the scene's "
+      "\"libraries\", ProgramOptions::hostLibraries)");
+}
+
 llvm::Expected<std::shared_ptr<CompiledModule>>
 simit::loadObjectCode(const ObjectCode &code) {
   auto target = hostTarget();
@@ -50,8 +82,11 @@ simit::loadObjectCode(const ObjectCode &code) {
     return jit.takeError();
   llvm::orc::MangleAndInterner mangle((*jit)->getExecutionSession(),
                                       (*jit)->getDataLayout());
+  llvm::orc::SymbolMap runtime = runtimeSymbolMap(mangle);
+  if (llvm::Error err = checkExternalSymbols(code.object, runtime, mangle))
+    return err;
   if (llvm::Error err = (*jit)->getMainJITDylib().define(
-          llvm::orc::absoluteSymbols(runtimeSymbolMap(mangle))))
+          llvm::orc::absoluteSymbols(std::move(runtime))))
     return std::move(err);
   // OpenMP calls (__kmpc_*) go to the runtime the engine is linked with,
   // looked up in its own file: a process that loaded the engine locally

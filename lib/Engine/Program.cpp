@@ -18,6 +18,7 @@
 #include "mlir/Parser/Parser.h"
 
 #include "llvm/ADT/StringExtras.h"
+#include "llvm/Support/DynamicLibrary.h"
 #include "llvm/Support/MemoryBuffer.h"
 #include "llvm/Support/Path.h"
 #include "llvm/Support/SourceMgr.h"
@@ -50,13 +51,16 @@ struct Program::Impl {
   std::optional<ObjectCode> cachedCode;
   std::shared_ptr<CompiledModule> compiled;
   CompileTimes times;
+  std::shared_ptr<SolveSession> solver;
 
   /// options.threads resolved (resolveThreadCount()); a malformed request
   /// is reported by the first lowering or compile.
   int threads = 1;
   std::string threadsError;
 
-  explicit Impl(ProgramOptions options) : options(std::move(options)) {
+  explicit Impl(ProgramOptions options)
+      : options(std::move(options)),
+        solver(std::make_shared<SolveSession>(this->options.solver)) {
     llvm::Expected<int> resolved = resolveThreadCount(this->options.threads);
     if (resolved)
       threads = *resolved;
@@ -147,6 +151,7 @@ struct Program::Impl {
     pipelineOptions.timePhases = options.timePhases;
     pipelineOptions.checkNumerics = options.checkNumerics;
     pipelineOptions.openmp = openmp();
+    pipelineOptions.shermanMorrison = options.shermanMorrison;
     if (llvm::Error err = lowerToLLVM(*clone, result, pipelineOptions))
       return err;
     llvmModule = std::move(clone);
@@ -174,7 +179,8 @@ struct Program::Impl {
        << (options.precision == FloatPrecision::Single ? "single" : "double")
        << "\nhost functions " << llvm::join(options.hostFunctions, ",")
        << "\ntime phases " << options.timePhases << "\ncheck numerics "
-       << options.checkNumerics << "\nopenmp " << openmp() << "\n"
+       << options.checkNumerics << "\nsherman-morrison "
+       << options.shermanMorrison << "\nopenmp " << openmp() << "\n"
        << (from.kind == Source::Kind::Sim ? "sim " : "mlir ") << from.name
        << "\n"
        << from.text;
@@ -217,12 +223,22 @@ struct Program::Impl {
       return llvm::Error::success();
     if (!threadsError.empty())
       return llvm::createStringError(threadsError);
+    // Their symbols join the process's, where the JIT looks for what the
+    // runtime does not define.
+    for (const std::string &library : options.hostLibraries) {
+      std::string why;
+      if (llvm::sys::DynamicLibrary::LoadLibraryPermanently(library.c_str(),
+                                                            &why))
+        return llvm::createStringError("cannot load the host library '" +
+                                       library + "': " + why);
+    }
     if (cachedCode) {
       Stopwatch link;
       auto loaded = loadObjectCode(*cachedCode);
       if (loaded) {
         compiled = std::move(*loaded);
         compiled->threads = threads;
+        compiled->solver = solver;
         times.cached = true;
         times.loadMs += link.milliseconds();
         return llvm::Error::success();
@@ -249,6 +265,7 @@ struct Program::Impl {
     newTimes.loadMs = link.milliseconds();
     compiled = std::move(*loaded);
     compiled->threads = threads;
+    compiled->solver = solver;
     times = newTimes;
     // A cache that cannot be written costs the next run its compile time,
     // nothing else.
@@ -340,6 +357,8 @@ Program::externSetFields() {
     return std::move(err);
   return impl->externSetFieldsOfModule();
 }
+
+SolveSession &Program::solver() { return *impl->solver; }
 
 llvm::Expected<Function> Program::compile(llvm::StringRef name) {
   if (llvm::Error err = impl->compile())

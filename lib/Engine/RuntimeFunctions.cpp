@@ -4,7 +4,7 @@
 
 #include "RuntimeSymbols.h"
 
-#include "simit/Runtime/Solvers.h"
+#include "simit/Runtime/SolveSession.h"
 #include "simit/Runtime/SparseProduct.h"
 
 #include "llvm/ADT/SmallVector.h"
@@ -16,18 +16,21 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Dense>
 #include <Eigen/LU>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <mutex>
+#include <optional>
 #include <csetjmp>
 #include <cstdlib>
 #include <cstring>
 
 #include <vector>
+
+// libomp's (omp.h is not among the installed headers of every system).
+extern "C" int omp_get_level(void);
 
 namespace {
 /// Whether a memref's strides are the row-major strides of its sizes, so
@@ -57,23 +60,28 @@ thread_local std::string runFailure;
   std::longjmp(*activeRun, 1);
 }
 
+/// The solver of the run in progress on this thread (its Program's), else
+/// one of the process for lowered code run outside a Program.
+thread_local simit::SolveSession *activeSolver = nullptr;
+
+simit::SolveSession &solver() {
+  if (activeSolver)
+    return *activeSolver;
+  static simit::SolveSession processSolver;
+  return processSolver;
+}
+
 /// Records the failure of the statement `where` and returns false.
 bool fail(const char *where, const llvm::Twine &message) {
   runFailure = (llvm::Twine(where ? where : "runtime") + ": " + message).str();
   return false;
 }
 
-/// A solve of the runtime on a square BCSR matrix: x = solve(A, b).
+/// A solve of the runtime on a square BCSR matrix, x = solve(A, b); null
+/// for `\` (the SolveSession).
 template <typename T>
 using BCSRSolve = llvm::Error (*)(const simit::SquareBCSRView<T> &, const T *,
                                   T *);
-
-/// `\`: simit::solveChecked, whose report the lowered code does not use.
-template <typename T>
-llvm::Error checkedSolve(const simit::SquareBCSRView<T> &a, const T *b, T *x) {
-  llvm::Expected<simit::SolveReport> report = simit::solveChecked(a, b, x);
-  return report ? llvm::Error::success() : report.takeError();
-}
 
 /// x = solve(A, b) into x, or false with runFailure set; `where` names the
 /// statement.
@@ -85,7 +93,14 @@ bool solveInto(const simit::SquareBCSRView<T> &a,
       b->sizes[0] * b->sizes[1] != a.size() ||
       x->sizes[0] * x->sizes[1] != a.size())
     return fail(where, "vector size does not match the matrix");
-  if (llvm::Error err = solve(a, b->data + b->offset, x->data + x->offset))
+  T *result = x->data + x->offset;
+  if (!solve) {
+    // `\`: the program's SolveSession, whose report goes to its statistics.
+    auto report = solver().solve(a, b->data + b->offset, result,
+                                 where ? where : "solve");
+    return report ? true : fail(where, llvm::toString(report.takeError()));
+  }
+  if (llvm::Error err = solve(a, b->data + b->offset, result))
     return fail(where, llvm::toString(std::move(err)));
   return true;
 }
@@ -120,6 +135,31 @@ void solveBCSR(StridedMemRefType<int32_t, 1> *rowptr,
     abandonRun();
 }
 
+/// The last step of the Sherman–Morrison rewrite into x, or false with
+/// runFailure set.
+template <typename T>
+bool shermanMorrisonInto(StridedMemRefType<int32_t, 1> *rowptr,
+                         StridedMemRefType<int32_t, 1> *colidx,
+                         StridedMemRefType<T, 3> *values,
+                         StridedMemRefType<T, 2> *const (&vectors)[6],
+                         const char *where) {
+  simit::SquareBCSRView<T> view;
+  if (!bcsrView(rowptr, colidx, values, where, view))
+    return false;
+  // u, v, b, w, c, x.
+  T *data[6];
+  for (int i = 0; i < 6; ++i) {
+    if (!isContiguous(*vectors[i]) ||
+        vectors[i]->sizes[0] * vectors[i]->sizes[1] != view.size())
+      return fail(where, "vector size does not match the matrix");
+    data[i] = vectors[i]->data + vectors[i]->offset;
+  }
+  auto report = solver().shermanMorrison(
+      view, data[0], data[1], data[2], data[3], data[4], data[5],
+      where ? where : "Sherman-Morrison");
+  return report ? true : fail(where, llvm::toString(report.takeError()));
+}
+
 /// A block diagonal matrix is the BCSR matrix of the identity pattern.
 template <typename T>
 bool solveDiagonalInto(StridedMemRefType<T, 3> *values,
@@ -137,7 +177,7 @@ bool solveDiagonalInto(StridedMemRefType<T, 3> *values,
                                     {rows}, {1}};
   simit::SquareBCSRView<T> view;
   return bcsrView(&ptr, &idx, values, where, view) &&
-         solveInto(view, b, x, where, &checkedSolve<T>);
+         solveInto<T>(view, b, x, where, nullptr);
 }
 
 template <typename T>
@@ -195,21 +235,53 @@ bool multiplyMatrices(int32_t layoutA, StridedMemRefType<int32_t, 1> *rowptrA,
 }
 } // namespace
 
+namespace {
+/// A failure inside an OpenMP parallel region, raised when the region ends.
+/// Of several, the least message is kept, so that which one is reported
+/// does not depend on the threads' timing.
+std::mutex parallelFailureMutex;
+std::optional<std::string> parallelFailure;
+} // namespace
+
 extern "C" void simit_rt_fail(const char *message) {
-  runFailure = message ? message : "the program failed";
+  std::string text = message ? message : "the program failed";
+  if (omp_get_level() > 0) {
+    std::lock_guard<std::mutex> lock(parallelFailureMutex);
+    if (!parallelFailure || text < *parallelFailure)
+      parallelFailure = std::move(text);
+    return;
+  }
+  runFailure = std::move(text);
   abandonRun();
 }
 
-llvm::Error simit::runGuarded(void (*entry)(void **), void **args) {
+extern "C" void simit_rt_raise_parallel_failure() {
+  std::optional<std::string> failure;
+  {
+    std::lock_guard<std::mutex> lock(parallelFailureMutex);
+    failure.swap(parallelFailure);
+  }
+  if (failure) {
+    runFailure = std::move(*failure);
+    abandonRun();
+  }
+}
+
+llvm::Error simit::runGuarded(void (*entry)(void **), void **args,
+                              SolveSession *session) {
   std::jmp_buf buffer;
   std::jmp_buf *outer = activeRun;
+  SolveSession *outerSolver = activeSolver;
   activeRun = &buffer;
+  activeSolver = session;
   if (setjmp(buffer)) {
     activeRun = outer;
+    activeSolver = outerSolver;
     return llvm::createStringError(runFailure);
   }
   entry(args);
   activeRun = outer;
+  activeSolver = outerSolver;
   return llvm::Error::success();
 }
 
@@ -217,14 +289,36 @@ extern "C" void _mlir_ciface_simit_rt_solve_bcsr(
     StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
     StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *b,
     StridedMemRefType<double, 2> *x, const char *where) {
-  solveBCSR(rowptr, colidx, values, b, x, where, &checkedSolve<double>);
+  solveBCSR<double>(rowptr, colidx, values, b, x, where, nullptr);
 }
 
 extern "C" void _mlir_ciface_simit_rt_solve_bcsr_f32(
     StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
     StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *b,
     StridedMemRefType<float, 2> *x, const char *where) {
-  solveBCSR(rowptr, colidx, values, b, x, where, &checkedSolve<float>);
+  solveBCSR<float>(rowptr, colidx, values, b, x, where, nullptr);
+}
+
+extern "C" void _mlir_ciface_simit_rt_sherman_morrison_bcsr(
+    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
+    StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *u,
+    StridedMemRefType<double, 2> *v, StridedMemRefType<double, 2> *b,
+    StridedMemRefType<double, 2> *w, StridedMemRefType<double, 2> *c,
+    StridedMemRefType<double, 2> *x, const char *where) {
+  StridedMemRefType<double, 2> *const vectors[6] = {u, v, b, w, c, x};
+  if (!shermanMorrisonInto(rowptr, colidx, values, vectors, where))
+    abandonRun();
+}
+
+extern "C" void _mlir_ciface_simit_rt_sherman_morrison_bcsr_f32(
+    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
+    StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *u,
+    StridedMemRefType<float, 2> *v, StridedMemRefType<float, 2> *b,
+    StridedMemRefType<float, 2> *w, StridedMemRefType<float, 2> *c,
+    StridedMemRefType<float, 2> *x, const char *where) {
+  StridedMemRefType<float, 2> *const vectors[6] = {u, v, b, w, c, x};
+  if (!shermanMorrisonInto(rowptr, colidx, values, vectors, where))
+    abandonRun();
 }
 
 extern "C" void _mlir_ciface_simit_rt_matmul_bcsr(
@@ -395,6 +489,16 @@ std::pair<int64_t, int64_t> blockPosition(int32_t layout, int64_t perRow,
   }
 }
 
+/// Whether all `n` values are finite: one branch-free pass that the
+/// compiler vectorises (|x| <= max is false for NaN and infinities), so
+/// that the search for the place below runs only on a problem.
+template <typename T> bool allFinite(const T *values, int64_t n) {
+  bool bad = false;
+  for (int64_t i = 0; i < n; ++i)
+    bad |= !(std::abs(values[i]) <= std::numeric_limits<T>::max());
+  return !bad;
+}
+
 template <typename T>
 void checkNumerics(const UnrankedMemRefType<T> &values, int32_t layout,
                    int64_t perRow, const StridedMemRefType<int32_t, 1> &rowptr,
@@ -407,6 +511,13 @@ void checkNumerics(const UnrankedMemRefType<T> &values, int32_t layout,
   int64_t blocks = array.sizes[0], components = 1;
   for (int64_t d = 1; d < array.rank; ++d)
     components *= array.sizes[d];
+  bool contiguous = true;
+  for (int64_t d = array.rank - 1, stride = 1; d >= 0; --d) {
+    contiguous &= array.sizes[d] == 1 || array.strides[d] == stride;
+    stride *= array.sizes[d];
+  }
+  if (contiguous && allFinite(array.data + array.offset, blocks * components))
+    return;
   for (int64_t k = 0; k < blocks; ++k)
     for (int64_t c = 0; c < components; ++c) {
       // Component c (row major) of block k, and its indices in the block.
@@ -511,9 +622,14 @@ template <typename Solver> struct Factor : Factorisation {
 };
 using LU = Eigen::PartialPivLU<Eigen::MatrixXd>;
 using LLT = Eigen::LLT<Eigen::MatrixXd>;
-using SparseMatrix = Eigen::SparseMatrix<double>;
-using SparseLU = Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>>;
-using SparseLLT = Eigen::SimplicialLLT<SparseMatrix>;
+/// chol/lu of a system matrix: a factorisation the program's SolveSession
+/// made (and may share with its cache and with `\`).
+struct SystemFactor : Factorisation {
+  simit::FactorKind kind;
+  /// The scalar unknowns.
+  int64_t factorSize;
+  std::shared_ptr<const simit::SparseFactorisation> factor;
+};
 
 template <typename Solver>
 Solver &solverOf(void *handle, const char *who, const char *kind) {
@@ -526,45 +642,45 @@ Solver &solverOf(void *handle, const char *who, const char *kind) {
   return factor->solver;
 }
 
-/// The matrix of BCSR arrays with square blocks of b x b (b =
-/// values->sizes[1]) as an Eigen sparse matrix.
-SparseMatrix asSparse(StridedMemRefType<int32_t, 1> *rowptr,
-                      StridedMemRefType<int32_t, 1> *colidx,
-                      StridedMemRefType<double, 3> *values, const char *who) {
-  int64_t rows = rowptr->sizes[0] - 1, b = values->sizes[1];
-  if (!isContiguous(*rowptr) || !isContiguous(*colidx) ||
-      !isContiguous(*values) || values->sizes[2] != b ||
-      colidx->sizes[0] < values->sizes[0])
-    llvm::report_fatal_error(llvm::Twine(who) +
-                             ": malformed BCSR arrays of a square matrix");
-  const int32_t *ptr = rowptr->data + rowptr->offset;
-  const int32_t *cols = colidx->data + colidx->offset;
-  const double *vals = values->data + values->offset;
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<size_t>(ptr[rows]) * b * b);
-  for (int64_t r = 0; r < rows; ++r)
-    for (int32_t k = ptr[r]; k < ptr[r + 1]; ++k)
-      for (int64_t i = 0; i < b; ++i)
-        for (int64_t j = 0; j < b; ++j)
-          entries.emplace_back(r * b + i, cols[k] * b + j,
-                               vals[(static_cast<int64_t>(k) * b + i) * b + j]);
-  SparseMatrix matrix(rows * b, rows * b);
-  matrix.setFromTriplets(entries.begin(), entries.end());
-  return matrix;
+/// chol/lu of a system matrix into `handle`, or false with runFailure set.
+bool factoriseSystem(simit::FactorKind kind,
+                     StridedMemRefType<int32_t, 1> *rowptr,
+                     StridedMemRefType<int32_t, 1> *colidx,
+                     StridedMemRefType<double, 3> *values, const char *where,
+                     void *&handle) {
+  simit::SquareBCSRView<double> view;
+  if (!bcsrView(rowptr, colidx, values, where, view))
+    return false;
+  auto factor = solver().factorise(kind, view, where ? where : "factorise");
+  if (!factor)
+    return fail(where, llvm::toString(factor.takeError()));
+  auto *held = new SystemFactor;
+  held->kind = kind;
+  held->factorSize = view.size();
+  held->factor = std::move(*factor);
+  handle = static_cast<Factorisation *>(held);
+  return true;
 }
 
-/// x = solve(b) for system vectors memref<?xBxf64>.
-template <typename Solver>
-void solveSystem(const Solver &solver, StridedMemRefType<double, 2> *b,
-                 StridedMemRefType<double, 2> *x, const char *who) {
-  int64_t n = solver.rows();
+/// lltsolve/lusolve of system vectors with a chol/lu handle, or false with
+/// runFailure set.
+bool solveSystem(void *handle, bool lu, StridedMemRefType<double, 2> *b,
+                 StridedMemRefType<double, 2> *x, const char *where) {
+  auto *held = handle ? dynamic_cast<SystemFactor *>(
+                            static_cast<Factorisation *>(handle))
+                      : nullptr;
+  if (!held || (held->kind == simit::FactorKind::LU) != lu)
+    return fail(where, lu ? "the handle is not a sparse LU factorisation"
+                          : "the handle is not a sparse Cholesky "
+                            "factorisation");
   if (!isContiguous(*b) || !isContiguous(*x) ||
-      b->sizes[0] * b->sizes[1] != n || x->sizes[0] * x->sizes[1] != n)
-    llvm::report_fatal_error(llvm::Twine(who) +
-                             ": vector size does not match the matrix");
-  Eigen::Map<const Eigen::VectorXd> rhs(b->data + b->offset, n);
-  Eigen::VectorXd solution = solver.solve(rhs);
-  Eigen::Map<Eigen::VectorXd>(x->data + x->offset, n) = solution;
+      b->sizes[0] * b->sizes[1] != held->factorSize ||
+      x->sizes[0] * x->sizes[1] != held->factorSize)
+    return fail(where, "vector size does not match the matrix");
+  auto report = solver().solveWith(*held->factor, b->data + b->offset,
+                                   x->data + x->offset,
+                                   where ? where : "solve");
+  return report ? true : fail(where, llvm::toString(report.takeError()));
 }
 
 } // namespace
@@ -586,48 +702,37 @@ extern "C" void *_mlir_ciface_simit_rt_chol(StridedMemRefType<double, 1> *a,
 extern "C" void *_mlir_ciface_simit_rt_lu_bcsr(
     StridedMemRefType<int32_t, 1> *rowptr,
     StridedMemRefType<int32_t, 1> *colidx,
-    StridedMemRefType<double, 3> *values) {
-  SparseMatrix matrix = asSparse(rowptr, colidx, values, "lu");
-  auto *factor = new Factor<SparseLU>;
-  factor->solver.analyzePattern(matrix);
-  factor->solver.factorize(matrix);
-  if (factor->solver.info() != Eigen::Success)
-    llvm::report_fatal_error("lu: the system matrix is singular");
-  return static_cast<Factorisation *>(factor);
+    StridedMemRefType<double, 3> *values, const char *where) {
+  void *handle = nullptr;
+  if (!factoriseSystem(simit::FactorKind::LU, rowptr, colidx, values, where,
+                       handle))
+    abandonRun();
+  return handle;
 }
 
 extern "C" void *_mlir_ciface_simit_rt_chol_bcsr(
     StridedMemRefType<int32_t, 1> *rowptr,
     StridedMemRefType<int32_t, 1> *colidx,
-    StridedMemRefType<double, 3> *values) {
-  SparseMatrix matrix = asSparse(rowptr, colidx, values, "chol");
-  // SimplicialLLT reads one triangle only: a non-symmetric matrix must not
-  // pass as the symmetric matrix of its lower triangle.
-  SparseMatrix transposed = matrix.transpose();
-  if ((matrix - transposed).norm() > 1e-12 * matrix.norm())
-    llvm::report_fatal_error("chol: the system matrix is not symmetric");
-  auto *factor = new Factor<SparseLLT>;
-  factor->solver.compute(matrix);
-  if (factor->solver.info() != Eigen::Success)
-    llvm::report_fatal_error(
-        "chol: the system matrix is not positive definite");
-  return static_cast<Factorisation *>(factor);
+    StridedMemRefType<double, 3> *values, const char *where) {
+  void *handle = nullptr;
+  if (!factoriseSystem(simit::FactorKind::Cholesky, rowptr, colidx, values,
+                       where, handle))
+    abandonRun();
+  return handle;
 }
 
 extern "C" void _mlir_ciface_simit_rt_lusolve_bcsr(
     void *handle, StridedMemRefType<double, 2> *b,
-    StridedMemRefType<double, 2> *x) {
-  solveSystem(solverOf<SparseLU>(handle, "lusolve",
-                                 "a sparse LU factorisation"),
-              b, x, "lusolve");
+    StridedMemRefType<double, 2> *x, const char *where) {
+  if (!solveSystem(handle, /*lu=*/true, b, x, where))
+    abandonRun();
 }
 
 extern "C" void _mlir_ciface_simit_rt_lltsolve_bcsr(
     void *handle, StridedMemRefType<double, 2> *b,
-    StridedMemRefType<double, 2> *x) {
-  solveSystem(solverOf<SparseLLT>(handle, "lltsolve",
-                                  "a sparse Cholesky factorisation"),
-              b, x, "lltsolve");
+    StridedMemRefType<double, 2> *x, const char *where) {
+  if (!solveSystem(handle, /*lu=*/false, b, x, where))
+    abandonRun();
 }
 
 extern "C" void _mlir_ciface_simit_rt_lusolve(void *handle,
@@ -690,10 +795,17 @@ simit::runtimeSymbolMap(llvm::orc::MangleAndInterner interner) {
                                llvm::JITSymbolFlags::Exported};
   };
   add("simit_rt_fail", reinterpret_cast<void *>(&simit_rt_fail));
+  add("simit_rt_raise_parallel_failure",
+      reinterpret_cast<void *>(&simit_rt_raise_parallel_failure));
   add("_mlir_ciface_simit_rt_solve_bcsr",
       reinterpret_cast<void *>(&_mlir_ciface_simit_rt_solve_bcsr));
   add("_mlir_ciface_simit_rt_solve_bcsr_f32",
       reinterpret_cast<void *>(&_mlir_ciface_simit_rt_solve_bcsr_f32));
+  add("_mlir_ciface_simit_rt_sherman_morrison_bcsr",
+      reinterpret_cast<void *>(&_mlir_ciface_simit_rt_sherman_morrison_bcsr));
+  add("_mlir_ciface_simit_rt_sherman_morrison_bcsr_f32",
+      reinterpret_cast<void *>(
+          &_mlir_ciface_simit_rt_sherman_morrison_bcsr_f32));
   add("_mlir_ciface_simit_rt_matmul_bcsr",
       reinterpret_cast<void *>(&_mlir_ciface_simit_rt_matmul_bcsr));
   add("_mlir_ciface_simit_rt_matmul_bcsr_f32",

@@ -187,12 +187,25 @@ SceneTimeSummary SceneTimes::summarize() const {
   return summary;
 }
 
+static ProgramOptions programOptionsOf(const SceneRunOptions &options,
+                                       const SceneDescription &scene) {
+  ProgramOptions program;
+  program.precision = options.precision;
+  program.timePhases = options.timePhases;
+  program.checkNumerics = options.checkNumerics;
+  program.threads = options.threads;
+  program.cacheDirectory = options.cacheDirectory;
+  program.solver = options.solver.appliedTo(scene.solver);
+  program.shermanMorrison = options.shermanMorrison;
+  program.hostLibraries = options.hostLibraries;
+  llvm::append_range(program.hostLibraries, scene.libraries);
+  return program;
+}
+
 SceneRunner::SceneRunner(SceneDescription scene,
                          const SceneRunOptions &options)
     : description(std::move(scene)), options(options),
-      program(ProgramOptions{options.precision, {}, options.timePhases,
-                             options.checkNumerics, options.threads,
-                             options.cacheDirectory}) {}
+      program(programOptionsOf(options, description)) {}
 
 SceneRunner::~SceneRunner() = default;
 
@@ -278,7 +291,9 @@ llvm::Error SceneRunner::runAll(std::vector<NamedFunction> &group,
     if (std::optional<std::string> problem = takeNumericsProblem())
       return llvm::createStringError("check-numerics: " + where + ": " +
                                      *problem);
+    Clock::time_point scanStart = Clock::now();
     std::string problem = named.function.findNonFinite();
+    stateScanMs += millisecondsSince(scanStart);
     if (!problem.empty())
       return llvm::createStringError("check-numerics: after " + where + ": " +
                                      problem);
@@ -312,8 +327,11 @@ llvm::Error SceneRunner::step(int count) {
     int frame = ++currentFrame;
     resetPhaseTimes();
     Clock::time_point frameStart = Clock::now();
+    stateScanMs = 0;
     if (llvm::Error err = runAll(stepFunctions, frame))
       return err;
+    if (options.checkNumerics)
+      timings.checkMs.push_back(stateScanMs);
     if (checksFrames()) {
       Clock::time_point checkStart = Clock::now();
       if (llvm::Error err = checkFrame(stepFunctions, frame))

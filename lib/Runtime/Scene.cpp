@@ -105,6 +105,7 @@ private:
   llvm::Error parseExterns(const Json &value, SceneDescription &scene);
   llvm::Error parseOutput(const Json &value, const std::string &path,
                           const SceneDescription &scene, OutputSpec &output);
+  llvm::Error parseSolver(const Json &value, SolveSettings &settings);
 
   std::string name, directory;
 };
@@ -381,7 +382,7 @@ llvm::Error SceneParser::parseMeshes(const Json &value,
         return error(path, llvm::Twine("expected a file name or an object, "
                                        "found ") +
                                jsonKind(entry));
-      if (auto err = checkKeys(entry, path, {"file", "refine"}))
+      if (auto err = checkKeys(entry, path, {"file", "refine", "strict"}))
         return err;
       if (!entry.contains("file"))
         return error(path, "expected a \"file\"");
@@ -395,6 +396,13 @@ llvm::Error SceneParser::parseMeshes(const Json &value,
         if (!refine)
           return refine.takeError();
         mesh.refine = *refine;
+      }
+      if (entry.contains("strict")) {
+        if (!entry["strict"].is_boolean())
+          return error(child(path, "strict"),
+                       llvm::Twine("expected true or false, found ") +
+                           jsonKind(entry["strict"]));
+        mesh.strict = entry["strict"].get<bool>();
       }
     }
     scene.meshes.push_back(std::move(mesh));
@@ -928,19 +936,80 @@ llvm::Error SceneParser::parseOutput(const Json &value,
   return llvm::Error::success();
 }
 
+/// "solver": "method", or {"method": ..., "tol": ..., "maxIters": ...,
+/// "strict": ...}.
+llvm::Error SceneParser::parseSolver(const Json &value,
+                                     SolveSettings &settings) {
+  auto method = [&](const Json &name, const std::string &path) -> llvm::Error {
+    auto text = getString(name, path);
+    if (!text)
+      return text.takeError();
+    std::optional<SolveMethod> parsed = parseSolveMethod(*text);
+    if (!parsed)
+      return error(path, "unknown solver method \"" + *text +
+                             "\" (expected one of " + solveMethodNames() +
+                             ")");
+    settings.method = *parsed;
+    return llvm::Error::success();
+  };
+  if (value.is_string())
+    return method(value, "solver");
+  if (auto err = expectObject(value, "solver"))
+    return err;
+  if (auto err = checkKeys(value, "solver",
+                           {"method", "tol", "maxIters", "strict"}))
+    return err;
+  if (value.contains("method"))
+    if (auto err = method(value["method"], "solver.method"))
+      return err;
+  if (value.contains("tol")) {
+    const Json &tol = value["tol"];
+    if (!tol.is_number() || !(tol.get<double>() > 0 && tol.get<double>() < 1))
+      return error("solver.tol",
+                   llvm::Twine("expected a number between 0 and 1, found ") +
+                       (tol.is_number() ? numberText(tol.get<double>())
+                                        : std::string(jsonKind(tol))));
+    settings.tolerance = tol.get<double>();
+  }
+  if (value.contains("maxIters")) {
+    auto cap = getInt(value["maxIters"], "solver.maxIters", 1);
+    if (!cap)
+      return cap.takeError();
+    settings.maxIterations = *cap;
+  }
+  if (value.contains("strict")) {
+    if (!value["strict"].is_boolean())
+      return error("solver.strict", llvm::Twine("expected a boolean, found ") +
+                                        jsonKind(value["strict"]));
+    settings.strict = value["strict"].get<bool>();
+  }
+  return llvm::Error::success();
+}
+
 llvm::Error SceneParser::parse(const Json &root, SceneDescription &scene) {
   if (!root.is_object())
     return llvm::createStringError(name + ": expected a JSON object, found " +
                                    jsonKind(root));
   if (auto err = checkKeys(root, "",
-                           {"program", "meshes", "sets", "externs", "init",
-                            "step", "frames", "outputs"}))
+                           {"program", "libraries", "meshes", "sets",
+                            "externs", "init", "step", "frames", "outputs",
+                            "solver"}))
     return err;
+  if (root.contains("solver"))
+    if (auto err = parseSolver(root["solver"], scene.solver))
+      return err;
   if (root.contains("program")) {
     auto program = getString(root["program"], "program");
     if (!program)
       return program.takeError();
     scene.program = resolve(*program);
+  }
+  if (root.contains("libraries")) {
+    auto libraries = getNames(root["libraries"], "libraries");
+    if (!libraries)
+      return libraries.takeError();
+    for (const std::string &library : *libraries)
+      scene.libraries.push_back(resolve(library));
   }
   if (root.contains("meshes"))
     if (auto err = parseMeshes(root["meshes"], scene))

@@ -156,10 +156,12 @@ static std::optional<uint64_t> refinementBytes(const Mesh &mesh) {
   return *tetBytes + *pointBytes + *mapBytes;
 }
 
-/// Warns about tets of zero volume and tets whose orientation is against
-/// that of most of the mesh (the program's rest shapes would be singular
-/// or inverted), naming the count and the first one.
-static void warnAboutBadTets(const Mesh &mesh, const std::string &where) {
+/// Reports tets of zero volume and tets whose orientation is against that
+/// of most of the mesh (the program's rest shapes would be singular or
+/// inverted), naming the count and the first one: a warning, or the error
+/// returned for a strict mesh.
+static llvm::Error checkTets(const Mesh &mesh, const std::string &where,
+                             bool strict) {
   size_t positive = 0, negative = 0;
   std::vector<double> volumes(mesh.tets.size());
   std::vector<bool> degenerate(mesh.tets.size());
@@ -187,11 +189,16 @@ static void warnAboutBadTets(const Mesh &mesh, const std::string &where) {
       if (bad++ == 0)
         first = t;
   if (bad == 0)
-    return;
-  llvm::errs() << where << ": warning: " << bad << " of " << mesh.tets.size()
-               << " tetrahedra are degenerate or inverted (the first is "
-               << "tetrahedron " << first << ", of volume "
-               << llvm::format("%g", volumes[first]) << ")\n";
+    return llvm::Error::success();
+  std::string problem;
+  llvm::raw_string_ostream(problem)
+      << bad << " of " << mesh.tets.size()
+      << " tetrahedra are degenerate or inverted (the first is tetrahedron "
+      << first << ", of volume " << llvm::format("%g", volumes[first]) << ")";
+  if (strict)
+    return llvm::createStringError(problem);
+  llvm::errs() << where << ": warning: " << problem << "\n";
+  return llvm::Error::success();
 }
 
 llvm::Error SetBuilder::loadMeshes() {
@@ -200,7 +207,9 @@ llvm::Error SetBuilder::loadMeshes() {
     auto mesh = loadMesh(spec.path);
     if (!mesh)
       return error(path, llvm::toString(mesh.takeError()));
-    warnAboutBadTets(*mesh, scene.path + ": " + path);
+    if (llvm::Error err =
+            checkTets(*mesh, scene.path + ": " + path, spec.strict))
+      return error(path, llvm::toString(std::move(err)));
     for (int i = 0; i < spec.refine; ++i) {
       if (llvm::Error err = detail::checkMemoryRequest(
               refinementBytes(*mesh),

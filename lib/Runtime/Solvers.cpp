@@ -1,8 +1,15 @@
 //===--- Solvers.cpp - Conjugate gradients on BCSR matrices ---------------===//
+//
+// Preconditioned CG whose convergence is the true residual's, and forward
+// substitution.
+//
+//===----------------------------------------------------------------------===//
 
 #include "simit/Runtime/Solvers.h"
 
 #include "llvm/Support/FormatVariadic.h"
+
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
@@ -41,6 +48,46 @@ llvm::Expected<std::vector<T>> inverseDiagonal(const SquareBCSRView<T> &a) {
     }
   }
   return inverse;
+}
+
+/// The inverse of every diagonal block, row-major, block row after block
+/// row; computed in double.
+template <typename T>
+llvm::Expected<std::vector<T>>
+inverseDiagonalBlocks(const SquareBCSRView<T> &a) {
+  int64_t b = a.blockSize;
+  std::vector<T> inverse(static_cast<size_t>(a.rows * b * b), T(0));
+  Eigen::MatrixXd block(b, b);
+  for (int64_t r = 0; r < a.rows; ++r) {
+    const int32_t *begin = a.colidx + a.rowptr[r];
+    const int32_t *end = a.colidx + a.rowptr[r + 1];
+    const int32_t *k = std::lower_bound(begin, end, r);
+    block.setZero();
+    if (k != end && *k == r)
+      for (int64_t i = 0; i < b; ++i)
+        for (int64_t j = 0; j < b; ++j)
+          block(i, j) = a.values[((k - a.colidx) * b + i) * b + j];
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(block);
+    if (!lu.isInvertible())
+      return llvm::createStringError(
+          "block-Jacobi preconditioner: the diagonal block of block row " +
+          llvm::Twine(r) + " is singular");
+    Eigen::MatrixXd blockInverse = lu.inverse();
+    for (int64_t i = 0; i < b; ++i)
+      for (int64_t j = 0; j < b; ++j)
+        inverse[(r * b + i) * b + j] = static_cast<T>(blockInverse(i, j));
+  }
+  return inverse;
+}
+
+/// out = b - A x, returning its r.r.
+template <typename T>
+double trueResidual(const SquareBCSRView<T> &a, const T *b, const T *x,
+                    std::vector<T> &out) {
+  multiply(a, x, out.data());
+  for (size_t i = 0; i < out.size(); ++i)
+    out[i] = b[i] - out[i];
+  return dot(out, out);
 }
 
 } // namespace
@@ -113,32 +160,62 @@ llvm::Expected<SolverResult>
 simit::conjugateGradient(const SquareBCSRView<T> &a, const T *bIn, T *x,
                          const SolverOptions &options) {
   size_t n = static_cast<size_t>(a.size());
-  std::vector<T> inverseDiag;
-  bool jacobi = options.preconditioner == Preconditioner::Jacobi;
-  if (jacobi) {
-    auto d = inverseDiagonal(a);
+  int64_t bs = a.blockSize;
+  // Diagonal (Jacobi) or block diagonal (block-Jacobi) inverse.
+  std::vector<T> inverse;
+  if (options.preconditioner != Preconditioner::None) {
+    auto d = options.preconditioner == Preconditioner::Jacobi
+                 ? inverseDiagonal(a)
+                 : inverseDiagonalBlocks(a);
     if (!d)
       return d.takeError();
-    inverseDiag = std::move(*d);
+    inverse = std::move(*d);
   }
-
-  std::vector<T> r(n), z, dir(n), ad(n);
-  multiply(a, x, ad.data());
-  for (size_t i = 0; i < n; ++i)
-    r[i] = bIn[i] - ad[i];
   auto precondition = [&](const std::vector<T> &res, std::vector<T> &out) {
-    out.resize(n);
-    for (size_t i = 0; i < n; ++i)
-      out[i] = jacobi ? inverseDiag[i] * res[i] : res[i];
+    switch (options.preconditioner) {
+    case Preconditioner::None:
+      out = res;
+      return;
+    case Preconditioner::Jacobi:
+      for (size_t i = 0; i < n; ++i)
+        out[i] = inverse[i] * res[i];
+      return;
+    case Preconditioner::BlockJacobi:
+      for (int64_t r = 0; r < a.rows; ++r)
+        for (int64_t i = 0; i < bs; ++i) {
+          T sum = 0;
+          for (int64_t j = 0; j < bs; ++j)
+            sum += inverse[(r * bs + i) * bs + j] * res[r * bs + j];
+          out[r * bs + i] = sum;
+        }
+      return;
+    }
   };
-  precondition(r, z);
-  dir = z;
-  double rz = dot(r, z);
 
+  std::vector<T> r(n), z(n), dir(n), ad(n);
   SolverResult result;
-  result.residualNormSquared = dot(r, r);
-  while (result.residualNormSquared > options.tolerance &&
-         result.iterations < options.maxIterations) {
+  result.residualNormSquared = trueResidual(a, bIn, x, r);
+  // Whether r is b - A x computed anew rather than updated.
+  bool exact = true;
+  double rz = 0;
+  auto restart = [&] {
+    precondition(r, z);
+    dir = z;
+    rz = dot(r, z);
+  };
+  restart();
+  while (true) {
+    if (result.residualNormSquared <= options.tolerance) {
+      if (exact)
+        break;
+      result.residualNormSquared = trueResidual(a, bIn, x, r);
+      exact = true;
+      if (result.residualNormSquared <= options.tolerance)
+        break;
+      restart();
+    }
+    if (result.iterations >= options.maxIterations)
+      break;
     multiply(a, dir.data(), ad.data());
     double curvature = dot(dir, ad);
     if (!(curvature > 0))
@@ -159,8 +236,9 @@ simit::conjugateGradient(const SquareBCSRView<T> &a, const T *bIn, T *x,
       dir[i] = z[i] + beta * dir[i];
     ++result.iterations;
     result.residualNormSquared = dot(r, r);
+    exact = false;
   }
-  result.converged = result.residualNormSquared <= options.tolerance;
+  result.converged = exact && result.residualNormSquared <= options.tolerance;
   return result;
 }
 
@@ -181,3 +259,41 @@ simit::conjugateGradient(const BCSRMatrix &a, const double *b, double *x,
       const SquareBCSRView<T> &, const T *, T *, const SolverOptions &);
 SIMIT_INSTANTIATE_SOLVERS(double)
 SIMIT_INSTANTIATE_SOLVERS(float)
+
+template <typename T>
+llvm::Error simit::solveLowerTriangular(const SquareBCSRView<T> &a,
+                                        const T *b, T *x) {
+  int64_t bs = a.blockSize;
+  for (int64_t r = 0; r < a.rows; ++r) {
+    for (int64_t i = 0; i < bs; ++i) {
+      int64_t row = r * bs + i;
+      double sum = b[row], diagonal = 0;
+      for (int32_t k = a.rowptr[r]; k < a.rowptr[r + 1]; ++k) {
+        int64_t c = a.colidx[k];
+        if (c > r)
+          break; // columns are sorted: the rest is above the diagonal
+        const T *block = a.values + (static_cast<int64_t>(k) * bs + i) * bs;
+        for (int64_t j = 0; j < bs; ++j) {
+          int64_t col = c * bs + j;
+          if (col < row)
+            sum -= static_cast<double>(block[j]) * x[col];
+          else if (col == row)
+            diagonal = block[j];
+        }
+      }
+      if (diagonal == 0)
+        return llvm::createStringError(
+            "the lower triangle is singular: its diagonal entry of row " +
+            llvm::Twine(row) + " is zero");
+      x[row] = static_cast<T>(sum / diagonal);
+    }
+  }
+  return llvm::Error::success();
+}
+
+template llvm::Error
+simit::solveLowerTriangular(const SquareBCSRView<double> &, const double *,
+                            double *);
+template llvm::Error
+simit::solveLowerTriangular(const SquareBCSRView<float> &, const float *,
+                            float *);

@@ -90,7 +90,7 @@ public:
     ProgramOptions programOptions;
     programOptions.precision = options.precision;
     programOptions.cacheDirectory = options.cacheDirectory;
-  programOptions.threads = options.threads;
+    programOptions.hostLibraries = options.hostLibraries;
     programOptions.threads = options.threads;
     for (const frontend::TestLine &test : ast->tests)
       if (test.func)
@@ -212,6 +212,7 @@ int simit::runEval(const EvalOptions &options, llvm::raw_ostream &os) {
   programOptions.precision = options.precision;
   programOptions.hostFunctions = {call->function};
   programOptions.cacheDirectory = options.cacheDirectory;
+  programOptions.hostLibraries = options.hostLibraries;
   programOptions.threads = options.threads;
   Program program(programOptions);
   if (llvm::Error err = program.loadFile(options.path)) {
@@ -230,7 +231,8 @@ int simit::runEval(const EvalOptions &options, llvm::raw_ostream &os) {
     return 1;
   }
   if (llvm::Error err = function->run()) {
-    llvm::errs() << llvm::toString(std::move(err)) << "\n";
+    llvm::errs() << options.path << ": function '" << call->function
+                 << "': " << llvm::toString(std::move(err)) << "\n";
     return 1;
   }
   for (const HostValue &result : function->results())

@@ -8,6 +8,7 @@
 #include "llvm/Support/raw_ostream.h"
 
 #include <string>
+#include <vector>
 
 namespace simit {
 
@@ -18,6 +19,8 @@ struct TestRunOptions {
   std::string cacheDirectory;
   /// ProgramOptions::threads of every section's Program.
   int threads = 0;
+  /// ProgramOptions::hostLibraries (--extern-lib).
+  std::vector<std::string> hostLibraries;
 };
 
 /// Runs the assertions of every enabled section of a .sim file, printing
@@ -32,6 +35,7 @@ struct EvalOptions {
   FloatPrecision precision = FloatPrecision::Double;
   std::string cacheDirectory;
   int threads = 0;
+  std::vector<std::string> hostLibraries;
 };
 
 /// Calls one function with literal arguments and prints each result as a

@@ -1,7 +1,9 @@
 //===--- simit-run.cpp - JIT-runs Simit programs --------------------------===//
 //
 //   simit-run PROGRAM --scene SCENE.json [--output-dir DIR] [--time]
-//             [--no-cache | --cache-dir DIR] [--threads N]
+//             [--no-cache | --cache-dir DIR] [--threads N] [--stats]
+//             [--solver METHOD] [--tol T] [--max-iters N] [--solver-strict]
+//             [--no-sherman-morrison]
 //   simit-run --test FILE.sim
 //   simit-run FILE.sim --eval 'f(1.0, [1, 2]')'
 //   simit-run FILE.sim --emit=simit|loops|llvm
@@ -16,11 +18,14 @@
 #include "simit/Engine/SceneRun.h"
 
 #include "llvm/ADT/SmallString.h"
+#include "llvm/ADT/StringMap.h"
 #include "llvm/Support/CommandLine.h"
 #include "llvm/Support/Format.h"
 #include "llvm/Support/InitLLVM.h"
 #include "llvm/Support/Path.h"
 #include "llvm/Support/raw_ostream.h"
+
+#include <optional>
 
 using namespace simit;
 
@@ -58,12 +63,12 @@ static cl::opt<bool> printTimes(cl::cat(runCategory), "time",
                                          "per-frame times"));
 static cl::opt<bool> checkNumerics(cl::cat(runCategory), 
     "check-numerics",
-    cl::desc("Stop at the first NaN or infinity a function leaves in a bound "
-             "field or extern"));
+    cl::desc("Stop at the first NaN or infinity an assembly, a solve or a "
+             "function leaves (the default)"));
 static cl::opt<bool>
     noCheck(cl::cat(runCategory), "no-check",
-            cl::desc("Do not scan the state for NaN or infinity after every "
-                     "frame (for benchmarks)"));
+            cl::desc("Do not scan assemblies, solves and the state for NaN "
+                     "or infinity (for benchmarks)"));
 static cl::opt<bool> float32(cl::cat(runCategory), "float32",
                              cl::desc("Compile `float` as single precision"));
 static cl::opt<bool> noCache(cl::cat(runCategory), "no-cache",
@@ -96,6 +101,35 @@ static cl::opt<int> &threadsOption() {
 }
 static cl::opt<bool> noProgress(cl::cat(runCategory), "no-progress",
                                 cl::desc("No progress lines on long runs"));
+static cl::list<std::string>
+    externLibraries(cl::cat(runCategory), "extern-lib",
+                    cl::desc("A shared library with the C functions of the "
+                             "program's extern funcs (repeatable)"),
+                    cl::value_desc("lib.so"));
+static cl::opt<std::string> solverMethod(
+    cl::cat(runCategory), "solver",
+    cl::desc("How `x = A \\ b` solves: auto, cg, pcg-jacobi, "
+             "pcg-block-jacobi, cholesky, ldlt or lu (overrides the scene's "
+             "\"solver\")"),
+    cl::value_desc("method"));
+static cl::opt<double> solverTolerance(
+    cl::cat(runCategory), "tol",
+    cl::desc("Iterative solves stop at ||b - A x|| <= tol ||b||"),
+    cl::value_desc("tol"));
+static cl::opt<int64_t> solverMaxIterations(
+    cl::cat(runCategory), "max-iters",
+    cl::desc("The iteration cap of iterative solves"), cl::value_desc("n"));
+static cl::opt<bool> solverStrict(
+    cl::cat(runCategory), "solver-strict",
+    cl::desc("An iterative solve stopped by the cap is an error, not a "
+             "warning"));
+static cl::opt<bool> noShermanMorrison(
+    cl::cat(runCategory), "no-sherman-morrison",
+    cl::desc("Solve (A + u*v') \\ b as written instead of by "
+             "Sherman-Morrison"));
+/// --stats: registered in main, in place of LLVM's -stats (pass statistics,
+/// which this tool has no use for).
+static std::optional<cl::opt<bool>> printStats;
 
 static int fail(llvm::Error err) {
   llvm::errs() << "simit-run: " << llvm::toString(std::move(err)) << "\n";
@@ -114,7 +148,8 @@ static std::string sceneOutputDirectory() {
 }
 
 static void printTimeSummary(const SceneTimeSummary &times,
-                             const CompileTimes &compile, int frames) {
+                             const CompileTimes &compile, int frames,
+                             const SolveSession &solver) {
   llvm::raw_ostream &os = llvm::outs();
   if (compile.cached)
     os << llvm::format("compile:   %10.2f ms (cached; load %.2f ms)\n",
@@ -143,6 +178,78 @@ static void printTimeSummary(const SceneTimeSummary &times,
     os << llvm::format("  check:   %10.3f ms (the scan of the state for NaN "
                        "and infinity)\n",
                        times.checkMs);
+  // The solver's own time, over the whole run (init included).
+  double symbolic = 0, numeric = 0, solve = 0;
+  int64_t solves = 0;
+  for (const SolveStatementStats &stats : solver.statistics()) {
+    symbolic += stats.analysisMs;
+    numeric += stats.factorisationMs;
+    solve += stats.solveMs;
+    solves += stats.solves;
+  }
+  if (solves > 0)
+    os << llvm::format("solver:    %10.3f ms in %lld solves (symbolic %.3f, "
+                       "numeric %.3f, solve %.3f ms; the whole run)\n",
+                       symbolic + numeric + solve,
+                       static_cast<long long>(solves), symbolic, numeric,
+                       solve);
+}
+
+/// The command line's solver settings, over the scene's.
+static llvm::Expected<SolveSettingsOverride> solverOverride() {
+  SolveSettingsOverride settings;
+  if (solverMethod.getNumOccurrences()) {
+    settings.method = parseSolveMethod(solverMethod);
+    if (!settings.method)
+      return llvm::createStringError("--solver: unknown method '" +
+                                     solverMethod + "' (expected one of " +
+                                     solveMethodNames() + ")");
+  }
+  if (solverTolerance.getNumOccurrences())
+    settings.tolerance = solverTolerance;
+  if (solverMaxIterations.getNumOccurrences())
+    settings.maxIterations = solverMaxIterations;
+  if (solverStrict)
+    settings.strict = true;
+  if (llvm::Error err = checkSolveSettings(settings.appliedTo({}),
+                                           "--tol/--max-iters"))
+    return std::move(err);
+  return settings;
+}
+
+/// --stats: what the solves of each statement did.
+static void printSolveStats(const SolveSession &solver) {
+  llvm::raw_ostream &os = llvm::outs();
+  const SolveSettings &settings = solver.settings();
+  os << "solver: " << solveMethodName(settings.method);
+  if (settings.tolerance)
+    os << llvm::format(", tol %g", *settings.tolerance);
+  if (settings.maxIterations)
+    os << ", max-iters " << *settings.maxIterations;
+  if (settings.strict)
+    os << ", strict";
+  os << " (direct solvers on " << sparseDirectBLAS() << ")\n";
+  for (const SolveStatementStats &stats : solver.statistics()) {
+    os << "solve statement: " << stats.statement << "\n";
+    os << "  method:            ";
+    for (size_t i = 0; i < stats.methods.size(); ++i)
+      os << (i ? ", " : "") << solveMethodName(stats.methods[i]);
+    os << "\n  solves:            " << stats.solves << "\n";
+    os << "  iterations:        " << stats.iterations << " (largest "
+       << stats.maxIterations << ")\n";
+    os << llvm::format("  relative residual: %.3e (largest %.3e)\n",
+                       stats.lastRelativeResidual,
+                       stats.maxRelativeResidual);
+    os << "  not converged:     " << stats.notConverged << "\n";
+    os << llvm::format("  symbolic:          %lld (%.3f ms)\n",
+                       static_cast<long long>(stats.analyses),
+                       stats.analysisMs);
+    os << llvm::format("  numeric:           %lld (%.3f ms)\n",
+                       static_cast<long long>(stats.factorisations),
+                       stats.factorisationMs);
+    os << "  reused:            " << stats.reuses << "\n";
+    os << llvm::format("  solve:             %.3f ms\n", stats.solveMs);
+  }
 }
 
 /// Builds the scene's sets, compiles the program, runs "init" once and
@@ -159,19 +266,35 @@ static int runSceneFile(FloatPrecision precision,
     options.frames = frames;
   options.precision = precision;
   options.timePhases = printTimes;
-  options.checkNumerics = checkNumerics;
+  if (checkNumerics && noCheck)
+    return fail(
+        llvm::createStringError("--check-numerics and --no-check contradict"));
+  // Checked by default: every assembly and solve, then what each function
+  // leaves in the state (--check-numerics only says so explicitly).
+  options.checkNumerics = !noCheck;
   options.checkFrames = !noCheck;
   options.progress = !noProgress;
   options.cacheDirectory = cacheDirectory;
   options.threads = threads;
+  options.hostLibraries = externLibraries;
+  auto solver = solverOverride();
+  if (!solver)
+    return fail(solver.takeError());
+  options.solver = *solver;
+  options.shermanMorrison = !noShermanMorrison;
   auto runner = SceneRunner::create(std::move(*scene), options);
   if (!runner)
     return fail(runner.takeError());
-  if (llvm::Error err = (*runner)->run())
-    return fail(std::move(err));
+  llvm::Error runError = (*runner)->run();
+  // The statistics also tell what the solves did before a failure.
+  if (*printStats)
+    printSolveStats((*runner)->solver());
+  if (runError)
+    return fail(std::move(runError));
   if (printTimes)
     printTimeSummary((*runner)->times().summarize(),
-                     (*runner)->compileTimes(), (*runner)->frames());
+                     (*runner)->compileTimes(), (*runner)->frames(),
+                     (*runner)->solver());
   return 0;
 }
 
@@ -179,6 +302,12 @@ int main(int argc, char **argv) {
   llvm::InitLLVM init(argc, argv);
   cl::opt<int> &threads = threadsOption();
   cl::HideUnrelatedOptions(runCategory);
+  if (cl::Option *llvmStats = cl::getRegisteredOptions().lookup("stats"))
+    llvmStats->removeArgument();
+  printStats.emplace(cl::cat(runCategory), "stats",
+                     cl::desc("Print per solve statement: method, "
+                              "iterations, relative residual, "
+                              "factorisations and their times"));
   cl::ParseCommandLineOptions(argc, argv, "Simit JIT runner\n");
   FloatPrecision precision =
       float32 ? FloatPrecision::Single : FloatPrecision::Double;
@@ -201,14 +330,16 @@ int main(int argc, char **argv) {
   if (testMode) {
     if (programPath.empty())
       return fail(llvm::createStringError("--test needs a .sim file"));
-    return runTests({programPath, precision, cacheDirectory, *threadCount},
+    return runTests({programPath, precision, cacheDirectory, *threadCount,
+                     externLibraries},
                     llvm::outs());
   }
   if (!evalCall.empty()) {
     if (programPath.empty())
       return fail(llvm::createStringError("--eval needs a program file"));
     return runEval(
-        {programPath, evalCall, precision, cacheDirectory, *threadCount},
+        {programPath, evalCall, precision, cacheDirectory, *threadCount,
+         externLibraries},
         llvm::outs());
   }
   if (emitStage.getNumOccurrences()) {

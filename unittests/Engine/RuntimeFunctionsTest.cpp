@@ -143,17 +143,17 @@ TEST(RuntimeFunctionsTest, LargeFreedBlocksAreReusedBySize) {
   _mlir_memref_to_llvm_free(nullptr);
 }
 
-// [1 2; 0 1] as 1x1 blocks: SimplicialLLT would read one triangle only, so
-// chol must reject the non-symmetric matrix rather than factorise [1 0; 0 1]
-// or [1 2; 2 1].
+// [1 2; 0 1] as 1x1 blocks: CHOLMOD reads one triangle only, so chol must
+// reject the non-symmetric matrix rather than factorise [1 0; 0 1] or
+// [1 2; 2 1]. Outside a guarded run the failure is fatal, with `where`.
 TEST(RuntimeFunctionsTest, SparseCholeskyRejectsANonSymmetricMatrix) {
   std::vector<int32_t> rowptr{0, 2, 3}, colidx{0, 1, 1};
   std::vector<double> values{1.0, 2.0, 1.0};
   auto rp = describe<int32_t, 1>(rowptr.data(), {3});
   auto ci = describe<int32_t, 1>(colidx.data(), {3});
   auto vals = describe<double, 3>(values.data(), {3, 1, 1});
-  EXPECT_DEATH(_mlir_ciface_simit_rt_chol_bcsr(&rp, &ci, &vals),
-               "chol: the system matrix is not symmetric");
+  EXPECT_DEATH(_mlir_ciface_simit_rt_chol_bcsr(&rp, &ci, &vals, "chol"),
+               "chol: the matrix is not symmetric");
 }
 
 // The LU handle of [4 1; 3 2] (blocks 1x1) solves b = (5, 5) to x = (1, 1)
@@ -166,11 +166,11 @@ TEST(RuntimeFunctionsTest, SparseLUSolvesAndHandlesAreChecked) {
   auto vals = describe<double, 3>(values.data(), {4, 1, 1});
   auto bm = describe<double, 2>(bv.data(), {2, 1});
   auto xm = describe<double, 2>(x.data(), {2, 1});
-  void *lu = _mlir_ciface_simit_rt_lu_bcsr(&rp, &ci, &vals);
-  _mlir_ciface_simit_rt_lusolve_bcsr(lu, &bm, &xm);
+  void *lu = _mlir_ciface_simit_rt_lu_bcsr(&rp, &ci, &vals, "lu");
+  _mlir_ciface_simit_rt_lusolve_bcsr(lu, &bm, &xm, "lusolve");
   EXPECT_NEAR(x[0], 1.0, 1e-12);
   EXPECT_NEAR(x[1], 1.0, 1e-12);
-  EXPECT_DEATH(_mlir_ciface_simit_rt_lltsolve_bcsr(lu, &bm, &xm),
+  EXPECT_DEATH(_mlir_ciface_simit_rt_lltsolve_bcsr(lu, &bm, &xm, "lltsolve"),
                "lltsolve: the handle is not a sparse Cholesky factorisation");
   simit_rt_lufree(lu);
 }

@@ -381,7 +381,7 @@ TEST_F(SceneTest, TopLevelErrors) {
               HasSubstr("scene.json: expected a \"sets\" object"));
   EXPECT_THAT(parseError(R"({"sets": {}, "frame": 3})"),
               HasSubstr("scene.json: frame: unknown key (expected one of "
-                        "program, meshes, sets"));
+                        "program, libraries, meshes, sets"));
   EXPECT_THAT(parseError(R"({"sets": {}, "frames": -1, "step": "s"})"),
               HasSubstr("scene.json: frames: expected an integer of at least "
                         "0"));

@@ -107,6 +107,11 @@ TEST(ConjugateGradient, JacobiSystemMatchesEigen) {
   expectSolves(system, Preconditioner::Jacobi);
 }
 
+TEST(ConjugateGradient, BlockJacobiSystemMatchesEigen) {
+  RandomSystem system(30, 3, 70, 0.05, 3);
+  expectSolves(system, Preconditioner::BlockJacobi);
+}
+
 TEST(ConjugateGradient, JacobiHelpsABadlyScaledSystem) {
   // Scale rows and columns by very different factors: D A D stays SPD but
   // its condition number explodes; Jacobi undoes the scaling.

@@ -20,6 +20,7 @@
 #define SIMIT_ENGINE_PROGRAM_H
 
 #include "simit/Engine/Function.h"
+#include "simit/Runtime/SolveSession.h"
 
 #include "llvm/ADT/StringRef.h"
 #include "llvm/Support/Error.h"
@@ -57,6 +58,17 @@ struct ProgramOptions {
   /// changes the code must be part of the key, Program.cpp); empty: every
   /// Program compiles. defaultCompileCacheDirectory() is the usual place.
   std::string cacheDirectory;
+  /// How `x = A \ b` and chol/lu on system matrices solve (docs/solvers.md).
+  /// Read at run time, not compiled in: Program::solver() changes it
+  /// between runs without a recompile.
+  SolveSettings solver;
+  /// Solve `(A + u v^T) \ b` by Sherman–Morrison (simit-sherman-morrison);
+  /// off, A + u v^T is formed and solved as it is.
+  bool shermanMorrison = true;
+  /// Shared libraries that define the C functions of the program's
+  /// `extern func`s (docs/lowering.md, "Host functions"), loaded into the
+  /// process when the Program is made.
+  std::vector<std::string> hostLibraries;
 };
 
 /// The number of threads `requested` stands for: itself when positive;
@@ -112,6 +124,11 @@ public:
 
   /// The exported functions of the compiled module, sorted by name.
   llvm::Expected<std::vector<std::string>> exportedFunctions();
+
+  /// The solver of this program's solves: its settings, its factorisation
+  /// cache, and its statistics per solve statement. Shared by every
+  /// Function the program compiles.
+  SolveSession &solver();
 
   /// Where the first compile() spent its time (all zero before it).
   const CompileTimes &compileTimes() const;

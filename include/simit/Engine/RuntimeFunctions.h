@@ -21,14 +21,16 @@
 
 extern "C" {
 
-/// x = A \ b of the language (simit::solveChecked: CG for symmetric A,
-/// sparse LU otherwise or when CG fails, the true residual checked) for a
-/// BCSR matrix with square blocks of B x B:
+/// x = A \ b of the language (the SolveSession of the run: the method the
+/// user chose, `auto` by default, the true residual checked; see
+/// docs/solvers.md) for a BCSR matrix with square blocks of B x B:
 ///   rowptr: memref<?xi32> (rows + 1), colidx: memref<?xi32> (blocks),
 ///   values: memref<?xBxBxf64>, b and x: memref<?xBxf64>, `where` the
 ///   statement's "file:line:col: x = A \ b" (a C string).
-/// A failure (singular matrix, residual too large) ends the run with an
-/// error naming `where` (simit_rt_fail).
+/// A failure (singular matrix, residual too large, an iterative solve
+/// stopped by the cap under strict settings) ends the run with an error
+/// naming `where` (simit_rt_fail); `where` also names the statement in
+/// warnings and statistics.
 /// MLIR: func.func private @simit_rt_solve_bcsr(memref<?xi32>,
 ///   memref<?xi32>, memref<?x?x?xf64>, memref<?x?xf64>, memref<?x?xf64>,
 ///   !llvm.ptr) attributes {llvm.emit_c_interface}
@@ -40,6 +42,26 @@ void _mlir_ciface_simit_rt_solve_bcsr(
 void _mlir_ciface_simit_rt_solve_bcsr_f32(
     StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
     StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *b,
+    StridedMemRefType<float, 2> *x, const char *where);
+/// The last step of `(A + u v^T) \ b` rewritten by simit-sherman-morrison
+/// (SolveSession::shermanMorrison): given w = A^-1 u and c = A^-1 b, x =
+/// c - w (v.c) / (1 + v.w), or the bordered system [A u; v^T -1] by LU when
+/// 1 + v.w is tiny; the residual checked. A BCSR as for @simit_rt_solve_bcsr,
+/// the vectors memref<?xBxf64>, `where` "Sherman-Morrison (file:line:col)".
+/// MLIR: @simit_rt_sherman_morrison_bcsr(memref<?xi32>, memref<?xi32>,
+///   memref<?x?x?xf64>, memref<?x?xf64> u, v, b, w, c, x, !llvm.ptr), and
+///   _f32.
+void _mlir_ciface_simit_rt_sherman_morrison_bcsr(
+    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
+    StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *u,
+    StridedMemRefType<double, 2> *v, StridedMemRefType<double, 2> *b,
+    StridedMemRefType<double, 2> *w, StridedMemRefType<double, 2> *c,
+    StridedMemRefType<double, 2> *x, const char *where);
+void _mlir_ciface_simit_rt_sherman_morrison_bcsr_f32(
+    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
+    StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *u,
+    StridedMemRefType<float, 2> *v, StridedMemRefType<float, 2> *b,
+    StridedMemRefType<float, 2> *w, StridedMemRefType<float, 2> *c,
     StridedMemRefType<float, 2> *x, const char *where);
 /// triangularSolve(A, b) on a square BCSR system matrix (arguments as for
 /// @simit_rt_solve_bcsr): forward substitution with A's lower triangle; a
@@ -93,8 +115,15 @@ void _mlir_ciface_simit_rt_matmul_bcsr_f32(
 
 /// Ends the run of the exported function in progress (simit::runGuarded)
 /// with `message` as its error; outside a guarded run, a fatal error.
+/// Inside an OpenMP parallel region it records the failure and returns.
 /// MLIR: func.func private @simit_rt_fail(!llvm.ptr)
-[[noreturn]] void simit_rt_fail(const char *message);
+void simit_rt_fail(const char *message);
+
+/// Ends the run with the failure recorded inside the parallel region that
+/// just ended, if any (simit-parallel-loops-to-openmp calls it after each
+/// region that may fail).
+/// MLIR: func.func private @simit_rt_raise_parallel_failure()
+void simit_rt_raise_parallel_failure();
 
 /// print/println of scalars and strings (lowered simit.print).
 void simit_rt_print_f64(double value);
@@ -186,28 +215,35 @@ void _mlir_ciface_simit_rt_lltmatsolve(void *handle,
                                        StridedMemRefType<double, 1> *b,
                                        StridedMemRefType<double, 1> *x,
                                        int64_t cols);
-/// Sparse solvers of square system matrices (Eigen SparseLU with COLAMD
-/// ordering, SimplicialLLT), BCSR arrays as for the CG solver and system
-/// vectors memref<?xBxf64>. chol rejects (report_fatal_error) a matrix
-/// that is not symmetric or not positive definite, lu a singular one. The
-/// handles are freed by lufree/cholfree like the dense ones.
+/// Sparse factorisations of square system matrices through the SolveSession
+/// of the run (UMFPACK LU, CHOLMOD supernodal Cholesky; symbolic analysis
+/// once per pattern, a factorisation reused for the same values), BCSR
+/// arrays as for `\` and system vectors memref<?xBxf64>. chol fails on a
+/// matrix that is not symmetric or not positive definite, lu on a singular
+/// one, a solve on a residual above 1e-8: each ends the run with `where`
+/// (the call's "chol (file:line:col)"). The handles are freed by
+/// lufree/cholfree like the dense ones.
 /// MLIR (attributes {llvm.emit_c_interface}):
-///   @simit_rt_lu_bcsr(memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>)
-///       -> !llvm.ptr, likewise @simit_rt_chol_bcsr
-///   @simit_rt_lusolve_bcsr(!llvm.ptr, memref<?x?xf64> b, memref<?x?xf64> x),
-///       likewise @simit_rt_lltsolve_bcsr
+///   @simit_rt_lu_bcsr(memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>,
+///       !llvm.ptr where) -> !llvm.ptr, likewise @simit_rt_chol_bcsr
+///   @simit_rt_lusolve_bcsr(!llvm.ptr, memref<?x?xf64> b, memref<?x?xf64> x,
+///       !llvm.ptr where), likewise @simit_rt_lltsolve_bcsr
 void *_mlir_ciface_simit_rt_lu_bcsr(StridedMemRefType<int32_t, 1> *rowptr,
                                     StridedMemRefType<int32_t, 1> *colidx,
-                                    StridedMemRefType<double, 3> *values);
+                                    StridedMemRefType<double, 3> *values,
+                                    const char *where);
 void *_mlir_ciface_simit_rt_chol_bcsr(StridedMemRefType<int32_t, 1> *rowptr,
                                       StridedMemRefType<int32_t, 1> *colidx,
-                                      StridedMemRefType<double, 3> *values);
+                                      StridedMemRefType<double, 3> *values,
+                                      const char *where);
 void _mlir_ciface_simit_rt_lusolve_bcsr(void *handle,
                                         StridedMemRefType<double, 2> *b,
-                                        StridedMemRefType<double, 2> *x);
+                                        StridedMemRefType<double, 2> *x,
+                                        const char *where);
 void _mlir_ciface_simit_rt_lltsolve_bcsr(void *handle,
                                          StridedMemRefType<double, 2> *b,
-                                         StridedMemRefType<double, 2> *x);
+                                         StridedMemRefType<double, 2> *x,
+                                         const char *where);
 void simit_rt_lufree(void *handle);
 void simit_rt_cholfree(void *handle);
 void _mlir_ciface_simit_rt_triangularSolve(StridedMemRefType<double, 1> *a,
@@ -218,6 +254,8 @@ void _mlir_ciface_simit_rt_triangularSolve(StridedMemRefType<double, 1> *a,
 } // extern "C"
 
 namespace simit {
+
+class SolveSession;
 
 /// Milliseconds spent in the timed phases of programs compiled with
 /// ProgramOptions::timePhases, since the last resetPhaseTimes().
@@ -236,8 +274,10 @@ std::optional<std::string> takeNumericsProblem();
 
 /// Calls the packed entry point `entry(args)` of lowered code; a runtime
 /// failure inside it (simit_rt_fail) returns here as the error instead of
-/// ending the process. What the failed run wrote stays as it was.
-llvm::Error runGuarded(void (*entry)(void **), void **args);
+/// ending the process. What the failed run wrote stays as it was. `solver`
+/// (the Program's) serves the run's solves; null: one of the process.
+llvm::Error runGuarded(void (*entry)(void **), void **args,
+                       SolveSession *solver = nullptr);
 
 } // namespace simit
 

@@ -52,6 +52,12 @@ struct SceneRunOptions {
   int threads = 0;
   /// ProgramOptions::cacheDirectory (empty: no compile cache).
   std::string cacheDirectory;
+  /// Overrides the scene's "solver" (simit-run --solver, --tol, ...).
+  SolveSettingsOverride solver;
+  /// ProgramOptions::shermanMorrison (simit-run --no-sherman-morrison).
+  bool shermanMorrison = true;
+  /// ProgramOptions::hostLibraries, with the scene's "libraries" after them.
+  std::vector<std::string> hostLibraries;
 };
 
 /// The medians of SceneTimes, as simit-run --time prints them.
@@ -109,6 +115,8 @@ public:
   const SceneTimes &times() const { return timings; }
   /// How the program was compiled (the compile cache, the phases).
   const CompileTimes &compileTimes() const { return program.compileTimes(); }
+  /// The program's solver: its settings and statistics (--stats).
+  SolveSession &solver() { return program.solver(); }
   /// The output files written so far.
   const std::vector<std::string> &writtenFiles() const;
 
@@ -119,6 +127,8 @@ private:
   };
   SceneRunner(SceneDescription scene, const SceneRunOptions &options);
   llvm::Error runAll(std::vector<NamedFunction> &group, int frame);
+  /// Time runAll spent scanning the state with checkNumerics (ms).
+  double stateScanMs = 0;
   /// Scans what the functions of a frame left in their float fields and
   /// externs; the error names the frame, the field or extern and the
   /// element, and how to find the statement that produced the value.

@@ -15,6 +15,7 @@
 #include "simit/Runtime/Mesh.h"
 #include "simit/Runtime/SceneExpression.h"
 #include "simit/Runtime/Set.h"
+#include "simit/Runtime/SolveSession.h"
 
 #include "llvm/ADT/StringMap.h"
 #include "llvm/ADT/StringRef.h"
@@ -32,6 +33,7 @@ struct MeshSpec {
   std::string name;
   std::string path; // resolved against the scene file's directory
   int refine = 0;   // times to apply refineTets
+  bool strict = false; // degenerate or inverted tets are an error
 };
 
 /// How one field's initial values are computed.
@@ -122,12 +124,17 @@ struct SceneDescription {
   std::string path;      // the scene file
   std::string directory; // its directory, for relative inputs
   std::string program;   // optional .sim file (resolved)
+  /// Shared libraries with the C functions of the program's extern funcs
+  /// (resolved).
+  std::vector<std::string> libraries;
   std::vector<MeshSpec> meshes;
   std::vector<SetSpec> sets;
   std::vector<std::pair<std::string, ExternTensor>> externs;
   std::vector<std::string> init, step;
   int frames = 0;
   std::vector<OutputSpec> outputs;
+  /// "solver": how `x = A \ b` solves (docs/solvers.md).
+  SolveSettings solver;
 
   const SetSpec *findSet(llvm::StringRef name) const;
 };

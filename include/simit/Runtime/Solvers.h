@@ -2,10 +2,12 @@
 //
 // The solvers of the runtime, on square block sparse matrices whose arrays
 // belong to a BCSRMatrix or to lowered code (SquareBCSRView):
-//  - conjugateGradient: plain or Jacobi-preconditioned CG from the given x,
-//    stopping after maxIterations or once r.r <= tolerance;
-//  - solveChecked: `x = A \ b` of the language, which picks its method from
-//    the matrix and cannot be silently wrong (see below).
+//  - conjugateGradient: plain, Jacobi- or block-Jacobi-preconditioned CG
+//    from the given x, stopping after maxIterations or once the true
+//    residual's r.r <= tolerance;
+//  - solveLowerTriangular: forward substitution.
+// `x = A \ b` of the language chooses among these and the sparse direct
+// solvers in a SolveSession (SolveSession.h).
 //
 //===----------------------------------------------------------------------===//
 
@@ -48,26 +50,34 @@ void multiply(const SquareBCSRView<T> &a, const T *x, T *y);
 template <typename T>
 bool isSymmetric(const SquareBCSRView<T> &a, double relativeTolerance);
 
-enum class Preconditioner { None, Jacobi };
+/// Jacobi scales by 1 / A(i, i); block-Jacobi multiplies by the inverse of
+/// each blockSize x blockSize diagonal block (3x3 for the usual vectors of
+/// points), which also undoes the coupling of a point's components.
+enum class Preconditioner { None, Jacobi, BlockJacobi };
 
 struct SolverOptions {
   int maxIterations = 50;
-  /// Stop once the residual's squared norm r.r is at most this.
+  /// Stop once the residual's squared norm r.r is at most this. The
+  /// recursively updated residual drifts from b - A x; when it passes, the
+  /// true residual is computed and, if it does not pass too, replaces it and
+  /// the iteration restarts from there (within maxIterations).
   double tolerance = 1e-12;
   Preconditioner preconditioner = Preconditioner::None;
 };
 
 struct SolverResult {
   int iterations = 0;
-  /// r.r of the recursively updated residual at the end.
+  /// r.r of the residual at the end: the true one when converged.
   double residualNormSquared = 0;
+  /// The true residual passed the tolerance.
   bool converged = false;
 };
 
 /// Solves A x = b by conjugate gradients; x holds the initial guess on entry
 /// and the solution on exit. Dot products accumulate in double. Errors:
-/// with Jacobi, a zero diagonal entry (named by its scalar row); p.Ap <= 0,
-/// which means A is not positive definite.
+/// with Jacobi, a zero diagonal entry (named by its scalar row); with
+/// block-Jacobi, a singular diagonal block (named by its block row); p.Ap <=
+/// 0, which means A is not positive definite.
 template <typename T>
 llvm::Expected<SolverResult> conjugateGradient(const SquareBCSRView<T> &a,
                                                const T *b, T *x,
@@ -76,27 +86,6 @@ llvm::Expected<SolverResult> conjugateGradient(const SquareBCSRView<T> &a,
 llvm::Expected<SolverResult> conjugateGradient(const BCSRMatrix &a,
                                                const double *b, double *x,
                                                const SolverOptions &options);
-
-enum class SolveMethod { ConjugateGradient, SparseLU };
-
-struct SolveReport {
-  SolveMethod method = SolveMethod::ConjugateGradient;
-  /// CG iterations (0 for LU).
-  int iterations = 0;
-  /// ||b - A x|| / ||b|| of the returned x, computed anew (0 when b = 0).
-  double relativeResidual = 0;
-};
-
-/// x = A^-1 b, never silently wrong: conjugate gradients when A is
-/// symmetric (to 1e-10), converging to ||r|| <= 1e-12 ||b|| (f32: 1e-6)
-/// within 2n iterations; sparse LU (Eigen SparseLU, COLAMD, in double) when
-/// A is not symmetric, or CG breaks down (A not positive definite) or does
-/// not converge. The result's true residual is checked: above 1e-8 ||b||
-/// (f32: 1e-3) it is an error that names the residual, as is a singular
-/// matrix.
-template <typename T>
-llvm::Expected<SolveReport> solveChecked(const SquareBCSRView<T> &a,
-                                         const T *b, T *x);
 
 /// x = L^-1 b for L the lower triangle of A (scalar entries on and below
 /// the diagonal, within blocks too), by forward substitution. A zero

@@ -342,6 +342,9 @@ LogicalResult FunctionLowering::lowerOp(Operation *op) {
         callee->hasAttr("simit.runtime_function") &&
         isSolverFunction(call.getCallee()))
       return lowerSolverCall(call, callee);
+    if (callee && callee.isExternal() &&
+        callee->hasAttr("simit.extern_function"))
+      return lowerHostCall(call, callee);
     if (callee && callee.isExternal())
       return op->emitError("'@")
              << call.getCallee()
@@ -559,6 +562,16 @@ struct ConvertSimitToLoops
         exported.push_back(function);
       }
 
+    // Host functions keep their Simit declarations under another name, so
+    // that the C symbol (the name itself when no float crosses) is free.
+    SymbolTable symbols(module);
+    for (auto function :
+         llvm::make_early_inc_range(module.getOps<func::FuncOp>()))
+      if (function.isExternal() && function->hasAttr("simit.extern_function"))
+        if (failed(symbols.rename(
+                function, ("simit.extern." + function.getSymName()).str())))
+          return signalPassFailure();
+
     bool failedAny = false;
     for (func::FuncOp original : exported) {
       OpBuilder builder(original);
@@ -588,7 +601,8 @@ struct ConvertSimitToLoops
       auto function = dyn_cast<func::FuncOp>(op);
       bool unusedRuntime =
           function && function.isExternal() &&
-          function->hasAttr("simit.runtime_function") &&
+          (function->hasAttr("simit.runtime_function") ||
+           function->hasAttr("simit.extern_function")) &&
           SymbolTable::symbolKnownUseEmpty(function, module);
       if ((function && !function.isExternal() && usesSimitDialect(function)) ||
           unusedRuntime || isa<ExternOp>(op))

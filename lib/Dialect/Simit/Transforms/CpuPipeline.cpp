@@ -27,6 +27,8 @@ using namespace mlir::simit;
 void mlir::simit::buildSimitCpuPipeline(
     OpPassManager &pm, const SimitCpuPipelineOptions &options) {
   pm.addPass(createSimitInlineFunctions());
+  if (options.shermanMorrison)
+    pm.addPass(createSimitShermanMorrison());
   if (options.timePhases)
     pm.addPass(createSimitTimePhases());
   if (options.checkNumerics)
@@ -36,6 +38,10 @@ void mlir::simit::buildSimitCpuPipeline(
   pm.addPass(createConvertSimitToLoops());
   pm.addPass(createCanonicalizerPass());
   pm.addPass(createCSEPass());
+  // Checks that remain after folding (dynamic indices, divisors) end the
+  // run with their source position instead of trapping or reading poison.
+  pm.addNestedPass<func::FuncOp>(createSimitGuardIntegerDivision());
+  pm.addPass(createSimitLowerAssertions());
   // Complex arithmetic becomes arith and math on the parts; what is left
   // (complex.create/re/im/constant, complex<T> as a struct) goes to LLVM
   // below.
@@ -83,8 +89,8 @@ namespace {
 struct CpuPipeline : public simit::impl::SimitCpuPipelineBase<CpuPipeline> {
   using Base::Base;
   SimitCpuPipelineOptions options() const {
-    return {timePhases,     checkNumerics, runtimeAllocator,
-            openmp,         reductionChunk, scatterChunk};
+    return {timePhases, checkNumerics,  runtimeAllocator, shermanMorrison,
+            openmp,     reductionChunk, scatterChunk};
   }
   void getDependentDialects(DialectRegistry &registry) const override {
     OpPassManager pm(ModuleOp::getOperationName());

@@ -44,6 +44,7 @@ struct GpuPipeline : public simit::impl::SimitGpuPipelineBase<GpuPipeline> {
       pm.addPass(simit::createConvertSimitToLoops());
       pm.addPass(createCanonicalizerPass());
       pm.addPass(createCSEPass());
+      pm.addNestedPass<func::FuncOp>(simit::createSimitGuardIntegerDivision());
       bufferization::buildBufferDeallocationPipeline(pm);
     }
     // Complex arithmetic on the parts, before kernels are outlined: the
@@ -51,6 +52,9 @@ struct GpuPipeline : public simit::impl::SimitGpuPipelineBase<GpuPipeline> {
     pm.addPass(createConvertComplexToStandardPass());
     pm.addPass(simit::createSimitGpuScatterAtomics());
     pm.addPass(simit::createSimitParallelLoopsToGpu({blockSize, fpContract}));
+    // Host code's assertions end the run; those in launches stay for the
+    // NVVM lowering (__assertfail).
+    pm.addPass(simit::createSimitLowerAssertions());
     pm.addPass(simit::createSimitGpuDeviceMemory());
     pm.addPass(createGpuLaunchSinkIndexComputationsPass());
     pm.addPass(createGpuKernelOutliningPass());

@@ -332,19 +332,25 @@ private:
   /// its part as a fourth, "part").
   Value getBinding(BindingKind kind, ArrayRef<StringRef> names, Type type);
   LogicalResult lowerFunctionReturn(func::ReturnOp op);
-  /// Solves call the runtime's checked solver (CG or sparse LU).
+  /// Solves call the runtime's SolveSession (docs/solvers.md).
   LogicalResult lowerSolve(SolveOp op);
   /// `op`'s result = the solve `method` ("solve": A \ b; "triangular_solve":
-  /// with A's lower triangle) of system matrix `matrix` and vector `rhs`,
-  /// by the runtime function @simit_rt_<method>_{bcsr,diag}[_f32].
-  LogicalResult lowerSystemSolve(Operation *op, Value matrix, Value rhs,
-                                 StringRef method);
+  /// with A's lower triangle; "sherman_morrison": the last step of the
+  /// Sherman–Morrison rewrite) of system matrix `matrix` and system vectors
+  /// `vectors`, by the runtime function @simit_rt_<method>_{bcsr,diag}[_f32]
+  /// with `where` = `what` and the source position.
+  LogicalResult lowerSystemSolve(Operation *op, Value matrix,
+                                 ValueRange vectors, StringRef method,
+                                 StringRef what);
   /// Products of system matrices (LowerProducts.cpp): the runtime's
   /// numeric SpGEMM on the bind-time product pattern.
   LogicalResult lowerMatMul(MatMulOp op);
   /// Calls of the dense solver runtime functions (lu, chol, lusolve, ...):
   /// local tensors go through memref<?xf64>, handles are !llvm.ptr.
   LogicalResult lowerSolverCall(func::CallOp call, func::FuncOp callee);
+  /// Calls of host functions (`extern func`, LowerHostCalls.cpp) with the
+  /// original Simit runtime's C conventions.
+  LogicalResult lowerHostCall(func::CallOp call, func::FuncOp callee);
   /// simit.print and strings (C strings as !llvm.ptr) through runtime
   /// functions (simit_rt_print_*, simit_rt_string_*).
   LogicalResult lowerPrintOrString(Operation *op);

@@ -46,25 +46,28 @@ LogicalResult FunctionLowering::lowerFor(scf::ForOp op) {
       storages[arg] = storages[init];
       storages[result] = storages[init];
     }
+  // The body is lowered into the finished loop: index checks look at the
+  // bounds of the loop that defines their index.
+  auto loop = scf::ForOp::create(b, op.getLoc(), lookup(op.getLowerBound()),
+                                 lookup(op.getUpperBound()),
+                                 lookup(op.getStep()), inits);
+  Block *body = loop.getBody();
+  if (body->mightHaveTerminator())
+    body->getTerminator()->erase();
   bool failedBody = false;
-  auto loop = scf::ForOp::create(
-      b, op.getLoc(), lookup(op.getLowerBound()), lookup(op.getUpperBound()),
-      lookup(op.getStep()), inits,
-      [&](OpBuilder &nb, Location loc, Value iv, ValueRange args) {
-        OpBuilder::InsertionGuard guard(b);
-        b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
-        map(op.getInductionVar(), iv);
-        unsigned next = 0;
-        for (Value arg : op.getRegionIterArgs())
-          if (!isSink(arg))
-            map(arg, args[next++]);
-        if (failed(lowerOps(*op.getBody()))) {
-          failedBody = true;
-          return;
-        }
-        scf::YieldOp::create(b, loc,
-                             keptOperands(*this, op.getYieldedValues()));
-      });
+  {
+    OpBuilder::InsertionGuard guard(b);
+    b.setInsertionPointToEnd(body);
+    map(op.getInductionVar(), loop.getInductionVar());
+    unsigned next = 0;
+    for (Value arg : op.getRegionIterArgs())
+      if (!isSink(arg))
+        map(arg, loop.getRegionIterArgs()[next++]);
+    failedBody = failed(lowerOps(*op.getBody()));
+    if (!failedBody)
+      scf::YieldOp::create(b, op.getLoc(),
+                           keptOperands(*this, op.getYieldedValues()));
+  }
   if (failedBody)
     return failure();
   unsigned next = 0;

@@ -23,6 +23,41 @@ using namespace mlir::simit;
 using namespace mlir::simit::loops;
 
 namespace {
+/// Whether every additive term of the body has a factor read from a matrix
+/// input, so the result is zero wherever those inputs are and fits in the
+/// union of their sparsity. A term without one (the outer product u(i) v(j)
+/// of `A + u * v'`, a constant added to a matrix) is nonzero outside the
+/// pattern: it would be silently cut off.
+bool zeroOutsideMatrices(IndexExprOp op) {
+  Block &body = op.getBody().front();
+  DenseMap<Value, bool> confined;
+  for (BlockArgument arg : body.getArguments())
+    confined[arg] = op.getInputIndexList(arg.getArgNumber()).size() == 2;
+  auto isConfined = [&](Value v) { return confined.lookup(v); };
+  for (Operation &inner : body.without_terminator()) {
+    if (inner.getNumResults() != 1)
+      continue;
+    bool value;
+    if (isa<arith::AddFOp, arith::SubFOp, arith::AddIOp, arith::SubIOp,
+            complex::AddOp, complex::SubOp>(inner))
+      value = isConfined(inner.getOperand(0)) &&
+              isConfined(inner.getOperand(1));
+    else if (isa<arith::DivFOp, arith::DivSIOp, complex::DivOp>(inner))
+      value = isConfined(inner.getOperand(0));
+    else if (auto constant = dyn_cast<arith::ConstantOp>(inner))
+      value = isa<FloatAttr>(constant.getValue())
+                  ? cast<FloatAttr>(constant.getValue()).getValue().isZero()
+                  : isa<IntegerAttr>(constant.getValue()) &&
+                        cast<IntegerAttr>(constant.getValue())
+                            .getValue()
+                            .isZero();
+    else // products, negation, and what keeps a factor's zeros
+      value = llvm::any_of(inner.getOperands(), isConfined);
+    confined[inner.getResult(0)] = value;
+  }
+  return isConfined(body.getTerminator()->getOperand(0));
+}
+
 /// Whether the body multiplies or divides two values that both come from
 /// matrix inputs.
 bool multipliesMatrices(IndexExprOp op) {
@@ -710,6 +745,12 @@ LogicalResult IndexExprLowering::lower() {
     }
     if (!storage)
       return op.emitError("a system matrix result needs a sparse input");
+    if (!zeroOutsideMatrices(op))
+      return op.emitError("this matrix is nonzero outside the sparsity of "
+                          "its matrix operands (a term without a matrix "
+                          "factor, such as an outer product of vectors "
+                          "added to a sparse matrix): its result would be "
+                          "dense, which the loop lowering does not support");
     if (storage->kind == Storage::Kind::Incidence && storage->transposed)
       return op.emitError("a matrix result stored as ")
              << storage->describe()

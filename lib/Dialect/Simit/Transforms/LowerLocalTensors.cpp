@@ -12,8 +12,12 @@
 //===----------------------------------------------------------------------===//
 
 #include "LoopsLowering.h"
+#include "SourcePosition.h"
 
+#include "mlir/Dialect/ControlFlow/IR/ControlFlowOps.h"
 #include "mlir/Dialect/Tensor/IR/Tensor.h"
+#include "mlir/Dialect/Utils/StaticValueUtils.h"
+#include "mlir/IR/Matchers.h"
 
 using namespace mlir;
 using namespace mlir::simit;
@@ -201,8 +205,27 @@ static SmallVector<Value> inverse(Arith &a, ArrayRef<Value> m, int64_t n) {
   return result;
 }
 
+/// Whether `index` is the variable of a loop `for i in a:b` with 0 <= a and
+/// b <= size (the common case of element functions), so that it needs no
+/// check.
+static bool isLoopVariableBelow(Value index, int64_t size) {
+  // Casts between int and index keep the loop's small values.
+  while (auto cast = index.getDefiningOp<arith::IndexCastOp>())
+    index = cast.getIn();
+  auto loop = scf::getForInductionVarOwner(index);
+  if (!loop)
+    return false;
+  std::optional<int64_t> lower = getConstantIntValue(loop.getLowerBound());
+  std::optional<int64_t> upper = getConstantIntValue(loop.getUpperBound());
+  std::optional<int64_t> step = getConstantIntValue(loop.getStep());
+  return lower && upper && step && *lower >= 0 && *upper <= size && *step > 0;
+}
+
 /// The flat offset of the block at `indices` (one per outer dimension) of a
-/// local tensor, in components.
+/// local tensor, in components. A dynamic index is asserted to lie in its
+/// dimension: out of range, a flat vector would read a neighbouring
+/// component or poison without a word. Constant indices were checked by the
+/// frontend, and loop variables within the dimension need no check.
 static Value blockOffset(FunctionLowering &l, Location loc, Type type,
                          ValueRange indices) {
   SmallVector<int64_t> outer;
@@ -214,6 +237,16 @@ static Value blockOffset(FunctionLowering &l, Location loc, Type type,
   int64_t blockSize = numComponents(getBlockType(type));
   Value offset = l.indexConstant(0);
   for (auto [d, index] : llvm::enumerate(indices)) {
+    if (!matchPattern(index, m_Constant()) &&
+        !isLoopVariableBelow(index, outer[d])) {
+      // One unsigned compare also rejects negative indices.
+      Value inRange = arith::CmpIOp::create(l.b, loc, arith::CmpIPredicate::ult,
+                                            index, l.indexConstant(outer[d]));
+      cf::AssertOp::create(l.b, loc, inRange,
+                           "index out of range for a dimension of size " +
+                               std::to_string(outer[d]) +
+                               sourcePositionSuffix(loc));
+    }
     int64_t stride = blockSize;
     for (int64_t e = d + 1; e < static_cast<int64_t>(outer.size()); ++e)
       stride *= outer[e];

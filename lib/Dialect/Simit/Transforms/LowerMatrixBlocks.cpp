@@ -11,6 +11,7 @@
 //===----------------------------------------------------------------------===//
 
 #include "LoopsLowering.h"
+#include "SourcePosition.h"
 
 using namespace mlir;
 using namespace mlir::simit;
@@ -114,7 +115,7 @@ LogicalResult FunctionLowering::lowerMatrixBlockAccess(Operation *op) {
 
   cf::AssertOp::create(b, loc, found,
                        "writing a block that is not in the sparsity of " +
-                           storage.describe());
+                           storage.describe() + sourcePositionSuffix(loc));
   // `A(r, c) = v` on a variable (load, insert, store back) writes the
   // variable's array in place; otherwise the matrix is copied first.
   auto load = matrix.getDefiningOp<LoadOp>();

@@ -5,7 +5,7 @@
 //===----------------------------------------------------------------------===//
 
 #include "LoopsLowering.h"
-#include "llvm/Support/xxhash.h"
+#include "StringConstant.h"
 
 using namespace mlir;
 using namespace mlir::simit;
@@ -25,23 +25,7 @@ Value FunctionLowering::callRuntime(Location loc, StringRef name,
 }
 
 Value FunctionLowering::stringConstant(Location loc, StringRef text) {
-  // One internal constant global per distinct text: simit_str_<hash>.
-  MLIRContext *ctx = b.getContext();
-  std::string name = "simit_str_" + llvm::utohexstr(llvm::xxh3_64bits(text));
-  auto global = module.lookupSymbol<LLVM::GlobalOp>(name);
-  if (!global) {
-    OpBuilder::InsertionGuard guard(b);
-    b.setInsertionPointToStart(module.getBody());
-    std::string data = text.str();
-    data.push_back('\0');
-    auto arrayType =
-        LLVM::LLVMArrayType::get(IntegerType::get(ctx, 8), data.size());
-    global = LLVM::GlobalOp::create(b, loc, arrayType, /*isConstant=*/true,
-                                    LLVM::Linkage::Internal, name,
-                                    b.getStringAttr(data));
-  }
-  return LLVM::AddressOfOp::create(b, loc, LLVM::LLVMPointerType::get(ctx),
-                                   global.getSymName());
+  return createStringConstant(b, module, loc, text);
 }
 
 LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {

@@ -44,13 +44,19 @@ Value FunctionLowering::asRuntimeBlocks(Location loc, Value array,
   return memref::CastOp::create(b, loc, target, array);
 }
 
-/// The runtime's conjugate gradient solvers (lib/Engine/RuntimeFunctions).
+/// `\`: the runtime's SolveSession (lib/Engine/RuntimeFunctions).
 LogicalResult FunctionLowering::lowerSolve(SolveOp op) {
-  return lowerSystemSolve(op, op.getMatrix(), op.getRhs(), "solve");
+  // The solves of simit-sherman-morrison say which they are.
+  std::string what = "solve";
+  if (auto note = op->getAttrOfType<StringAttr>("simit.solve_note"))
+    what += (" [" + note.getValue() + "]").str();
+  return lowerSystemSolve(op, op.getMatrix(), op.getRhs(), "solve", what);
 }
 
 LogicalResult FunctionLowering::lowerSystemSolve(Operation *op, Value matrix,
-                                                 Value rhs, StringRef method) {
+                                                 ValueRange vectors,
+                                                 StringRef method,
+                                                 StringRef what) {
   Location loc = op->getLoc();
   Storage storage = storages.lookup(matrix);
   auto matrixType = cast<SystemTensorType>(matrix.getType());
@@ -72,7 +78,7 @@ LogicalResult FunctionLowering::lowerSystemSolve(Operation *op, Value matrix,
                          "square blocks");
 
   // func.func private @simit_rt_<method>_{bcsr,diag}[_f32]([rowptr,
-  //     colidx,] values, b, x, where), declared once. The runtime ends the
+  //     colidx,] values, vectors..., x, where), declared once. The runtime ends the
   // run with `where` in its message when the solve fails.
   MLIRContext *ctx = b.getContext();
   int64_t dyn = ShapedType::kDynamic;
@@ -82,7 +88,9 @@ LogicalResult FunctionLowering::lowerSystemSolve(Operation *op, Value matrix,
   SmallVector<Type> argTypes;
   if (!diagonal)
     argTypes.append({indexArray, indexArray});
-  argTypes.append({values, vector, vector, LLVM::LLVMPointerType::get(ctx)});
+  argTypes.push_back(values);
+  argTypes.append(vectors.size() + 1, vector);
+  argTypes.push_back(LLVM::LLVMPointerType::get(ctx));
   std::string solver = ("simit_rt_" + method +
                         (diagonal ? "_diag" : "_bcsr") +
                         (component.isF32() ? "_f32" : ""))
@@ -98,12 +106,11 @@ LogicalResult FunctionLowering::lowerSystemSolve(Operation *op, Value matrix,
   SmallVector<Value> args;
   if (!diagonal)
     args.append({rowPointers(storage), columnIndices(storage)});
-  args.append({asRuntimeBlocks(loc, lookup(matrix), values),
-               asRuntimeBlocks(loc, lookup(rhs), vector),
-               asRuntimeBlocks(loc, x, vector),
-               stringConstant(loc, (method == "solve" ? "solve"
-                                                      : "triangularSolve") +
-                                       sourcePositionSuffix(op))});
+  args.push_back(asRuntimeBlocks(loc, lookup(matrix), values));
+  for (Value input : vectors)
+    args.push_back(asRuntimeBlocks(loc, lookup(input), vector));
+  args.append({asRuntimeBlocks(loc, x, vector),
+               stringConstant(loc, what.str() + sourcePositionSuffix(op))});
   func::CallOp::create(b, loc, callee, args);
   storages[result] = Storage::dense();
   map(result, x);
@@ -113,6 +120,9 @@ LogicalResult FunctionLowering::lowerSystemSolve(Operation *op, Value matrix,
 /// The dense solver runtime functions, with the i64 size arguments their
 /// lowered form appends (see lowerSolverCall).
 bool mlir::simit::loops::isSolverFunction(StringRef name) {
+  // simit-sherman-morrison declares one per type of its operands.
+  if (name.starts_with("simit_rt_sherman_morrison"))
+    return true;
   return llvm::is_contained(
       {StringRef("simit_rt_lu"), StringRef("simit_rt_chol"),
        StringRef("simit_rt_lusolve"), StringRef("simit_rt_lltsolve"),
@@ -128,7 +138,13 @@ LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
   if (name == "simit_rt_triangularSolve" && call.getNumOperands() == 2 &&
       call.getNumResults() == 1)
     return lowerSystemSolve(call, call.getOperand(0), call.getOperand(1),
-                            "triangular_solve");
+                            "triangular_solve", "triangularSolve");
+  // (A, u, v, b, w, c) -> x of simit-sherman-morrison.
+  if (name.starts_with("simit_rt_sherman_morrison") &&
+      call.getNumOperands() == 6 && call.getNumResults() == 1)
+    return lowerSystemSolve(call, call.getOperand(0),
+                            call.getOperands().drop_front(),
+                            "sherman_morrison", "Sherman-Morrison");
   bool factorise = name == "simit_rt_lu" || name == "simit_rt_chol";
   bool solve = name == "simit_rt_lusolve" || name == "simit_rt_lltsolve";
   Value matrix = factorise ? call.getOperand(0) : Value();
@@ -171,8 +187,14 @@ LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
   auto values = MemRefType::get({dyn, dyn, dyn}, b.getF64Type());
   auto vector = MemRefType::get({dyn, dyn}, b.getF64Type());
   std::string runtimeName = (name + "_bcsr").str();
+  // The runtime ends the run with `where` ("chol (file:line:col)") when the
+  // factorisation or solve fails, and names the statement in statistics.
+  Value where = stringConstant(
+      loc, name.drop_front(StringRef("simit_rt_").size()).str() +
+               sourcePositionSuffix(call));
   if (factorise) {
-    auto type = FunctionType::get(ctx, {indexArray, indexArray, values}, {ptr});
+    auto type =
+        FunctionType::get(ctx, {indexArray, indexArray, values, ptr}, {ptr});
     func::FuncOp callee = declareRuntime(loc, runtimeName, type);
     if (!callee)
       return call.emitError("@") << runtimeName
@@ -180,11 +202,11 @@ LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
     auto lowered = func::CallOp::create(
         b, loc, callee,
         ValueRange{rowPointers(storage), columnIndices(storage),
-                   asRuntimeBlocks(loc, lookup(matrix), values)});
+                   asRuntimeBlocks(loc, lookup(matrix), values), where});
     map(call.getResult(0), lowered.getResult(0));
     return success();
   }
-  auto type = FunctionType::get(ctx, {ptr, vector, vector}, {});
+  auto type = FunctionType::get(ctx, {ptr, vector, vector, ptr}, {});
   func::FuncOp callee = declareRuntime(loc, runtimeName, type);
   if (!callee)
     return call.emitError("@") << runtimeName
@@ -195,7 +217,7 @@ LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
       b, loc, callee,
       ValueRange{lookup(call.getOperand(0)),
                  asRuntimeBlocks(loc, lookup(call.getOperand(1)), vector),
-                 asRuntimeBlocks(loc, x, vector)});
+                 asRuntimeBlocks(loc, x, vector), where});
   storages[call.getResult(0)] = Storage::dense();
   map(call.getResult(0), x);
   return success();

@@ -157,6 +157,10 @@ LogicalResult LoopClassifier::collectAccesses() {
     } else if (auto store = dyn_cast<vector::StoreOp>(op)) {
       record(store.getBase(), store.getIndices(),
              store.getVectorType().getRank(), true);
+    } else if (auto call = dyn_cast<func::CallOp>(op);
+               call && call.getCallee() == kRuntimeFail) {
+      // A failed assertion (simit-lower-assertions): inside a parallel
+      // region the runtime records it and the region's end raises it.
     } else if (!op->hasTrait<OpTrait::HasRecursiveMemoryEffects>()) {
       // Anything else may only touch memory private to the iteration (its
       // stack slots and temporaries); a call, or an effect on memory the

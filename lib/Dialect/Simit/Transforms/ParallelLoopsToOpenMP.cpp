@@ -25,6 +25,8 @@ using namespace mlir;
 using namespace mlir::simit;
 
 namespace {
+constexpr llvm::StringLiteral kRaise = "simit_rt_raise_parallel_failure";
+
 LogicalResult convertLoop(scf::ParallelOp loop) {
   if (loop.getNumResults() != 0)
     return loop.emitError("a loop marked ")
@@ -62,6 +64,28 @@ LogicalResult convertLoop(scf::ParallelOp loop) {
   for (memref::AllocaOp alloca : slots)
     alloca->moveBefore(&entry, entry.begin());
   loop.erase();
+
+  // No thread may leave the region early: a failure inside it is recorded
+  // and raised here, once every thread has finished.
+  bool mayFail = region
+                     .walk([](func::CallOp call) {
+                       return call.getCallee() == kRuntimeFail
+                                  ? WalkResult::interrupt()
+                                  : WalkResult::advance();
+                     })
+                     .wasInterrupted();
+  if (mayFail) {
+    auto module = region->getParentOfType<ModuleOp>();
+    auto raise = module.lookupSymbol<func::FuncOp>(kRaise);
+    if (!raise) {
+      OpBuilder top = OpBuilder::atBlockEnd(module.getBody());
+      raise = func::FuncOp::create(top, loc, kRaise,
+                                   top.getFunctionType({}, {}));
+      raise.setPrivate();
+    }
+    b.setInsertionPointAfter(region);
+    func::CallOp::create(b, loc, raise, ValueRange{});
+  }
   return success();
 }
 

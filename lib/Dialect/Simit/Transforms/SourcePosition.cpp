@@ -8,7 +8,11 @@
 using namespace mlir;
 
 std::string simit::sourcePositionSuffix(Operation *op) {
-  auto file = op->getLoc()->findInstanceOf<FileLineColLoc>();
+  return sourcePositionSuffix(op->getLoc());
+}
+
+std::string simit::sourcePositionSuffix(Location loc) {
+  auto file = loc->findInstanceOf<FileLineColLoc>();
   if (!file)
     return "";
   return (" (" + llvm::sys::path::filename(file.getFilename().getValue()) +

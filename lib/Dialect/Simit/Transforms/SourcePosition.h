@@ -1,7 +1,7 @@
 //===- SourcePosition.h - Source positions in run-time messages -*- C++ -*-===//
 //
 // Messages that lowered code reports at run time (--check-numerics, failed
-// solves) name the statement by its source position.
+// solves, failed run-time checks) name the statement by its source position.
 //
 //===----------------------------------------------------------------------===//
 
@@ -18,6 +18,7 @@ namespace simit {
 /// " (<file>:<line>:<col>)" for an op at a source position (the file's
 /// name without its folder), else "".
 std::string sourcePositionSuffix(Operation *op);
+std::string sourcePositionSuffix(Location loc);
 
 } // namespace simit
 } // namespace mlir

@@ -30,11 +30,11 @@ func.func @link(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> !A {
 // CHECK: %[[AV:.*]] = memref.alloc(%{{.*}}) : memref<?xf64>
 // CHECK: %[[AE:.*]] = memref.expand_shape %[[AV]] {{\[\[}}0, 1, 2]] output_shape [%{{.*}}, 1, 1] : memref<?xf64> into memref<?x1x1xf64>
 // CHECK: %[[AC:.*]] = memref.cast %[[AE]] : memref<?x1x1xf64> to memref<?x?x?xf64>
-// CHECK: %[[H:.*]] = call @simit_rt_chol_bcsr(%[[ROWPTR]], %[[COLIDX]], %[[AC]]) : (memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>) -> !llvm.ptr
+// CHECK: %[[H:.*]] = call @simit_rt_chol_bcsr(%[[ROWPTR]], %[[COLIDX]], %[[AC]], %[[CHOL:.*]]) : (memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>, !llvm.ptr) -> !llvm.ptr
 // CHECK: %[[X:.*]] = memref.alloc(%[[NP]]) : memref<?xf64>
 // CHECK: memref.expand_shape %[[B]] {{\[\[}}0, 1]]
 // CHECK: memref.expand_shape %[[X]] {{\[\[}}0, 1]]
-// CHECK: call @simit_rt_lltsolve_bcsr(%[[H]], %{{.*}}, %{{.*}}) : (!llvm.ptr, memref<?x?xf64>, memref<?x?xf64>) -> ()
+// CHECK: call @simit_rt_lltsolve_bcsr(%[[H]], %{{.*}}, %{{.*}}, %{{.*}}) : (!llvm.ptr, memref<?x?xf64>, memref<?x?xf64>, !llvm.ptr) -> ()
 // CHECK: call @simit_rt_cholfree(%[[H]]) : (!llvm.ptr) -> ()
 // CHECK: return %[[X]]
 func.func @cholesky() -> !V attributes {simit.export} {
@@ -55,8 +55,8 @@ func.func private @simit_rt_cholfree(!simit.opaque) attributes {simit.runtime_fu
 // CHECK: %[[AE:.*]] = memref.expand_shape %{{.*}} {{\[\[}}0, 1, 2]]
 // CHECK: %[[AC:.*]] = memref.cast %[[AE]] : memref<?x1x1xf64> to memref<?x?x?xf64>
 // CHECK: call @simit_rt_solve_bcsr(%{{.*}}, %{{.*}}, %[[AC]], %{{.*}}, %{{.*}}, %{{.*}}) : (memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>, memref<?x?xf64>, memref<?x?xf64>, !llvm.ptr) -> ()
-// CHECK-DAG: func.func private @simit_rt_chol_bcsr(memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>) -> !llvm.ptr attributes {llvm.emit_c_interface}
-// CHECK-DAG: func.func private @simit_rt_lltsolve_bcsr(!llvm.ptr, memref<?x?xf64>, memref<?x?xf64>) attributes {llvm.emit_c_interface}
+// CHECK-DAG: func.func private @simit_rt_chol_bcsr(memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>, !llvm.ptr) -> !llvm.ptr attributes {llvm.emit_c_interface}
+// CHECK-DAG: func.func private @simit_rt_lltsolve_bcsr(!llvm.ptr, memref<?x?xf64>, memref<?x?xf64>, !llvm.ptr) attributes {llvm.emit_c_interface}
 func.func @backslash() -> !V attributes {simit.export} {
   %springs = simit.get_set @springs : !Springs
   %points = simit.get_set @points : !Points

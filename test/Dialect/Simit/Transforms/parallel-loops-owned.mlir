@@ -110,6 +110,27 @@ func.func @ranges_of_a_field(%n : index, %starts : memref<?xi32>, %vals : memref
   return
 }
 
+// The call of a failed assertion (simit-lower-assertions) does not keep a
+// loop sequential: in a parallel region the runtime records the failure.
+// CHECK-LABEL: func.func @asserting(
+// CHECK: func.call @simit_rt_fail
+// CHECK: } {simit.parallel = "owned"}
+func.func @asserting(%n : index, %a : memref<?xf64>, %ok : i1, %msg : !llvm.ptr) {
+  %c0 = arith.constant 0 : index
+  %c1 = arith.constant 1 : index
+  %one = arith.constant 1.0 : f64
+  scf.parallel (%i) = (%c0) to (%n) step (%c1) {
+    scf.if %ok {
+      memref.store %one, %a[%i] : memref<?xf64>
+    } else {
+      func.call @simit_rt_fail(%msg) : (!llvm.ptr) -> ()
+    }
+    scf.reduce
+  }
+  return
+}
+func.func private @simit_rt_fail(!llvm.ptr)
+
 // Reading a neighbour's location of an array the loop writes, writing a
 // location shared by all iterations, a call, a vector store spanning the
 // iterations, and a small constant trip count all keep a loop sequential.

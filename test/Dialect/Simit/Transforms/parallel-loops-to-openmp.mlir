@@ -42,3 +42,34 @@ func.func @marked(%n : index, %a : memref<?x3xf64>) {
   }
   return
 }
+
+// A region that may fail (simit-lower-assertions) is followed by the call
+// that raises the failure its threads recorded; regions that cannot fail
+// are not.
+// CHECK-LABEL: func.func @may_fail(
+// CHECK: omp.parallel {
+// CHECK: func.call @simit_rt_fail
+// CHECK: omp.terminator
+// CHECK-NEXT: }
+// CHECK-NEXT: call @simit_rt_raise_parallel_failure() : () -> ()
+// CHECK: omp.parallel {
+// CHECK: omp.terminator
+// CHECK-NEXT: }
+// CHECK-NEXT: return
+func.func @may_fail(%n : index, %ok : i1, %p : !llvm.ptr) {
+  %c0 = arith.constant 0 : index
+  %c1 = arith.constant 1 : index
+  scf.parallel (%i) = (%c0) to (%n) step (%c1) {
+    scf.if %ok {
+    } else {
+      func.call @simit_rt_fail(%p) : (!llvm.ptr) -> ()
+    }
+    scf.reduce
+  } {simit.parallel = "owned"}
+  scf.parallel (%i) = (%c0) to (%n) step (%c1) {
+    scf.reduce
+  } {simit.parallel = "owned"}
+  return
+}
+func.func private @simit_rt_fail(!llvm.ptr)
+// CHECK: func.func private @simit_rt_raise_parallel_failure()

@@ -92,6 +92,7 @@ scene("shifted-tets", mesh="shifted.node")
 write("bad.node", "5 3 0 0\n0 0 0 0\n1 1 0 0\n2 0 1 0\n3 0 0 1\n4 1 1 2\n")
 write("bad.ele", "4 4 0\n0 0 1 2 3\n1 1 2 3 4\n2 0 2 1 3\n3 0 1 1 3\n")
 scene("bad-tets", mesh="bad.node")
+scene("bad-tets-strict", mesh={"file": "bad.node", "strict": True})
 
 # The same two tets numbered from 0 and from 1, under examples/fem: the
 # 1-based mesh must give the same result.

@@ -39,6 +39,31 @@ def SimitInlineFunctions : Pass<"simit-inline-functions", "::mlir::ModuleOp"> {
                            "::mlir::func::FuncDialect"];
 }
 
+def SimitShermanMorrison : Pass<"simit-sherman-morrison", "::mlir::ModuleOp"> {
+  let summary = "Solves a sparse matrix plus an outer product by Sherman–Morrison";
+  let description = [{
+    Rewrites `simit.solve (A + u v^T), b` — a `simit.add` of a system matrix
+    A and a `simit.outer` of two system vectors, in either order — into
+    two solves with A and the runtime's last step:
+
+    ```mlir
+    %w = simit.solve %A, %u {simit.solve_note = "Sherman-Morrison A^-1 u"}
+    %c = simit.solve %A, %b {simit.solve_note = "Sherman-Morrison A^-1 b"}
+    %x = func.call @simit_rt_sherman_morrison(%A, %u, %v, %b, %w, %c)
+    ```
+
+    so the dense matrix A + u v^T is never formed. With a direct solver
+    both solves use one factorisation of A (the SolveSession's cache); the
+    last step computes x = c - w (v.c) / (1 + v.w), or, when |1 + v.w| is
+    tiny next to |v||w|, solves the bordered system [A u; v^T -1] instead
+    of dividing (docs/solvers.md). A that itself holds an outer product (the
+    rank-k form A + u1 v1^T + u2 v2^T) is left alone, as are differences
+    and other forms. Run it after simit-inline-functions.
+  }];
+  let dependentDialects = ["::mlir::simit::SimitDialect",
+                           "::mlir::func::FuncDialect"];
+}
+
 def SimitAssignStorage : Pass<"simit-assign-storage", "::mlir::ModuleOp"> {
   let summary = "Gives every system matrix its storage encoding";
   let description = [{
@@ -167,9 +192,14 @@ def SimitParallelLoopsToOpenMP : Pass<"simit-parallel-loops-to-openmp", "::mlir:
     slots (`memref.alloca`) of the body move to the start of the parallel
     region: each thread reuses one set for its iterations. Other loops are
     left to run sequentially. The number of threads is the OpenMP runtime's
-    (the engine sets it, docs/threads.md).
+    (the engine sets it, docs/threads.md). A region whose body calls
+    `@simit_rt_fail` (simit-lower-assertions) is followed by a call of
+    `@simit_rt_raise_parallel_failure()`: inside the region the failure is
+    only recorded, since no thread may leave it early, and the call ends
+    the run with it once every thread has.
   }];
   let dependentDialects = ["::mlir::omp::OpenMPDialect",
+                           "::mlir::func::FuncDialect",
                            "::mlir::memref::MemRefDialect"];
 }
 
@@ -188,6 +218,47 @@ def SimitHoistParallelAllocas : Pass<"simit-hoist-parallel-allocas", "::mlir::fu
     loop body.
   }];
   let dependentDialects = ["::mlir::memref::MemRefDialect"];
+}
+
+def SimitGuardIntegerDivision : Pass<"simit-guard-integer-division", "::mlir::func::FuncOp"> {
+  let summary = "Asserts that integer divisions and mods cannot trap";
+  let description = [{
+    Before every `arith` integer division or remainder on integers (not
+    `index`) whose divisor is not a constant, inserts `cf.assert`s that the
+    divisor is not zero and, for signed division, that the quotient does not
+    overflow (the minimum integer divided by -1). Both trap on x86 (SIGFPE)
+    and are undefined in LLVM, so without the check a program could kill
+    the process that runs it. A signed remainder by -1 is 0 and needs no
+    error: its divisor becomes 1 instead. The messages name the operation's
+    source position. Run it after convert-simit-to-loops.
+  }];
+  let dependentDialects = ["::mlir::arith::ArithDialect",
+                           "::mlir::cf::ControlFlowDialect",
+                           "::mlir::vector::VectorDialect"];
+}
+
+def SimitLowerAssertions : Pass<"simit-lower-assertions", "::mlir::ModuleOp"> {
+  let summary = "Turns cf.assert into a call of the runtime's simit_rt_fail";
+  let description = [{
+    `cf.assert %ok, "message"` becomes an `scf.if %ok` around the rest of
+    its block, whose other branch calls `@simit_rt_fail(<message>)`
+    (declared `func.func private @simit_rt_fail(!llvm.ptr)`) and yields
+    zeros (poison for types without one) for the values the rest defines.
+    The runtime ends the run of the exported function in progress with the
+    message as its error and the host keeps running, where the control-flow
+    dialect's own lowering would abort the process. Inside an OpenMP
+    parallel region the call returns instead (the failure is raised when the
+    region ends, simit-parallel-loops-to-openmp), so the guarded operations
+    must not run. The assertions come from the loop lowering (dynamic
+    indices into local tensors) and simit-guard-integer-division.
+    Assertions inside `gpu` ops (launches, kernels) are left to the GPU
+    lowering, which makes them device assertions.
+  }];
+  let dependentDialects = ["::mlir::scf::SCFDialect",
+                           "::mlir::arith::ArithDialect",
+                           "::mlir::func::FuncDialect",
+                           "::mlir::ub::UBDialect",
+                           "::mlir::LLVM::LLVMDialect"];
 }
 
 def SimitTimePhases : Pass<"simit-time-phases", "::mlir::ModuleOp"> {
@@ -229,7 +300,8 @@ def SimitCheckNumerics : Pass<"simit-check-numerics", "::mlir::ModuleOp"> {
 def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
   let summary = "Runs every Simit lowering down to the LLVM dialect";
   let description = [{
-    Inlines functions, rewrites linear algebra as index expressions, fuses
+    Inlines functions, solves sparse-plus-outer-product systems by
+    Sherman–Morrison, rewrites linear algebra as index expressions, fuses
     them, lowers to loops, marks the set loops that may run on all cores and
     makes their results independent of the number of threads
     (simit-parallel-loops), frees temporaries, with `openmp` runs the marked
@@ -250,6 +322,9 @@ def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
            "Allocate heap memory through the Simit runtime's "
            "_mlir_memref_to_llvm_alloc/free (the JIT's block cache) instead "
            "of malloc/free">,
+    Option<"shermanMorrison", "sherman-morrison", "bool", /*default=*/"true",
+           "Solve sparse-plus-outer-product systems by Sherman–Morrison "
+           "(simit-sherman-morrison)">,
     Option<"openmp", "openmp", "bool", /*default=*/"false",
            "Run the loops simit-parallel-loops marks on OpenMP threads "
            "(simit-parallel-loops-to-openmp); off, they run sequentially in "

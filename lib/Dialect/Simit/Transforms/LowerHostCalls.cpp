@@ -1,0 +1,235 @@
+//===- LowerHostCalls.cpp - Calls of host functions (extern func) ---------===//
+//
+// `extern func f(...)` is implemented by the host, in C, with the argument
+// conventions of the original Simit runtime (docs/lowering.md, "Host
+// functions"): the C symbol is the name with the precision's prefix ('d'
+// for float64, 's' for float32) when any parameter or result holds floats,
+// returns an int status (0 for success), and takes the parameters, then
+// the results:
+//   scalar             by value; a result by pointer
+//   local tensor       (int n, T *components), n components, row major
+//   vector over a set  (int n, T *blocks), n elements, blocks row major
+//   matrix (BCSR)      (int rows, int cols, int *rowptr, int *colidx,
+//                       int blockRows, int blockCols, T *blocks), rows and
+//                       cols in blocks
+//   opaque             void *; a result by pointer
+// Matrix results are not supported. A non-zero status ends the run with
+// the call's position.
+//
+// Arrays travel as pointers, which the buffer deallocation would not see
+// as uses: the call goes through a private shim whose memref parameters
+// keep them alive up to the call, and which takes the pointers inside.
+//
+//===----------------------------------------------------------------------===//
+
+#include "LoopsLowering.h"
+#include "SourcePosition.h"
+
+using namespace mlir;
+using namespace mlir::simit;
+using namespace mlir::simit::loops;
+
+namespace {
+/// The shim `name`(args) -> i32 that passes its memref arguments to the
+/// host symbol as pointers to their first component.
+func::FuncOp getOrCreateShim(OpBuilder &b, ModuleOp module, Location loc,
+                             StringRef symbol, TypeRange argTypes) {
+  MLIRContext *ctx = module.getContext();
+  Type i32 = b.getI32Type();
+  Type ptr = LLVM::LLVMPointerType::get(ctx);
+  auto shimType = FunctionType::get(ctx, argTypes, {i32});
+  std::string base = ("simit_host." + symbol).str(), name = base;
+  for (int n = 1; auto existing = module.lookupSymbol<func::FuncOp>(name);
+       ++n) {
+    if (existing.getFunctionType() == shimType)
+      return existing;
+    name = base + "." + std::to_string(n);
+  }
+
+  SmallVector<Type> hostTypes;
+  for (Type type : argTypes)
+    hostTypes.push_back(isa<MemRefType>(type) ? ptr : type);
+  OpBuilder::InsertionGuard guard(b);
+  b.setInsertionPointToEnd(module.getBody());
+  if (!module.lookupSymbol<func::FuncOp>(symbol))
+    func::FuncOp::create(b, loc, symbol,
+                         FunctionType::get(ctx, hostTypes, {i32}))
+        .setPrivate();
+  auto shim = func::FuncOp::create(b, loc, name, shimType);
+  shim.setPrivate();
+  Block *entry = shim.addEntryBlock();
+  b.setInsertionPointToStart(entry);
+  SmallVector<Value> hostArgs;
+  for (BlockArgument arg : entry->getArguments()) {
+    auto memref = dyn_cast<MemRefType>(arg.getType());
+    if (!memref) {
+      hostArgs.push_back(arg);
+      continue;
+    }
+    auto metadata = memref::ExtractStridedMetadataOp::create(b, loc, arg);
+    Value base = memref::ExtractAlignedPointerAsIndexOp::create(b, loc, arg);
+    Value width = arith::ConstantIndexOp::create(
+        b, loc, memref.getElementTypeBitWidth() / 8);
+    Value offset =
+        arith::MulIOp::create(b, loc, metadata.getOffset(), width);
+    Value address = arith::IndexCastOp::create(
+        b, loc, b.getI64Type(), arith::AddIOp::create(b, loc, base, offset));
+    hostArgs.push_back(LLVM::IntToPtrOp::create(b, loc, ptr, address));
+  }
+  auto call = func::CallOp::create(b, loc, symbol, TypeRange{i32}, hostArgs);
+  func::ReturnOp::create(b, loc, call.getResults());
+  return shim;
+}
+} // namespace
+
+/// A 1-D view of a contiguous array (the shim's canonical argument type).
+static Value flatten(OpBuilder &b, Location loc, Value array) {
+  auto type = cast<MemRefType>(array.getType());
+  if (type.getRank() == 1)
+    return memref::CastOp::create(
+        b, loc, MemRefType::get({ShapedType::kDynamic}, type.getElementType()),
+        array);
+  ReassociationIndices all;
+  for (int64_t d = 0; d < type.getRank(); ++d)
+    all.push_back(d);
+  return memref::CollapseShapeOp::create(b, loc, array,
+                                         ArrayRef<ReassociationIndices>{all});
+}
+
+LogicalResult FunctionLowering::lowerHostCall(func::CallOp call,
+                                              func::FuncOp callee) {
+  Location loc = call.getLoc();
+  StringRef name =
+      callee->getAttrOfType<StringAttr>("simit.extern_function").getValue();
+  Type i32 = b.getI32Type();
+
+  // The precision's prefix, from the first float component.
+  std::string symbol = name.str();
+  for (Type type : llvm::concat<const Type>(callee.getArgumentTypes(),
+                                            callee.getResultTypes()))
+    if (Type c = getComponentType(type); isa<FloatType>(c)) {
+      symbol = (c.isF32() ? "s" : "d") + symbol;
+      break;
+    }
+
+  auto i32Of = [&](Value index) -> Value {
+    return arith::IndexCastOp::create(b, loc, i32, index);
+  };
+  auto i32Constant = [&](int64_t v) -> Value {
+    return arith::ConstantIntOp::create(b, loc, i32, v);
+  };
+  auto unsupported = [&](Type type, StringRef what) {
+    return call.emitError("extern func '")
+           << name << "': " << what << " of type " << type
+           << " cannot cross to the host";
+  };
+
+  // Local tensors go through a stack slot (vector values have no address).
+  SmallVector<Value> args;
+  SmallVector<std::function<Value()>> readResults;
+
+  for (Value operand : call.getOperands()) {
+    Type type = operand.getType();
+    Value lowered = lookup(operand);
+    if (isa<IntegerType, FloatType>(type)) {
+      args.push_back(type.isInteger(1)
+                         ? arith::ExtUIOp::create(b, loc, i32, lowered)
+                         : lowered);
+      continue;
+    }
+    if (isa<OpaqueType>(type)) {
+      args.push_back(lowered);
+      continue;
+    }
+    auto system = dyn_cast<SystemTensorType>(type);
+    if (!system || !system.isSystem()) {
+      auto vector = dyn_cast_or_null<VectorType>(lowered.getType());
+      if (!vector)
+        return unsupported(type, "a parameter");
+      auto slotType = MemRefType::get(vector.getShape(),
+                                      vector.getElementType());
+      Value slot = memref::AllocaOp::create(b, loc, slotType);
+      vector::StoreOp::create(b, loc, lowered, slot,
+                              ValueRange{indexConstant(0)});
+      args.append({i32Constant(vector.getNumElements()),
+                   flatten(b, loc, slot)});
+      continue;
+    }
+    Storage storage = storages.lookup(operand);
+    if (storage.kind == Storage::Kind::Dense) {
+      args.append({i32Of(memref::DimOp::create(b, loc, lowered, 0)),
+                   flatten(b, loc, lowered)});
+      continue;
+    }
+    if (!storage.isBCSR())
+      return call.emitError("extern func '")
+             << name << "': matrices stored as " << storage.describe()
+             << " cannot cross to the host (BCSR matrices can)";
+    SmallVector<int64_t> block = system.getBlockShape();
+    while (block.size() < 2)
+      block.push_back(1);
+    args.append({i32Of(getSetSize(storage.rows)),
+                 i32Of(getSetSize(storage.cols)),
+                 flatten(b, loc, rowPointers(storage)),
+                 flatten(b, loc, columnIndices(storage)),
+                 i32Constant(block[0]), i32Constant(block[1]),
+                 flatten(b, loc, lowered)});
+  }
+
+  SmallVector<Value> resultValues;
+  for (Value result : call.getResults()) {
+    Type type = result.getType();
+    if (isa<IntegerType, FloatType, OpaqueType>(type)) {
+      Type slotElement = convertType(type);
+      if (type.isInteger(1))
+        slotElement = i32;
+      Value slot =
+          memref::AllocaOp::create(b, loc, MemRefType::get({1}, slotElement));
+      args.push_back(flatten(b, loc, slot));
+      readResults.push_back([&, slot, type]() -> Value {
+        Value v = memref::LoadOp::create(b, loc, slot,
+                                         ValueRange{indexConstant(0)});
+        if (type.isInteger(1))
+          v = arith::TruncIOp::create(b, loc, b.getI1Type(), v);
+        return v;
+      });
+      continue;
+    }
+    auto system = dyn_cast<SystemTensorType>(type);
+    if (!system || !system.isSystem()) {
+      auto vector = dyn_cast_or_null<VectorType>(convertType(type));
+      if (!vector)
+        return unsupported(type, "a result");
+      Value slot = memref::AllocaOp::create(
+          b, loc, MemRefType::get(vector.getShape(), vector.getElementType()));
+      args.append({i32Constant(vector.getNumElements()),
+                   flatten(b, loc, slot)});
+      readResults.push_back([&, slot, vector]() -> Value {
+        return vector::LoadOp::create(b, loc, vector, slot,
+                                      ValueRange{indexConstant(0)});
+      });
+      continue;
+    }
+    if (system.getOrder() != 1)
+      return unsupported(type, "a matrix result");
+    Value array = allocSystem(loc, type, Storage::dense());
+    storages[result] = Storage::dense();
+    args.append({i32Of(memref::DimOp::create(b, loc, array, 0)),
+                 flatten(b, loc, array)});
+    readResults.push_back([array]() { return array; });
+  }
+
+  func::FuncOp shim =
+      getOrCreateShim(b, module, loc, symbol, ValueRange(args).getTypes());
+  Value status = func::CallOp::create(b, loc, shim, args).getResult(0);
+  Value ok = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq, status,
+                                   i32Constant(0));
+  cf::AssertOp::create(b, loc, ok,
+                       ("extern func '" + name + "' (host symbol '" + symbol +
+                        "') returned a non-zero status" +
+                        sourcePositionSuffix(call))
+                           .str());
+  for (auto [result, read] : llvm::zip_equal(call.getResults(), readResults))
+    map(result, read());
+  return success();
+}

@@ -1,0 +1,477 @@
+//===--- SolveSession.cpp - The solver of `x = A \ b` ---------------------===//
+//
+// Conjugate gradients is right only for symmetric positive definite
+// matrices, and an iterative solve is only as good as its residual: so the
+// symmetric methods check symmetry, every answer's true residual is
+// computed, and the answer is accepted (direct methods), reported (an
+// iterative solve the user capped) or refused (everything else).
+//
+//===----------------------------------------------------------------------===//
+
+#include "simit/Runtime/SolveSession.h"
+
+#include "SparseDirect.h"
+
+#include "llvm/ADT/STLExtras.h"
+#include "llvm/Support/FormatVariadic.h"
+#include "llvm/Support/raw_ostream.h"
+
+#include <chrono>
+#include <cmath>
+
+using namespace simit;
+
+namespace {
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start)
+      .count();
+}
+
+/// The tolerances of one precision, relative to ||b||: `auto`'s CG stop,
+/// the default stop of the iterative methods, and the residual a direct
+/// answer must meet.
+template <typename T> struct Tolerances;
+template <> struct Tolerances<double> {
+  static constexpr double autoCG = 1e-12, iterative = 1e-10, accept = 1e-8;
+};
+template <> struct Tolerances<float> {
+  static constexpr double autoCG = 1e-6, iterative = 1e-5, accept = 1e-3;
+};
+
+const std::pair<SolveMethod, llvm::StringRef> kMethodNames[] = {
+    {SolveMethod::Auto, "auto"},
+    {SolveMethod::ConjugateGradient, "cg"},
+    {SolveMethod::JacobiCG, "pcg-jacobi"},
+    {SolveMethod::BlockJacobiCG, "pcg-block-jacobi"},
+    {SolveMethod::Cholesky, "cholesky"},
+    {SolveMethod::LDLT, "ldlt"},
+    {SolveMethod::LU, "lu"},
+    {SolveMethod::ShermanMorrison, "sherman-morrison"},
+    {SolveMethod::BorderedLU, "bordered-lu"},
+};
+
+template <typename T> double dot(const T *u, const T *v, int64_t n) {
+  double sum = 0;
+  for (int64_t i = 0; i < n; ++i)
+    sum += static_cast<double>(u[i]) * v[i];
+  return sum;
+}
+
+template <typename T> double norm(const T *v, int64_t n) {
+  double sum = 0;
+  for (int64_t i = 0; i < n; ++i)
+    sum += static_cast<double>(v[i]) * v[i];
+  return std::sqrt(sum);
+}
+
+/// ||b - A x|| / bNorm in double.
+template <typename T>
+double relativeResidual(const SquareBCSRView<T> &a, const T *b, const T *x,
+                        double bNorm) {
+  std::vector<T> ax(static_cast<size_t>(a.size()));
+  multiply(a, x, ax.data());
+  double sum = 0;
+  for (int64_t i = 0; i < a.size(); ++i) {
+    double r = static_cast<double>(b[i]) - ax[i];
+    sum += r * r;
+  }
+  return std::sqrt(sum) / bNorm;
+}
+
+llvm::Error notAccepted(double residual) {
+  return llvm::createStringError(
+      llvm::formatv("the relative residual ||b - A x|| / ||b|| of the "
+                    "solution is {0:e3} (the matrix is singular or too "
+                    "ill-conditioned)",
+                    residual)
+          .str());
+}
+
+std::optional<FactorKind> factorKindOf(SolveMethod method) {
+  switch (method) {
+  case SolveMethod::Cholesky:
+    return FactorKind::Cholesky;
+  case SolveMethod::LDLT:
+    return FactorKind::LDLT;
+  case SolveMethod::LU:
+    return FactorKind::LU;
+  default:
+    return std::nullopt;
+  }
+}
+
+Preconditioner preconditionerOf(SolveMethod method) {
+  return method == SolveMethod::JacobiCG        ? Preconditioner::Jacobi
+         : method == SolveMethod::BlockJacobiCG ? Preconditioner::BlockJacobi
+                                                : Preconditioner::None;
+}
+} // namespace
+
+llvm::StringRef simit::solveMethodName(SolveMethod method) {
+  for (auto [m, name] : kMethodNames)
+    if (m == method)
+      return name;
+  return "";
+}
+
+std::optional<SolveMethod> simit::parseSolveMethod(llvm::StringRef name) {
+  for (auto [m, text] : kMethodNames)
+    if (text == name && m != SolveMethod::ShermanMorrison &&
+        m != SolveMethod::BorderedLU)
+      return m;
+  return std::nullopt;
+}
+
+llvm::StringRef simit::solveMethodNames() {
+  return "auto, cg, pcg-jacobi, pcg-block-jacobi, cholesky, ldlt, lu";
+}
+
+SolveSettings SolveSettingsOverride::appliedTo(SolveSettings settings) const {
+  if (method)
+    settings.method = *method;
+  if (tolerance)
+    settings.tolerance = tolerance;
+  if (maxIterations)
+    settings.maxIterations = maxIterations;
+  if (strict)
+    settings.strict = *strict;
+  return settings;
+}
+
+llvm::Error simit::checkSolveSettings(const SolveSettings &settings,
+                                      llvm::StringRef where) {
+  if (settings.tolerance &&
+      !(*settings.tolerance > 0 && *settings.tolerance < 1))
+    return llvm::createStringError(
+        where + ": the tolerance must lie between 0 and 1 (exclusive), "
+                "found " +
+        llvm::formatv("{0}", *settings.tolerance).str());
+  if (settings.maxIterations && *settings.maxIterations < 1)
+    return llvm::createStringError(
+        where + ": the iteration cap must be at least 1, found " +
+        llvm::Twine(*settings.maxIterations));
+  return llvm::Error::success();
+}
+
+SolveSession::SolveSession(SolveSettings settings)
+    : current(settings), cache(std::make_unique<FactorCache>()) {}
+
+SolveSession::~SolveSession() = default;
+
+SolveStatementStats &SolveSession::statsOf(llvm::StringRef statement) {
+  auto it = statementIndex.find(statement);
+  if (it == statementIndex.end()) {
+    it = statementIndex.emplace(statement.str(), statements.size()).first;
+    statements.emplace_back().statement = statement.str();
+    warned.push_back(false);
+  }
+  return statements[it->second];
+}
+
+void SolveSession::record(SolveStatementStats &stats,
+                          const SolveReport &report) {
+  if (!llvm::is_contained(stats.methods, report.method))
+    stats.methods.push_back(report.method);
+  ++stats.solves;
+  stats.iterations += report.iterations;
+  stats.maxIterations =
+      std::max<int64_t>(stats.maxIterations, report.iterations);
+  stats.notConverged += !report.converged;
+  stats.lastRelativeResidual = report.relativeResidual;
+  stats.maxRelativeResidual =
+      std::max(stats.maxRelativeResidual, report.relativeResidual);
+  stats.analyses += report.analysed;
+  stats.factorisations += report.factorised;
+  stats.reuses += report.reused;
+  stats.analysisMs += report.analysisMs;
+  stats.factorisationMs += report.factorisationMs;
+  stats.solveMs += report.solveMs;
+}
+
+template <typename T>
+llvm::Expected<SolveReport>
+SolveSession::direct(FactorKind kind, const SquareBCSRView<T> &a, const T *b,
+                     T *x) {
+  auto lookup = cache->factorise(kind, a);
+  if (!lookup)
+    return lookup.takeError();
+  SolveReport report;
+  report.method = kind == FactorKind::Cholesky ? SolveMethod::Cholesky
+                  : kind == FactorKind::LDLT   ? SolveMethod::LDLT
+                                               : SolveMethod::LU;
+  report.analysed = lookup->analysed;
+  report.factorised = lookup->factorised;
+  report.reused = !lookup->factorised;
+  report.analysisMs = lookup->analysisMs;
+  report.factorisationMs = lookup->factorisationMs;
+  Clock::time_point start = Clock::now();
+  int64_t n = a.size();
+  std::vector<double> rhs(b, b + n), solution(static_cast<size_t>(n));
+  if (llvm::Error err = lookup->factor->solve(rhs.data(), solution.data()))
+    return std::move(err);
+  for (int64_t i = 0; i < n; ++i)
+    x[i] = static_cast<T>(solution[i]);
+  report.solveMs = millisecondsSince(start);
+  return report;
+}
+
+template <typename T>
+llvm::Expected<SolveReport>
+SolveSession::iterative(const SquareBCSRView<T> &a, const T *b, T *x,
+                        double bNorm, SolveStatementStats &stats) {
+  SolveMethod method = current.method;
+  bool automatic = method == SolveMethod::Auto;
+  double tolerance = current.tolerance.value_or(
+      automatic ? Tolerances<T>::autoCG : Tolerances<T>::iterative);
+  SolverOptions options;
+  options.maxIterations = static_cast<int>(std::min<int64_t>(
+      current.maxIterations.value_or(2 * a.size()), 1 << 30));
+  options.tolerance = tolerance * bNorm * tolerance * bNorm;
+  options.preconditioner = preconditionerOf(method);
+  Clock::time_point start = Clock::now();
+  llvm::Expected<SolverResult> cg = conjugateGradient(a, b, x, options);
+  if (!cg)
+    return cg.takeError();
+  SolveReport report;
+  report.method = automatic ? SolveMethod::ConjugateGradient : method;
+  report.iterations = cg->iterations;
+  report.converged = cg->converged;
+  report.relativeResidual = std::sqrt(cg->residualNormSquared) / bNorm;
+  report.solveMs = millisecondsSince(start);
+  if (report.converged || automatic)
+    return report;
+  std::string message = llvm::formatv(
+      "{0} stopped at the iteration cap of {1} with relative residual "
+      "{2:e2} (tolerance {3:e2})",
+      solveMethodName(method), cg->iterations, report.relativeResidual,
+      tolerance);
+  if (current.strict)
+    return llvm::createStringError(message + " (strict solver settings)");
+  size_t index = statementIndex.find(stats.statement)->second;
+  if (!warned[index]) {
+    warned[index] = true;
+    llvm::errs() << "warning: " << stats.statement << ": " << message
+                 << "; the answer is not converged (warned once per "
+                    "statement; --stats counts every such solve)\n";
+  }
+  return report;
+}
+
+template <typename T>
+llvm::Expected<SolveReport>
+SolveSession::solve(const SquareBCSRView<T> &a, const T *b, T *x,
+                    llvm::StringRef statement) {
+  SolveStatementStats &stats = statsOf(statement);
+  int64_t n = a.size();
+  double bNorm = norm(b, n);
+  if (!std::isfinite(bNorm))
+    return llvm::createStringError(
+        "the right-hand side holds a NaN or an infinity");
+  std::fill(x, x + n, T(0));
+  SolveMethod method = current.method;
+  if (bNorm == 0) {
+    SolveReport zero;
+    zero.method = method;
+    record(stats, zero);
+    return zero;
+  }
+
+  bool symmetricMethod = method != SolveMethod::Auto &&
+                         method != SolveMethod::LU;
+  bool symmetric = isSymmetric(a, 1e-10);
+  if (symmetricMethod && !symmetric)
+    return llvm::createStringError(
+        "the matrix is not symmetric, and " + solveMethodName(method) +
+        " needs a symmetric matrix (choose lu, or auto)");
+
+  std::optional<SolveReport> report;
+  if (std::optional<FactorKind> kind = factorKindOf(method)) {
+    auto solved = direct(*kind, a, b, x);
+    if (!solved)
+      return solved.takeError();
+    report = *solved;
+  } else if (method != SolveMethod::Auto || symmetric) {
+    auto solved = iterative(a, b, x, bNorm, stats);
+    if (!solved) {
+      if (method != SolveMethod::Auto)
+        return solved.takeError();
+      // Not positive definite: `auto` starts over with LU.
+      llvm::consumeError(solved.takeError());
+    } else if (solved->converged || method != SolveMethod::Auto) {
+      report = *solved;
+    }
+  }
+  if (!report) {
+    // `auto` on a non-symmetric matrix, or after CG failed.
+    std::fill(x, x + n, T(0));
+    auto solved = direct(FactorKind::LU, a, b, x);
+    if (!solved)
+      return solved.takeError();
+    report = *solved;
+  }
+  report->relativeResidual = relativeResidual(a, b, x, bNorm);
+  if (!(report->relativeResidual <= Tolerances<T>::accept) &&
+      (factorKindOf(report->method) || method == SolveMethod::Auto))
+    return notAccepted(report->relativeResidual);
+  if (!std::isfinite(report->relativeResidual))
+    return llvm::createStringError("the solution holds a NaN or an infinity");
+  record(stats, *report);
+  return *report;
+}
+
+template llvm::Expected<SolveReport>
+SolveSession::solve(const SquareBCSRView<double> &, const double *, double *,
+                    llvm::StringRef);
+template llvm::Expected<SolveReport>
+SolveSession::solve(const SquareBCSRView<float> &, const float *, float *,
+                    llvm::StringRef);
+
+/// The scalar matrix [A u; v^T -1] in BCSR arrays of 1x1 blocks.
+template <typename T> struct BorderedMatrix {
+  std::vector<int32_t> rowptr{0}, colidx;
+  std::vector<T> values;
+  SquareBCSRView<T> view;
+
+  BorderedMatrix(const SquareBCSRView<T> &a, const T *u, const T *v) {
+    int64_t bs = a.blockSize, n = a.size();
+    for (int64_t r = 0; r < a.rows; ++r)
+      for (int64_t i = 0; i < bs; ++i) {
+        for (int32_t k = a.rowptr[r]; k < a.rowptr[r + 1]; ++k)
+          for (int64_t j = 0; j < bs; ++j) {
+            colidx.push_back(static_cast<int32_t>(a.colidx[k] * bs + j));
+            values.push_back(a.values[(static_cast<int64_t>(k) * bs + i) * bs +
+                                      j]);
+          }
+        colidx.push_back(static_cast<int32_t>(n));
+        values.push_back(u[r * bs + i]);
+        rowptr.push_back(static_cast<int32_t>(colidx.size()));
+      }
+    for (int64_t j = 0; j <= n; ++j) {
+      colidx.push_back(static_cast<int32_t>(j));
+      values.push_back(j < n ? v[j] : T(-1));
+    }
+    rowptr.push_back(static_cast<int32_t>(colidx.size()));
+    view.rows = n + 1;
+    view.rowptr = rowptr.data();
+    view.colidx = colidx.data();
+    view.values = values.data();
+  }
+};
+
+template <typename T>
+llvm::Expected<SolveReport>
+SolveSession::shermanMorrison(const SquareBCSRView<T> &a, const T *u,
+                              const T *v, const T *b, const T *w, const T *c,
+                              T *x, llvm::StringRef statement) {
+  SolveStatementStats &stats = statsOf(statement);
+  int64_t n = a.size();
+  Clock::time_point start = Clock::now();
+  double denominator = 1 + dot(v, w, n);
+  double scale = norm(v, n) * norm(w, n);
+  SolveReport report;
+  if (std::abs(denominator) > Tolerances<T>::accept * scale &&
+      std::isfinite(denominator)) {
+    report.method = SolveMethod::ShermanMorrison;
+    T factor = static_cast<T>(dot(v, c, n) / denominator);
+    for (int64_t i = 0; i < n; ++i)
+      x[i] = c[i] - factor * w[i];
+    report.solveMs = millisecondsSince(start);
+  } else {
+    // Dividing by 1 + v.w would amplify its rounding error by |v||w| / |1 +
+    // v.w|: solve the bordered system, whose LU pivots around it.
+    BorderedMatrix<T> bordered(a, u, v);
+    std::vector<T> rhs(b, b + n), solution(static_cast<size_t>(n + 1));
+    rhs.push_back(T(0));
+    auto solved = direct(FactorKind::LU, bordered.view, rhs.data(),
+                         solution.data());
+    if (!solved)
+      return solved.takeError();
+    report = *solved;
+    report.method = SolveMethod::BorderedLU;
+    std::copy(solution.begin(), solution.begin() + n, x);
+  }
+  // ||b - A x - u (v.x)|| / ||b||.
+  std::vector<T> ax(static_cast<size_t>(n));
+  multiply(a, x, ax.data());
+  double vx = dot(v, x, n), rr = 0, bNorm = norm(b, n);
+  for (int64_t i = 0; i < n; ++i) {
+    double r = static_cast<double>(b[i]) - ax[i] - u[i] * vx;
+    rr += r * r;
+  }
+  report.relativeResidual = bNorm == 0 ? std::sqrt(rr) : std::sqrt(rr) / bNorm;
+  bool iterativeParts = !factorKindOf(current.method) &&
+                        current.method != SolveMethod::Auto;
+  if (!std::isfinite(report.relativeResidual) ||
+      (!iterativeParts && !(report.relativeResidual <= Tolerances<T>::accept)))
+    return notAccepted(report.relativeResidual);
+  record(stats, report);
+  return report;
+}
+
+template llvm::Expected<SolveReport> SolveSession::shermanMorrison(
+    const SquareBCSRView<double> &, const double *, const double *,
+    const double *, const double *, const double *, double *,
+    llvm::StringRef);
+template llvm::Expected<SolveReport> SolveSession::shermanMorrison(
+    const SquareBCSRView<float> &, const float *, const float *,
+    const float *, const float *, const float *, float *, llvm::StringRef);
+
+llvm::Expected<std::shared_ptr<const SparseFactorisation>>
+SolveSession::factorise(FactorKind kind, const SquareBCSRView<double> &a,
+                        llvm::StringRef statement) {
+  SolveStatementStats &stats = statsOf(statement);
+  if (kind != FactorKind::LU && !isSymmetric(a, 1e-10))
+    return llvm::createStringError(
+        "the matrix is not symmetric, and a Cholesky factorisation needs a "
+        "symmetric matrix (use lu)");
+  auto lookup = cache->factorise(kind, a);
+  if (!lookup)
+    return lookup.takeError();
+  stats.analyses += lookup->analysed;
+  stats.factorisations += lookup->factorised;
+  stats.reuses += !lookup->factorised;
+  stats.analysisMs += lookup->analysisMs;
+  stats.factorisationMs += lookup->factorisationMs;
+  return std::move(lookup->factor);
+}
+
+llvm::Expected<SolveReport>
+SolveSession::solveWith(const SparseFactorisation &factor, const double *b,
+                        double *x, llvm::StringRef statement) {
+  SolveStatementStats &stats = statsOf(statement);
+  int64_t n = factor.size();
+  if (!std::isfinite(norm(b, n)))
+    return llvm::createStringError(
+        "the right-hand side holds a NaN or an infinity");
+  SolveReport report;
+  report.method = factor.kind() == FactorKind::LU ? SolveMethod::LU
+                                                   : SolveMethod::Cholesky;
+  report.reused = true;
+  Clock::time_point start = Clock::now();
+  if (llvm::Error err = factor.solve(b, x))
+    return std::move(err);
+  report.solveMs = millisecondsSince(start);
+  report.relativeResidual = factor.relativeResidual(b, x);
+  if (!(report.relativeResidual <= Tolerances<double>::accept))
+    return notAccepted(report.relativeResidual);
+  // The factorisation was counted where it was made.
+  report.reused = false;
+  record(stats, report);
+  return report;
+}
+
+std::vector<SolveStatementStats> SolveSession::statistics() const {
+  return statements;
+}
+
+FactorisationCounts SolveSession::factorisationCounts() const {
+  return cache->counts();
+}
+
+void SolveSession::resetStatistics() {
+  statementIndex.clear();
+  statements.clear();
+  warned.clear();
+}

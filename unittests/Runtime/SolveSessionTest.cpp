@@ -1,0 +1,474 @@
+//===--- SolveSessionTest.cpp - x = A \ b against dense Eigen solves ------===//
+
+#include "simit/Runtime/SolveSession.h"
+
+#include "TestFiles.h"
+
+#include "gmock/gmock.h"
+
+#include <Eigen/Dense>
+
+#include <random>
+#include <vector>
+
+using namespace simit;
+using namespace simit::test;
+using ::testing::HasSubstr;
+
+namespace {
+
+/// A matrix of n x n blocks of b x b in BCSR arrays on a band pattern
+/// (blocks (r, c) with |r - c| <= 1), with its dense copy.
+template <typename T> struct BandSystem {
+  std::vector<int32_t> rowptr{0}, colidx;
+  std::vector<T> values;
+  Eigen::MatrixXd dense;
+  SquareBCSRView<T> view;
+
+  BandSystem(int n, int b, const Eigen::MatrixXd &full) : dense(full) {
+    for (int r = 0; r < n; ++r) {
+      for (int c = std::max(0, r - 1); c <= std::min(n - 1, r + 1); ++c) {
+        colidx.push_back(c);
+        for (int i = 0; i < b; ++i)
+          for (int j = 0; j < b; ++j)
+            values.push_back(static_cast<T>(full(r * b + i, c * b + j)));
+      }
+      rowptr.push_back(static_cast<int32_t>(colidx.size()));
+    }
+    view.rows = n;
+    view.blockSize = b;
+    view.rowptr = rowptr.data();
+    view.colidx = colidx.data();
+    view.values = values.data();
+  }
+  BandSystem(const BandSystem &) = delete;
+};
+
+/// A random matrix with the band pattern of n x n blocks of b x b.
+Eigen::MatrixXd randomBand(int n, int b, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> value(-1, 1);
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n * b, n * b);
+  for (int i = 0; i < n * b; ++i)
+    for (int j = 0; j < n * b; ++j)
+      if (std::abs(i / b - j / b) <= 1)
+        m(i, j) = value(rng);
+  return m;
+}
+
+Eigen::VectorXd randomVector(int size, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> value(-1, 1);
+  return Eigen::VectorXd::NullaryExpr(size, [&] { return value(rng); });
+}
+
+constexpr int kBlocks = 12;
+
+/// Symmetric, diagonally dominant: positive definite, on the band.
+Eigen::MatrixXd spd(int b, unsigned seed) {
+  Eigen::MatrixXd m = randomBand(kBlocks, b, seed);
+  return m + m.transpose() +
+         8 * Eigen::MatrixXd::Identity(kBlocks * b, kBlocks * b);
+}
+
+Eigen::MatrixXd nonSymmetric(int b, unsigned seed) {
+  return randomBand(kBlocks, b, seed) +
+         4 * Eigen::MatrixXd::Identity(kBlocks * b, kBlocks * b);
+}
+
+/// Symmetric with eigenvalues of both signs.
+Eigen::MatrixXd indefinite(int b, unsigned seed) {
+  Eigen::MatrixXd m = randomBand(kBlocks, b, seed);
+  Eigen::MatrixXd a = m + m.transpose();
+  a.diagonal() += Eigen::VectorXd::LinSpaced(kBlocks * b, -6, 6);
+  return a;
+}
+
+SolveSettings settingsOf(SolveMethod method) {
+  SolveSettings settings;
+  settings.method = method;
+  return settings;
+}
+
+/// Solves A x = b (b random) in `session` and compares x with a dense LU
+/// of A to `tolerance` relative to ||x||; returns the report.
+template <typename T>
+SolveReport expectSolves(SolveSession &session, const Eigen::MatrixXd &a,
+                         int b, double tolerance) {
+  BandSystem<T> system(kBlocks, b, a);
+  Eigen::VectorXd rhs = randomVector(kBlocks * b, 17);
+  std::vector<T> bv(rhs.data(), rhs.data() + rhs.size()), x(rhs.size(), 7);
+  llvm::Expected<SolveReport> report =
+      session.solve(system.view, bv.data(), x.data(), "test");
+  if (!report) {
+    ADD_FAILURE() << llvm::toString(report.takeError());
+    return {};
+  }
+  Eigen::VectorXd exact = a.fullPivLu().solve(rhs);
+  for (int i = 0; i < kBlocks * b; ++i)
+    EXPECT_NEAR(x[i], exact[i], tolerance * exact.norm()) << i;
+  EXPECT_LE(report->relativeResidual, tolerance);
+  EXPECT_TRUE(report->converged);
+  return *report;
+}
+
+template <typename T>
+std::string solveError(SolveSettings settings, const Eigen::MatrixXd &a,
+                       int b) {
+  SolveSession session(settings);
+  BandSystem<T> system(kBlocks, b, a);
+  Eigen::VectorXd rhs = randomVector(kBlocks * b, 5);
+  std::vector<T> bv(rhs.data(), rhs.data() + rhs.size()), x(rhs.size());
+  return errorOf(session.solve(system.view, bv.data(), x.data(), "test"));
+}
+
+/// Every method on SPD matrices of scalars and of 3x3 blocks, in f64 and
+/// f32.
+class EveryMethod : public ::testing::TestWithParam<SolveMethod> {};
+
+TEST_P(EveryMethod, SolvesSymmetricPositiveDefiniteMatrices) {
+  for (int b : {1, 3}) {
+    SolveSession session(settingsOf(GetParam()));
+    SolveReport report = expectSolves<double>(session, spd(b, 1), b, 1e-9);
+    if (GetParam() != SolveMethod::Auto)
+      EXPECT_EQ(report.method, GetParam());
+    SolveReport single = expectSolves<float>(session, spd(b, 1), b, 1e-4);
+    if (GetParam() != SolveMethod::Auto)
+      EXPECT_EQ(single.method, GetParam());
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    SolveSession, EveryMethod,
+    ::testing::Values(SolveMethod::Auto, SolveMethod::ConjugateGradient,
+                      SolveMethod::JacobiCG, SolveMethod::BlockJacobiCG,
+                      SolveMethod::Cholesky, SolveMethod::LDLT,
+                      SolveMethod::LU),
+    [](const ::testing::TestParamInfo<SolveMethod> &info) {
+      std::string name = solveMethodName(info.param).str();
+      std::replace(name.begin(), name.end(), '-', '_');
+      return name;
+    });
+
+TEST(SolveSession, AutoTakesConjugateGradientsForSPD) {
+  SolveSession session;
+  EXPECT_EQ(expectSolves<double>(session, spd(3, 1), 3, 1e-10).method,
+            SolveMethod::ConjugateGradient);
+}
+
+TEST(SolveSession, NonSymmetricMatricesTakeLU) {
+  for (int b : {1, 3}) {
+    SolveSession automatic;
+    EXPECT_EQ(
+        expectSolves<double>(automatic, nonSymmetric(b, 2), b, 1e-10).method,
+        SolveMethod::LU);
+    EXPECT_EQ(
+        expectSolves<float>(automatic, nonSymmetric(b, 2), b, 1e-4).method,
+        SolveMethod::LU);
+    SolveSession lu(settingsOf(SolveMethod::LU));
+    expectSolves<double>(lu, nonSymmetric(b, 2), b, 1e-10);
+  }
+}
+
+TEST(SolveSession, SymmetricMethodsRefuseNonSymmetricMatrices) {
+  for (SolveMethod method :
+       {SolveMethod::ConjugateGradient, SolveMethod::JacobiCG,
+        SolveMethod::BlockJacobiCG, SolveMethod::Cholesky, SolveMethod::LDLT})
+    EXPECT_THAT(solveError<double>(settingsOf(method), nonSymmetric(3, 2), 3),
+                HasSubstr("not symmetric"))
+        << solveMethodName(method).str();
+}
+
+TEST(SolveSession, IndefiniteMatrices) {
+  SolveSession automatic;
+  EXPECT_EQ(
+      expectSolves<double>(automatic, indefinite(3, 3), 3, 1e-10).method,
+      SolveMethod::LU);
+  SolveSession ldlt(settingsOf(SolveMethod::LDLT));
+  expectSolves<double>(ldlt, indefinite(3, 3), 3, 1e-9);
+  EXPECT_THAT(solveError<double>(settingsOf(SolveMethod::Cholesky),
+                                 indefinite(3, 3), 3),
+              HasSubstr("not positive definite"));
+}
+
+TEST(SolveSession, SingularMatrixIsAnError) {
+  Eigen::MatrixXd a = spd(3, 4);
+  a.row(5).setZero();
+  a.col(5).setZero();
+  for (SolveMethod method : {SolveMethod::Auto, SolveMethod::LU})
+    EXPECT_THAT(solveError<double>(settingsOf(method), a, 3),
+                HasSubstr("singular"));
+  EXPECT_THAT(solveError<float>(settingsOf(SolveMethod::LU), a, 3),
+              HasSubstr("singular"));
+  EXPECT_THAT(solveError<double>(settingsOf(SolveMethod::Cholesky), a, 3),
+              HasSubstr("not positive definite"));
+  EXPECT_THAT(solveError<double>(settingsOf(SolveMethod::LDLT), a, 3),
+              HasSubstr("zero pivot"));
+  EXPECT_THAT(solveError<double>(settingsOf(SolveMethod::JacobiCG), a, 3),
+              HasSubstr("diagonal entry of row 5 is zero"));
+  EXPECT_THAT(solveError<double>(settingsOf(SolveMethod::BlockJacobiCG), a, 3),
+              HasSubstr("diagonal block of block row 1 is singular"));
+}
+
+TEST(SolveSession, CappedIterativeSolveIsReported) {
+  SolveSettings settings = settingsOf(SolveMethod::ConjugateGradient);
+  settings.maxIterations = 2;
+  SolveSession session(settings);
+  BandSystem<double> system(kBlocks, 3, spd(3, 8));
+  Eigen::VectorXd rhs = randomVector(kBlocks * 3, 9);
+  std::vector<double> x(rhs.size());
+  for (int solve = 0; solve < 2; ++solve) {
+    auto report = session.solve(system.view, rhs.data(), x.data(), "capped");
+    ASSERT_TRUE(bool(report)) << llvm::toString(report.takeError());
+    EXPECT_FALSE(report->converged);
+    EXPECT_EQ(report->iterations, 2);
+    // The reported residual is the true one.
+    Eigen::VectorXd xv = Eigen::Map<Eigen::VectorXd>(x.data(), x.size());
+    EXPECT_NEAR(report->relativeResidual,
+                (rhs - system.dense * xv).norm() / rhs.norm(), 1e-12);
+    EXPECT_GT(report->relativeResidual, 1e-6);
+  }
+  std::vector<SolveStatementStats> stats = session.statistics();
+  ASSERT_EQ(stats.size(), 1u);
+  EXPECT_EQ(stats[0].statement, "capped");
+  EXPECT_EQ(stats[0].solves, 2);
+  EXPECT_EQ(stats[0].notConverged, 2);
+  EXPECT_EQ(stats[0].iterations, 4);
+
+  settings.strict = true;
+  EXPECT_THAT(solveError<double>(settings, spd(3, 8), 3),
+              HasSubstr("stopped at the iteration cap of 2"));
+}
+
+TEST(SolveSession, ToleranceIsTheTrueRelativeResidual) {
+  SolveSettings settings = settingsOf(SolveMethod::JacobiCG);
+  settings.tolerance = 1e-4;
+  SolveSession session(settings);
+  BandSystem<double> system(kBlocks, 3, spd(3, 10));
+  Eigen::VectorXd rhs = randomVector(kBlocks * 3, 11);
+  std::vector<double> x(rhs.size());
+  auto report = session.solve(system.view, rhs.data(), x.data(), "tol");
+  ASSERT_TRUE(bool(report));
+  EXPECT_TRUE(report->converged);
+  Eigen::VectorXd xv = Eigen::Map<Eigen::VectorXd>(x.data(), x.size());
+  double residual = (rhs - system.dense * xv).norm() / rhs.norm();
+  EXPECT_LE(residual, 1e-4);
+  // Stopped early: looser than a converged solve.
+  EXPECT_GT(residual, 1e-14);
+}
+
+TEST(SolveSession, FactorisationIsReusedForTheSameValues) {
+  for (SolveMethod method :
+       {SolveMethod::Cholesky, SolveMethod::LDLT, SolveMethod::LU}) {
+    SCOPED_TRACE(solveMethodName(method).str());
+    SolveSession session(settingsOf(method));
+    BandSystem<double> system(kBlocks, 3, spd(3, 12));
+    Eigen::VectorXd b1 = randomVector(kBlocks * 3, 1),
+                    b2 = randomVector(kBlocks * 3, 2);
+    std::vector<double> x(b1.size());
+    auto solve = [&](const SquareBCSRView<double> &a, const Eigen::VectorXd &b,
+                     const Eigen::MatrixXd &dense) {
+      auto report = session.solve(a, b.data(), x.data(), "reuse");
+      ASSERT_TRUE(bool(report)) << llvm::toString(report.takeError());
+      Eigen::VectorXd exact = dense.fullPivLu().solve(b);
+      for (int i = 0; i < b.size(); ++i)
+        EXPECT_NEAR(x[i], exact[i], 1e-10 * exact.norm());
+    };
+    auto expectCounts = [&](int64_t analyses, int64_t numeric,
+                            int64_t reuses) {
+      FactorisationCounts counts = session.factorisationCounts();
+      EXPECT_EQ(counts.analyses, analyses);
+      EXPECT_EQ(counts.factorisations, numeric);
+      EXPECT_EQ(counts.reuses, reuses);
+    };
+    solve(system.view, b1, system.dense);
+    solve(system.view, b2, system.dense);
+    expectCounts(1, 1, 1);
+
+    // The same values in other arrays: found by content, reused.
+    BandSystem<double> copy(kBlocks, 3, system.dense);
+    solve(copy.view, b1, copy.dense);
+    expectCounts(1, 1, 2);
+
+    // Values changed in place: a new numeric factorisation on the same
+    // analysis, never the stale one.
+    for (double &v : system.values)
+      v *= 2;
+    solve(system.view, b1, 2 * system.dense);
+    expectCounts(1, 2, 2);
+
+    // Another pattern: a new analysis.
+    BandSystem<double> scalar(kBlocks, 1, spd(1, 13));
+    solve(scalar.view, b1.head(kBlocks), scalar.dense);
+    expectCounts(2, 3, 2);
+
+    std::vector<SolveStatementStats> stats = session.statistics();
+    ASSERT_EQ(stats.size(), 1u);
+    EXPECT_EQ(stats[0].solves, 5);
+    EXPECT_EQ(stats[0].analyses, 2);
+    EXPECT_EQ(stats[0].factorisations, 3);
+    EXPECT_EQ(stats[0].reuses, 2);
+  }
+}
+
+TEST(SolveSession, HeldFactorisationOutlivesNewValues) {
+  SolveSession session;
+  BandSystem<double> system(kBlocks, 3, spd(3, 14));
+  auto held = session.factorise(FactorKind::Cholesky, system.view, "chol");
+  ASSERT_TRUE(bool(held)) << llvm::toString(held.takeError());
+  Eigen::MatrixXd first = system.dense;
+  for (double &v : system.values)
+    v *= 3;
+  auto second = session.factorise(FactorKind::Cholesky, system.view, "chol");
+  ASSERT_TRUE(bool(second));
+  EXPECT_EQ(session.factorisationCounts().factorisations, 2);
+  Eigen::VectorXd b = randomVector(kBlocks * 3, 15);
+  std::vector<double> x(b.size());
+  for (auto [factor, dense] : {std::pair(*held, first),
+                               std::pair(*second, Eigen::MatrixXd(3 * first))}) {
+    auto report = session.solveWith(*factor, b.data(), x.data(), "lltsolve");
+    ASSERT_TRUE(bool(report)) << llvm::toString(report.takeError());
+    Eigen::VectorXd exact = dense.llt().solve(b);
+    for (int i = 0; i < b.size(); ++i)
+      EXPECT_NEAR(x[i], exact[i], 1e-10 * exact.norm());
+  }
+  EXPECT_THAT(errorOf(session.factorise(FactorKind::Cholesky,
+                                        BandSystem<double>(kBlocks, 3,
+                                                           nonSymmetric(3, 2))
+                                            .view,
+                                        "chol")),
+              HasSubstr("not symmetric"));
+}
+
+/// (A + u v^T) x = b through shermanMorrison, against `exact` to
+/// `tolerance` relative to its norm; returns the method of the last step.
+SolveMethod expectShermanMorrison(SolveSession &session,
+                                  const BandSystem<double> &system,
+                                  const Eigen::VectorXd &u,
+                                  const Eigen::VectorXd &v,
+                                  const Eigen::VectorXd &b,
+                                  const Eigen::VectorXd &exact,
+                                  double tolerance) {
+  int64_t n = system.view.size();
+  std::vector<double> w(n), c(n), x(n);
+  auto solveA = [&](const Eigen::VectorXd &rhs, std::vector<double> &out) {
+    auto report = session.solve(system.view, rhs.data(), out.data(), "A");
+    ASSERT_TRUE(bool(report)) << llvm::toString(report.takeError());
+  };
+  solveA(u, w);
+  solveA(b, c);
+  auto report = session.shermanMorrison(system.view, u.data(), v.data(),
+                                        b.data(), w.data(), c.data(),
+                                        x.data(), "rank one");
+  if (!report) {
+    ADD_FAILURE() << llvm::toString(report.takeError());
+    return SolveMethod::Auto;
+  }
+  for (int64_t i = 0; i < n; ++i)
+    EXPECT_NEAR(x[i], exact[i], tolerance * exact.norm()) << i;
+  Eigen::VectorXd xv = Eigen::Map<Eigen::VectorXd>(x.data(), n);
+  double residual = (b - system.dense * xv - u * v.dot(xv)).norm() / b.norm();
+  EXPECT_NEAR(report->relativeResidual, residual, 1e-14);
+  EXPECT_LE(residual, 1e-12);
+  return report->method;
+}
+
+TEST(SolveSession, ShermanMorrisonMatchesADenseSolve) {
+  for (SolveMethod method : {SolveMethod::Cholesky, SolveMethod::Auto}) {
+    SolveSession session(settingsOf(method));
+    BandSystem<double> system(kBlocks, 3, spd(3, 20));
+    Eigen::VectorXd u = randomVector(kBlocks * 3, 21),
+                    v = randomVector(kBlocks * 3, 22),
+                    b = randomVector(kBlocks * 3, 23);
+    Eigen::MatrixXd full = system.dense + u * v.transpose();
+    EXPECT_EQ(expectShermanMorrison(session, system, u, v, b,
+                                    full.fullPivLu().solve(b), 1e-9),
+              SolveMethod::ShermanMorrison);
+    if (method == SolveMethod::Cholesky) {
+      // Both solves with A share one factorisation.
+      EXPECT_EQ(session.factorisationCounts().factorisations, 1);
+      EXPECT_EQ(session.factorisationCounts().reuses, 1);
+    }
+  }
+}
+
+TEST(SolveSession, ShermanMorrisonFallsBackToTheBorderedSystem) {
+  // v = -(1 - 1e-10) w / |w|^2 for w = A^-1 u, plus a part orthogonal to
+  // w: 1 + v.w = 1e-10 while |v||w| is about 1, so the formula would
+  // divide by a number tiny next to the terms it came from. A + u v^T is
+  // regular (det = 1e-10 det A) but ill-conditioned; with b = (A + u v^T) x
+  // for a known x, LU on the bordered system (backward stable) keeps the
+  // residual at rounding level and x to 1e-4.
+  SolveSession session(settingsOf(SolveMethod::LU));
+  BandSystem<double> system(kBlocks, 3, nonSymmetric(3, 24));
+  Eigen::VectorXd u = randomVector(kBlocks * 3, 25),
+                  x = randomVector(kBlocks * 3, 26);
+  Eigen::VectorXd w = system.dense.fullPivLu().solve(u);
+  Eigen::VectorXd other = randomVector(kBlocks * 3, 27);
+  other -= other.dot(w) / w.squaredNorm() * w;
+  Eigen::VectorXd v = -(1 - 1e-10) * w / w.squaredNorm() +
+                      0.5 * other / (other.norm() * w.norm());
+  Eigen::VectorXd b = system.dense * x + u * v.dot(x);
+  EXPECT_EQ(expectShermanMorrison(session, system, u, v, b, x, 1e-4),
+            SolveMethod::BorderedLU);
+  std::vector<SolveStatementStats> stats = session.statistics();
+  ASSERT_EQ(stats.size(), 2u);
+  EXPECT_EQ(stats[1].statement, "rank one");
+  EXPECT_EQ(stats[1].methods,
+            std::vector<SolveMethod>{SolveMethod::BorderedLU});
+}
+
+TEST(SolveSession, ZeroRightHandSideGivesZero) {
+  SolveSession session(settingsOf(SolveMethod::Cholesky));
+  BandSystem<double> system(kBlocks, 3, spd(3, 5));
+  std::vector<double> b(kBlocks * 3, 0.0), x(kBlocks * 3, 3.0);
+  auto report = session.solve(system.view, b.data(), x.data(), "zero");
+  ASSERT_TRUE(bool(report));
+  EXPECT_EQ(x, b);
+}
+
+TEST(SolveSession, NonFiniteRightHandSideIsAnError) {
+  SolveSession session;
+  BandSystem<double> system(kBlocks, 3, spd(3, 6));
+  std::vector<double> b(kBlocks * 3, 1.0), x(kBlocks * 3);
+  b[4] = std::nan("");
+  EXPECT_THAT(errorOf(session.solve(system.view, b.data(), x.data(), "nan")),
+              HasSubstr("NaN"));
+}
+
+TEST(SolveSession, MethodNamesRoundTrip) {
+  for (SolveMethod method :
+       {SolveMethod::Auto, SolveMethod::ConjugateGradient,
+        SolveMethod::JacobiCG, SolveMethod::BlockJacobiCG,
+        SolveMethod::Cholesky, SolveMethod::LDLT, SolveMethod::LU})
+    EXPECT_EQ(parseSolveMethod(solveMethodName(method)), method);
+  EXPECT_EQ(parseSolveMethod("qr"), std::nullopt);
+  SolveSettings bad;
+  bad.tolerance = 2.0;
+  EXPECT_THAT(errorOf(checkSolveSettings(bad, "--tol")),
+              HasSubstr("--tol: the tolerance must lie between 0 and 1"));
+}
+
+TEST(IsSymmetric, MissingMirrorBlockCountsAsZero) {
+  // Blocks (0, 0), (0, 1), (1, 1): symmetric only while (0, 1) is zero.
+  std::vector<int32_t> rowptr{0, 2, 3}, colidx{0, 1, 1};
+  std::vector<double> values{2.0, 0.0, 3.0};
+  SquareBCSRView<double> view;
+  view.rows = 2;
+  view.rowptr = rowptr.data();
+  view.colidx = colidx.data();
+  view.values = values.data();
+  EXPECT_TRUE(isSymmetric(view, 1e-12));
+  values[1] = 1e-3;
+  EXPECT_FALSE(isSymmetric(view, 1e-12));
+}
+
+TEST(IsSymmetric, BlocksMustBeTransposes) {
+  Eigen::MatrixXd a = spd(3, 7);
+  EXPECT_TRUE(isSymmetric(BandSystem<double>(kBlocks, 3, a).view, 1e-12));
+  // A symmetric block pattern whose off-diagonal blocks are not transposed.
+  a(0, 4) += 1.0;
+  EXPECT_FALSE(isSymmetric(BandSystem<double>(kBlocks, 3, a).view, 1e-12));
+}
+
+} // namespace

@@ -32,11 +32,13 @@ llvm::Expected<llvm::orc::JITTargetMachineBuilder> simit::hostTarget() {
   return target;
 }
 
-/// Names the symbols the object needs that neither the runtime nor the
-/// process (its libraries, and the host libraries loaded for `extern
-/// func`s) defines, before the JIT would fail on them less clearly.
+/// Names the symbols the object needs that neither the runtime, the OpenMP
+/// runtime nor the process (its libraries, and the host libraries loaded
+/// for `extern func`s) defines, before the JIT would fail on them less
+/// clearly.
 static llvm::Error checkExternalSymbols(llvm::StringRef object,
                                         const llvm::orc::SymbolMap &runtime,
+                                        llvm::sys::DynamicLibrary &openMP,
                                         llvm::orc::MangleAndInterner &mangle) {
   auto file = llvm::object::ObjectFile::createObjectFile(
       llvm::MemoryBufferRef(object, "simit-module.o"));
@@ -49,6 +51,7 @@ static llvm::Error checkExternalSymbols(llvm::StringRef object,
       continue;
     auto name = symbol.getName();
     if (!name || name->empty() || runtime.count(mangle(*name)) ||
+        openMP.getAddressOfSymbol(name->str().c_str()) ||
         llvm::sys::DynamicLibrary::SearchForAddressOfSymbol(name->str()))
       continue;
     missing += (missing.empty() ? "" : ", ") + name->str();
@@ -82,18 +85,25 @@ simit::loadObjectCode(const ObjectCode &code) {
     return jit.takeError();
   llvm::orc::MangleAndInterner mangle((*jit)->getExecutionSession(),
                                       (*jit)->getDataLayout());
-  llvm::orc::SymbolMap runtime = runtimeSymbolMap(mangle);
-  if (llvm::Error err = checkExternalSymbols(code.object, runtime, mangle))
-    return err;
-  if (llvm::Error err = (*jit)->getMainJITDylib().define(
-          llvm::orc::absoluteSymbols(std::move(runtime))))
-    return std::move(err);
   // OpenMP calls (__kmpc_*) go to the runtime the engine is linked with,
   // looked up in its own file: a process that loaded the engine locally
   // (Python's extension modules) does not export its symbols.
   std::string openMP = openMPLibraryPath();
-  if (openMP.empty())
-    return llvm::createStringError("the OpenMP runtime cannot be found");
+  std::string why;
+  llvm::sys::DynamicLibrary openMPLibrary =
+      openMP.empty() ? llvm::sys::DynamicLibrary()
+                     : llvm::sys::DynamicLibrary::getLibrary(openMP.c_str(),
+                                                             &why);
+  if (!openMPLibrary.isValid())
+    return llvm::createStringError("the OpenMP runtime cannot be found" +
+                                   (why.empty() ? "" : ": " + why));
+  llvm::orc::SymbolMap runtime = runtimeSymbolMap(mangle);
+  if (llvm::Error err =
+          checkExternalSymbols(code.object, runtime, openMPLibrary, mangle))
+    return err;
+  if (llvm::Error err = (*jit)->getMainJITDylib().define(
+          llvm::orc::absoluteSymbols(std::move(runtime))))
+    return std::move(err);
   auto openMPSymbols = llvm::orc::DynamicLibrarySearchGenerator::Load(
       openMP.c_str(), (*jit)->getDataLayout().getGlobalPrefix());
   if (!openMPSymbols)

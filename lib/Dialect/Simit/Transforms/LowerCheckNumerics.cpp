@@ -86,13 +86,36 @@ LogicalResult FunctionLowering::scanForNonFinite(Operation *op) {
     StringAttr rowSet = storage.isMatrix() ? storage.rows : firstSet(type);
     StringAttr colSet = storage.isMatrix() ? storage.cols : StringAttr();
 
+    // An assembly over an edge set whose endpoints are the result's row (and
+    // column) set: its endpoint array lets the runtime name the elements
+    // that assembled the bad block (a tet, not only one of its vertices).
+    Value mapEndpoints;
+    int64_t mapCardinality = 0;
+    StringAttr mapSet;
+    if (isa<MapOp, AssembleOp>(op)) {
+      auto set = cast<SetType>((isa<MapOp>(op) ? cast<MapOp>(op).getSet()
+                                               : cast<AssembleOp>(op).getSet())
+                                   .getType());
+      if (!set.isGrid() && set.getCardinality() > 0 && set.isHomogeneous() &&
+          set.getEndpoint(0) == rowSet && (!colSet || colSet == rowSet) &&
+          layout != SIMIT_NUMERICS_STENCIL) {
+        mapCardinality = set.getCardinality();
+        mapSet = set.getName();
+        ReassociationIndices both = {0, 1};
+        mapEndpoints = memref::CollapseShapeOp::create(
+            b, loc, getEndpoints(set), ArrayRef<ReassociationIndices>{both});
+      }
+    }
+    if (!mapEndpoints)
+      mapEndpoints = emptyIndexArray();
+
     Type component = type.getComponentType();
     Type ptr = LLVM::LLVMPointerType::get(ctx);
     auto values = UnrankedMemRefType::get(component, Attribute());
     auto calleeType = FunctionType::get(
         ctx,
         {values, b.getI32Type(), b.getI64Type(), indexArray, indexArray, ptr,
-         ptr, ptr, ptr},
+         ptr, ptr, ptr, indexArray, b.getI64Type(), ptr},
         {});
     StringRef calleeName = component.isF64() ? "simit_rt_check_numerics_f64"
                                              : "simit_rt_check_numerics_f32";
@@ -112,7 +135,11 @@ LogicalResult FunctionLowering::scanForNonFinite(Operation *op) {
                    rowptr, colidx, stringConstant(loc, what.getValue()),
                    stringConstant(loc, name.getValue()),
                    stringConstant(loc, rowSet ? rowSet.getValue() : ""),
-                   stringConstant(loc, colSet ? colSet.getValue() : "")});
+                   stringConstant(loc, colSet ? colSet.getValue() : ""),
+                   mapEndpoints,
+                   arith::ConstantIntOp::create(b, loc, b.getI64Type(),
+                                                mapCardinality),
+                   stringConstant(loc, mapSet ? mapSet.getValue() : "")});
   }
   return success();
 }

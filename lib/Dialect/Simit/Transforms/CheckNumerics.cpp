@@ -83,7 +83,8 @@ std::optional<Description> describe(Operation *op, ModuleOp module) {
       return std::nullopt;
     for (unsigned i = 0; i < op->getNumResults(); ++i)
       description.results.push_back(resultName(callee, i));
-    description.op = ("map " + calleeName.getValue() + " to " +
+    description.op = ((op->getNumResults() ? "map " : "apply ") +
+                      calleeName.getValue() + " to " +
                       cast<SetType>(set.getType()).getName().getValue() +
                       sourcePositionSuffix(op))
                          .str();

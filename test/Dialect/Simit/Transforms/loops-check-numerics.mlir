@@ -17,10 +17,12 @@
 // CHECK-DAG: llvm.mlir.global internal constant @[[SOLUTION:simit_str_[0-9A-F]+]]("solution\00")
 // CHECK-DAG: llvm.mlir.global internal constant @[[POINTS:simit_str_[0-9A-F]+]]("points\00")
 // CHECK-DAG: llvm.mlir.global internal constant @[[SPRINGS:simit_str_[0-9A-F]+]]("springs\00")
+// CHECK-DAG: llvm.mlir.global internal constant @[[APPLY:simit_str_[0-9A-F]+]]("apply shift to points (check-numerics.sim:28:3)\00")
+// CHECK-DAG: llvm.mlir.global internal constant @[[POINTSX:simit_str_[0-9A-F]+]]("points.x\00")
 // CHECK-DAG: llvm.mlir.global internal constant @[[NONE:simit_str_[0-9A-F]+]]("\00")
 
 // CHECK-LABEL: func.func @step(
-// CHECK-SAME: %[[ENDS:[^:]*]]: memref<?x2xi32>
+// CHECK-SAME: %[[ENDS:[^:]*]]: memref<?x2xi32>, %[[XARG:[^:]*]]: memref<?xf64>
 // CHECK-SAME: %[[ROWPTR:[^:]*]]: memref<?xi32>, %[[COLIDX:[^:]*]]: memref<?xi32>, %{{[^:]*}}: memref<?x4xi32>)
 // One empty index array serves every scan that needs none.
 // CHECK: %[[EMPTY:.*]] = memref.cast %{{.*}} : memref<0xi32> to memref<?xi32>
@@ -60,7 +62,19 @@
 // CHECK-NEXT: %[[NOCARD:.*]] = arith.constant 0 : i64
 // CHECK-NEXT: %[[NOSET:.*]] = llvm.mlir.addressof @[[NONE]]
 // CHECK-NEXT: call @simit_rt_check_numerics_f64(%[[X]], %[[VECTOR]], %[[ZERO]], %[[EMPTY]], %[[EMPTY]], %[[WHAT]], %[[NAME]], %[[ROWS]], %[[COLS]], %[[EMPTY]], %[[NOCARD]], %[[NOSET]])
-// The apply of shift has no results.
+// The apply of shift writes the field points.x (the bound array): scanned
+// as a vector over points, named "points.x".
+// CHECK: scf.parallel
+// CHECK: %[[XFIELD:.*]] = memref.cast %[[XARG]] : memref<?xf64> to memref<*xf64>
+// CHECK-NEXT: %[[VECTOR:.*]] = arith.constant 0 : i32
+// CHECK-NEXT: %[[ZERO:.*]] = arith.constant 0 : i64
+// CHECK-NEXT: %[[WHAT:.*]] = llvm.mlir.addressof @[[APPLY]]
+// CHECK-NEXT: %[[NAME:.*]] = llvm.mlir.addressof @[[POINTSX]]
+// CHECK-NEXT: %[[ROWS:.*]] = llvm.mlir.addressof @[[POINTS]]
+// CHECK-NEXT: %[[COLS:.*]] = llvm.mlir.addressof @[[NONE]]
+// CHECK-NEXT: %[[NOCARD:.*]] = arith.constant 0 : i64
+// CHECK-NEXT: %[[NOSET:.*]] = llvm.mlir.addressof @[[NONE]]
+// CHECK-NEXT: call @simit_rt_check_numerics_f64(%[[XFIELD]], %[[VECTOR]], %[[ZERO]], %[[EMPTY]], %[[EMPTY]], %[[WHAT]], %[[NAME]], %[[ROWS]], %[[COLS]], %[[EMPTY]], %[[NOCARD]], %[[NOSET]])
 // CHECK-NOT: call @simit_rt_check_numerics
 // CHECK: return
 

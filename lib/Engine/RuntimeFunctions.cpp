@@ -7,7 +7,9 @@
 #include "simit/Runtime/SolveSession.h"
 #include "simit/Runtime/SparseProduct.h"
 
+#include "llvm/ADT/STLExtras.h"
 #include "llvm/ADT/SmallVector.h"
+#include "llvm/ADT/StringExtras.h"
 #include "llvm/Support/ErrorHandling.h"
 #include "llvm/Support/Format.h"
 #include "llvm/Support/InterleavedRange.h"
@@ -499,12 +501,51 @@ template <typename T> bool allFinite(const T *values, int64_t n) {
   return !bad;
 }
 
+/// ", assembled from tets 3, 8": the elements of a mapped edge set (its
+/// endpoint array, `cardinality` a row) that have `row` and, for a matrix
+/// block (column >= 0), `column` among their endpoints, so that a NaN of a
+/// vertex's block is traced to the tets that can have produced it.
+std::string assembledFrom(const StridedMemRefType<int32_t, 1> &endpoints,
+                          int64_t cardinality, const char *set, int64_t row,
+                          int64_t column) {
+  const int64_t listed = 32;
+  llvm::SmallVector<int64_t> found;
+  int64_t count = 0;
+  for (int64_t e = 0; e < endpoints.sizes[0] / cardinality; ++e) {
+    bool hasRow = false, hasColumn = column < 0;
+    for (int64_t k = 0; k < cardinality; ++k) {
+      int32_t end =
+          endpoints.data[endpoints.offset +
+                         (e * cardinality + k) * endpoints.strides[0]];
+      hasRow |= end == row;
+      hasColumn |= end == column;
+    }
+    if (!hasRow || !hasColumn)
+      continue;
+    if (++count <= listed)
+      found.push_back(e);
+  }
+  if (found.empty())
+    return "";
+  std::string text = ", assembled from " + std::string(set) + " " +
+                     llvm::join(llvm::map_range(found,
+                                                [](int64_t e) {
+                                                  return std::to_string(e);
+                                                }),
+                                ", ");
+  if (count > listed)
+    text += ", ... (" + std::to_string(count) + " in all)";
+  return text;
+}
+
 template <typename T>
 void checkNumerics(const UnrankedMemRefType<T> &values, int32_t layout,
                    int64_t perRow, const StridedMemRefType<int32_t, 1> &rowptr,
                    const StridedMemRefType<int32_t, 1> &colidx,
                    const char *what, const char *result, const char *rowSet,
-                   const char *colSet) {
+                   const char *colSet,
+                   const StridedMemRefType<int32_t, 1> &mapEndpoints,
+                   int64_t mapCardinality, const char *mapSet) {
   DynamicMemRefType<T> array(values);
   if (numericsProblem || array.rank == 0)
     return;
@@ -551,6 +592,9 @@ void checkNumerics(const UnrankedMemRefType<T> &values, int32_t layout,
         os << " component " << indices[0];
       else if (!indices.empty())
         os << " component (" << llvm::interleaved(indices) << ")";
+      if (mapCardinality > 0)
+        os << assembledFrom(mapEndpoints, mapCardinality, mapSet, row,
+                            layout == SIMIT_NUMERICS_VECTOR ? -1 : column);
       numericsProblem = std::move(text);
       return;
     }
@@ -561,18 +605,22 @@ extern "C" void _mlir_ciface_simit_rt_check_numerics_f64(
     UnrankedMemRefType<double> *values, int32_t layout, int64_t perRow,
     StridedMemRefType<int32_t, 1> *rowptr,
     StridedMemRefType<int32_t, 1> *colidx, const char *what,
-    const char *result, const char *rowSet, const char *colSet) {
+    const char *result, const char *rowSet, const char *colSet,
+    StridedMemRefType<int32_t, 1> *mapEndpoints, int64_t mapCardinality,
+    const char *mapSet) {
   checkNumerics(*values, layout, perRow, *rowptr, *colidx, what, result,
-                rowSet, colSet);
+                rowSet, colSet, *mapEndpoints, mapCardinality, mapSet);
 }
 
 extern "C" void _mlir_ciface_simit_rt_check_numerics_f32(
     UnrankedMemRefType<float> *values, int32_t layout, int64_t perRow,
     StridedMemRefType<int32_t, 1> *rowptr,
     StridedMemRefType<int32_t, 1> *colidx, const char *what,
-    const char *result, const char *rowSet, const char *colSet) {
+    const char *result, const char *rowSet, const char *colSet,
+    StridedMemRefType<int32_t, 1> *mapEndpoints, int64_t mapCardinality,
+    const char *mapSet) {
   checkNumerics(*values, layout, perRow, *rowptr, *colidx, what, result,
-                rowSet, colSet);
+                rowSet, colSet, *mapEndpoints, mapCardinality, mapSet);
 }
 
 namespace {

@@ -280,9 +280,16 @@ llvm::Error SceneRunner::runAll(std::vector<NamedFunction> &group,
   for (NamedFunction &named : group) {
     std::string where =
         "function '" + named.name + "' (frame " + std::to_string(frame) + ")";
-    if (llvm::Error err = named.function.run())
-      return llvm::createStringError(where + ": " +
-                                     llvm::toString(std::move(err)));
+    if (llvm::Error err = named.function.run()) {
+      std::string message = llvm::toString(std::move(err));
+      // An assembly's NaN that a later statement tripped over (a solve of
+      // a NaN right-hand side) is the cause: it is named first.
+      if (options.checkNumerics)
+        if (std::optional<std::string> problem = takeNumericsProblem())
+          return llvm::createStringError("check-numerics: " + where + ": " +
+                                         *problem + "; then " + message);
+      return llvm::createStringError(where + ": " + message);
+    }
     if (!options.checkNumerics)
       continue;
     // First the assembly or solve that produced a NaN or infinity, then

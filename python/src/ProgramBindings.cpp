@@ -196,6 +196,13 @@ py::object call(PyFunction &self, const py::args &args) {
       return self.function.run();
     }();
     self.running = false;
+    // An assembly's NaN that a later statement tripped over (a solve of a
+    // NaN right-hand side) is the cause: it is named first.
+    if (err && self.checkNumerics)
+      if (std::optional<std::string> problem = takeNumericsProblem())
+        throw NumericsError("check-numerics: function '" + self.name +
+                            "': " + *problem + "; then " +
+                            llvm::toString(std::move(err)));
     check(std::move(err));
   }
   if (self.checkNumerics) {

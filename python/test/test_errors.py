@@ -87,3 +87,55 @@ def test_check_numerics_names_the_assembly():
         program.step()
     assert info.value.file.endswith("springs.sim")
     assert info.value.line is not None
+
+
+ZERO_LENGTH_SOLVE = """element P
+  x : tensor[3](float);
+  u : tensor[3](float);
+end
+element S
+  k : float;
+end
+extern ps : set{P};
+extern ss : set{S}(ps, ps);
+
+const I = [1.0, 0.0, 0.0; 0.0, 1.0, 0.0; 0.0, 0.0, 1.0];
+
+func spring(s : S, p : (P*2))
+    -> (K : tensor[ps,ps](tensor[3,3](float)), f : tensor[ps](tensor[3](float)))
+  d = p(1).x - p(0).x;
+  K(p(0),p(0)) = s.k * I;
+  K(p(1),p(1)) = s.k * I;
+  f(p(0)) = d / norm(d);
+  f(p(1)) = -d / norm(d);
+end
+
+export func step()
+  K, f = map spring to ss reduce +;
+  ps.u = K \\ f;
+end
+"""
+
+
+def test_check_numerics_names_the_assembly_before_the_solve_it_broke():
+    program = simit.compile(ZERO_LENGTH_SOLVE, name="zero.sim",
+                            check_numerics=True)
+    points = simit.Set("ps", size=2)
+    points.add_field("x", shape=3)
+    points.add_field("u", shape=3)
+    springs = simit.Set("ss", [points, points], endpoints=[[0, 1]])
+    springs.add_field("k")
+    springs["k"][:] = 1.0
+    program.bind(ps=points, ss=springs)
+    # Both points at the origin: d / |d| = 0 / 0, and the solve of the nan
+    # right-hand side fails; the assembly is named first, with the spring.
+    with pytest.raises(simit.NumericsError,
+                       match=r"map spring to ss \(zero.sim:23:\d+\) produced "
+                             r"nan: f element \(ps 0\) component 0, "
+                             r"assembled from ss 0; then solve \(zero.sim:"
+                             r"24:\d+\): the right-hand side holds a NaN"):
+        program.step()
+    # Nothing of that failure is left behind for the next call.
+    points["x"][1] = [1.0, 0.0, 0.0]
+    program.step()
+    np.testing.assert_allclose(points["u"], [[1, 0, 0], [-1, 0, 0]])

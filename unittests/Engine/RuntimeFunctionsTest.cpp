@@ -181,16 +181,19 @@ template <typename T, int N>
 void scan(StridedMemRefType<T, N> &m, int32_t layout, int64_t perRow,
           StridedMemRefType<int32_t, 1> &rowptr,
           StridedMemRefType<int32_t, 1> &colidx, const char *result,
-          const char *rowSet, const char *colSet) {
+          const char *rowSet, const char *colSet,
+          StridedMemRefType<int32_t, 1> mapEndpoints = {nullptr, nullptr, 0,
+                                                        {0}, {1}},
+          int64_t mapCardinality = 0) {
   UnrankedMemRefType<T> unranked{N, &m};
   if constexpr (std::is_same_v<T, double>)
-    _mlir_ciface_simit_rt_check_numerics_f64(&unranked, layout, perRow,
-                                             &rowptr, &colidx, "map f to e",
-                                             result, rowSet, colSet);
+    _mlir_ciface_simit_rt_check_numerics_f64(
+        &unranked, layout, perRow, &rowptr, &colidx, "map f to e", result,
+        rowSet, colSet, &mapEndpoints, mapCardinality, "e");
   else
-    _mlir_ciface_simit_rt_check_numerics_f32(&unranked, layout, perRow,
-                                             &rowptr, &colidx, "map f to e",
-                                             result, rowSet, colSet);
+    _mlir_ciface_simit_rt_check_numerics_f32(
+        &unranked, layout, perRow, &rowptr, &colidx, "map f to e", result,
+        rowSet, colSet, &mapEndpoints, mapCardinality, "e");
 }
 } // namespace
 
@@ -221,6 +224,30 @@ TEST(RuntimeFunctionsTest, CheckNumericsNamesTheFirstBadBlock) {
   scan(vals, SIMIT_NUMERICS_PATTERN, 0, rp, ci, "K", "p", "q");
   EXPECT_EQ(simit::takeNumericsProblem(),
             "map f to e produced inf: f element (p 1) component 0");
+}
+
+// An assembly over an edge set e of triangles (0 1 2), (1 2 3), (2 3 4)
+// names the elements that have the bad block's row (and column) among their
+// endpoints: vertex 1 is in triangles 0 and 1, the block (3, 4) only in 2.
+TEST(RuntimeFunctionsTest, CheckNumericsNamesTheAssemblingElements) {
+  std::vector<int32_t> triangles{0, 1, 2, 1, 2, 3, 2, 3, 4};
+  auto ends = describe<int32_t, 1>(triangles.data(), {9});
+  auto none = describe<int32_t, 1>(nullptr, {0});
+  std::vector<double> vector{0.0, NAN, 0.0, 0.0, 0.0};
+  auto vm = describe<double, 1>(vector.data(), {5});
+  scan(vm, SIMIT_NUMERICS_VECTOR, 0, none, none, "f", "p", "", ends, 3);
+  EXPECT_EQ(simit::takeNumericsProblem(),
+            "map f to e produced nan: f element (p 1), assembled from e 0, 1");
+
+  // Row 3 holds the blocks (3, 2), (3, 4): the second is the first bad one.
+  std::vector<int32_t> rowptr{0, 0, 0, 0, 2, 2}, colidx{2, 4};
+  auto rp = describe<int32_t, 1>(rowptr.data(), {6});
+  auto ci = describe<int32_t, 1>(colidx.data(), {2});
+  std::vector<double> blocks{1.0, INFINITY};
+  auto bm = describe<double, 1>(blocks.data(), {2});
+  scan(bm, SIMIT_NUMERICS_PATTERN, 0, rp, ci, "K", "p", "p", ends, 3);
+  EXPECT_EQ(simit::takeNumericsProblem(),
+            "map f to e produced inf: K block (p 3, p 4), assembled from e 2");
 }
 
 // The other layouts place block k by their own rule; scalar blocks name no

@@ -170,6 +170,31 @@ TEST(SolveSession, NonSymmetricMatricesTakeLU) {
   }
 }
 
+// A float32 assembly rounds a block and its mirror differently: an SPD
+// matrix whose upper triangle is off by 3e-7 relative (a few float32
+// roundings) is symmetric for float32 programs, so auto takes CG and cg
+// and cholesky solve it; in float64 the same matrix is not symmetric, and
+// in float32 a difference of 1e-3 is not either.
+TEST(SolveSession, Float32SymmetryAllowsRounding) {
+  auto skewed = [](double by) {
+    Eigen::MatrixXd a = spd(3, 21);
+    Eigen::MatrixXd upper = a.triangularView<Eigen::StrictlyUpper>();
+    return Eigen::MatrixXd(a + by * upper);
+  };
+  SolveSession automatic;
+  EXPECT_EQ(expectSolves<float>(automatic, skewed(3e-7), 3, 1e-4).method,
+            SolveMethod::ConjugateGradient);
+  for (SolveMethod method : {SolveMethod::ConjugateGradient,
+                             SolveMethod::Cholesky}) {
+    SolveSession session(settingsOf(method));
+    expectSolves<float>(session, skewed(3e-7), 3, 1e-4);
+    EXPECT_THAT(solveError<double>(settingsOf(method), skewed(3e-7), 3),
+                HasSubstr("not symmetric"));
+    EXPECT_THAT(solveError<float>(settingsOf(method), skewed(1e-3), 3),
+                HasSubstr("not symmetric"));
+  }
+}
+
 TEST(SolveSession, SymmetricMethodsRefuseNonSymmetricMatrices) {
   for (SolveMethod method :
        {SolveMethod::ConjugateGradient, SolveMethod::JacobiCG,

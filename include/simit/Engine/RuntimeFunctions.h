@@ -172,20 +172,30 @@ enum SimitNumericsLayout : int32_t {
 ///   "<what> produced nan: <result> block (<rowSet> r, <colSet> c)
 ///    component (i, j)" (vectors: "element (<rowSet> r)"; scalar blocks
 ///   name no component).
-/// rowptr and colidx are read only by the layouts that name them.
+/// rowptr and colidx are read only by the layouts that name them. For an
+/// assembly over an edge set whose endpoints are the result's row (and
+/// column) set, mapEndpoints is its endpoint array (mapCardinality a row,
+/// memref<?xi32>) and mapSet its name, and the message ends with the
+/// elements that have the block's row (and column) as endpoints:
+///   ", assembled from tets 3, 8"; otherwise mapCardinality is 0.
 /// MLIR: func.func private @simit_rt_check_numerics_f64(memref<*xf64>, i32,
 ///   i64, memref<?xi32>, memref<?xi32>, !llvm.ptr, !llvm.ptr, !llvm.ptr,
-///   !llvm.ptr) attributes {llvm.emit_c_interface}, likewise _f32.
+///   !llvm.ptr, memref<?xi32>, i64, !llvm.ptr)
+///   attributes {llvm.emit_c_interface}, likewise _f32.
 void _mlir_ciface_simit_rt_check_numerics_f64(
     UnrankedMemRefType<double> *values, int32_t layout, int64_t perRow,
     StridedMemRefType<int32_t, 1> *rowptr,
     StridedMemRefType<int32_t, 1> *colidx, const char *what,
-    const char *result, const char *rowSet, const char *colSet);
+    const char *result, const char *rowSet, const char *colSet,
+    StridedMemRefType<int32_t, 1> *mapEndpoints, int64_t mapCardinality,
+    const char *mapSet);
 void _mlir_ciface_simit_rt_check_numerics_f32(
     UnrankedMemRefType<float> *values, int32_t layout, int64_t perRow,
     StridedMemRefType<int32_t, 1> *rowptr,
     StridedMemRefType<int32_t, 1> *colidx, const char *what,
-    const char *result, const char *rowSet, const char *colSet);
+    const char *result, const char *rowSet, const char *colSet,
+    StridedMemRefType<int32_t, 1> *mapEndpoints, int64_t mapCardinality,
+    const char *mapSet);
 
 /// Dense solvers of small local f64 matrices (Eigen). Matrices and vectors
 /// are row-major memref<?xf64>; a factorisation is an opaque heap handle

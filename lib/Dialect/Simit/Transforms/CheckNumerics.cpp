@@ -44,29 +44,59 @@ std::string resultName(func::FuncOp callee, unsigned index) {
   return ("result " + Twine(index)).str();
 }
 
-/// What `op` is in the source and the names of its results, if its results
-/// are scanned.
-std::optional<std::pair<std::string, SmallVector<std::string>>>
-describe(Operation *op, ModuleOp module) {
-  if (!llvm::any_of(op->getResultTypes(), isScanned))
-    return std::nullopt;
-  SmallVector<std::string> names;
+/// The float fields of its element that element function `callee` writes
+/// (an `inout` element: `t.B = inv(Dm)`), each once, in order.
+SmallVector<std::string> writtenFloatFields(func::FuncOp callee) {
+  SmallVector<std::string> fields;
+  if (!callee || callee.isExternal() || callee.getNumArguments() == 0)
+    return fields;
+  Value element = callee.getArgument(0);
+  callee.walk([&](ElemWriteOp write) {
+    auto type = dyn_cast<ElementType>(element.getType());
+    if (write.getElement() != element || !type)
+      return;
+    Type field = type.getFieldType(write.getField());
+    if (field && isa<FloatType>(getComponentType(field)) &&
+        !llvm::is_contained(fields, write.getField()))
+      fields.push_back(write.getField().str());
+  });
+  return fields;
+}
+
+/// What `op` is in the source, the names of its results, and the fields of
+/// the mapped set its element function writes, if any of them is scanned.
+struct Description {
+  std::string op;
+  SmallVector<std::string> results, fields;
+};
+
+std::optional<Description> describe(Operation *op, ModuleOp module) {
+  bool scansResults = llvm::any_of(op->getResultTypes(), isScanned);
+  Description description;
   if (isa<MapOp, AssembleOp>(op)) {
     auto calleeName = op->getAttrOfType<FlatSymbolRefAttr>("callee");
     auto callee = module.lookupSymbol<func::FuncOp>(calleeName);
     Value set = isa<MapOp>(op) ? cast<MapOp>(op).getSet()
                                : cast<AssembleOp>(op).getSet();
+    description.fields = writtenFloatFields(callee);
+    if (!scansResults && description.fields.empty())
+      return std::nullopt;
     for (unsigned i = 0; i < op->getNumResults(); ++i)
-      names.push_back(resultName(callee, i));
-    return std::make_pair(("map " + calleeName.getValue() + " to " +
-                           cast<SetType>(set.getType()).getName().getValue() +
-                           sourcePositionSuffix(op))
-                              .str(),
-                          names);
+      description.results.push_back(resultName(callee, i));
+    description.op = ((op->getNumResults() ? "map " : "apply ") +
+                      calleeName.getValue() + " to " +
+                      cast<SetType>(set.getType()).getName().getValue() +
+                      sourcePositionSuffix(op))
+                         .str();
+    return description;
   }
-  if (isa<SolveOp>(op))
-    return std::make_pair("solve" + sourcePositionSuffix(op),
-                          SmallVector<std::string>{"solution"});
+  if (!scansResults)
+    return std::nullopt;
+  if (isa<SolveOp>(op)) {
+    description.op = "solve" + sourcePositionSuffix(op);
+    description.results = {"solution"};
+    return description;
+  }
   auto call = dyn_cast<func::CallOp>(op);
   if (!call)
     return std::nullopt;
@@ -76,8 +106,9 @@ describe(Operation *op, ModuleOp module) {
              : StringAttr();
   if (!simitName || !simitName.getValue().contains_insensitive("solve"))
     return std::nullopt;
-  names.assign(call.getNumResults(), "solution");
-  return std::make_pair((simitName.getValue() + sourcePositionSuffix(op)).str(), names);
+  description.op = (simitName.getValue() + sourcePositionSuffix(op)).str();
+  description.results.assign(call.getNumResults(), "solution");
+  return description;
 }
 
 struct CheckNumerics
@@ -92,16 +123,21 @@ struct CheckNumerics
         auto description = describe(op, module);
         if (!description)
           return;
-        SmallVector<Attribute> names;
-        for (const std::string &name : description->second)
-          names.push_back(StringAttr::get(ctx, name));
-        op->setAttr(kCheckNumericsAttr,
-                    DictionaryAttr::get(
-                        ctx, {NamedAttribute(StringAttr::get(ctx, "op"),
-                                             StringAttr::get(
-                                                 ctx, description->first)),
-                              NamedAttribute(StringAttr::get(ctx, "results"),
-                                             ArrayAttr::get(ctx, names))}));
+        auto strings = [&](ArrayRef<std::string> texts) {
+          SmallVector<Attribute> attrs;
+          for (const std::string &text : texts)
+            attrs.push_back(StringAttr::get(ctx, text));
+          return ArrayAttr::get(ctx, attrs);
+        };
+        SmallVector<NamedAttribute> marks = {
+            NamedAttribute(StringAttr::get(ctx, "op"),
+                           StringAttr::get(ctx, description->op)),
+            NamedAttribute(StringAttr::get(ctx, "results"),
+                           strings(description->results))};
+        if (!description->fields.empty())
+          marks.push_back(NamedAttribute(StringAttr::get(ctx, "fields"),
+                                         strings(description->fields)));
+        op->setAttr(kCheckNumericsAttr, DictionaryAttr::get(ctx, marks));
       });
     }
   }

@@ -55,6 +55,50 @@ LogicalResult FunctionLowering::scanForNonFinite(Operation *op) {
   MLIRContext *ctx = b.getContext();
   int64_t dyn = ShapedType::kDynamic;
   auto indexArray = MemRefType::get({dyn}, b.getI32Type());
+  SetType mapped;
+  if (isa<MapOp, AssembleOp>(op))
+    mapped = cast<SetType>((isa<MapOp>(op) ? cast<MapOp>(op).getSet()
+                                           : cast<AssembleOp>(op).getSet())
+                               .getType());
+
+  // One call of the runtime's scan; mapCardinality 0 names no elements of
+  // the mapped set.
+  auto scan = [&](Value array, Type component, SimitNumericsLayout layout,
+                  int64_t perRow, Value rowptr, Value colidx, StringRef name,
+                  StringAttr rowSet, StringAttr colSet, Value mapEndpoints,
+                  int64_t mapCardinality, StringAttr mapSet) -> LogicalResult {
+    Type ptr = LLVM::LLVMPointerType::get(ctx);
+    auto values = UnrankedMemRefType::get(component, Attribute());
+    auto calleeType = FunctionType::get(
+        ctx,
+        {values, b.getI32Type(), b.getI64Type(), indexArray, indexArray, ptr,
+         ptr, ptr, ptr, indexArray, b.getI64Type(), ptr},
+        {});
+    StringRef calleeName = component.isF64() ? "simit_rt_check_numerics_f64"
+                                             : "simit_rt_check_numerics_f32";
+    func::FuncOp callee = declareRuntime(loc, calleeName, calleeType);
+    if (!callee)
+      return op->emitError("@") << calleeName
+                                << " is declared with another type";
+    func::CallOp::create(
+        b, loc, callee,
+        ValueRange{memref::CastOp::create(b, loc, values, array),
+                   arith::ConstantIntOp::create(b, loc, b.getI32Type(),
+                                                layout),
+                   arith::ConstantIntOp::create(b, loc, b.getI64Type(),
+                                                perRow),
+                   rowptr ? rowptr : emptyIndexArray(),
+                   colidx ? colidx : emptyIndexArray(),
+                   stringConstant(loc, what.getValue()),
+                   stringConstant(loc, name),
+                   stringConstant(loc, rowSet ? rowSet.getValue() : ""),
+                   stringConstant(loc, colSet ? colSet.getValue() : ""),
+                   mapEndpoints ? mapEndpoints : emptyIndexArray(),
+                   arith::ConstantIntOp::create(b, loc, b.getI64Type(),
+                                                mapCardinality),
+                   stringConstant(loc, mapSet ? mapSet.getValue() : "")});
+    return success();
+  };
 
   for (auto [index, result] : llvm::enumerate(op->getResults())) {
     auto type = dyn_cast<SystemTensorType>(result.getType());
@@ -86,33 +130,43 @@ LogicalResult FunctionLowering::scanForNonFinite(Operation *op) {
     StringAttr rowSet = storage.isMatrix() ? storage.rows : firstSet(type);
     StringAttr colSet = storage.isMatrix() ? storage.cols : StringAttr();
 
-    Type component = type.getComponentType();
-    Type ptr = LLVM::LLVMPointerType::get(ctx);
-    auto values = UnrankedMemRefType::get(component, Attribute());
-    auto calleeType = FunctionType::get(
-        ctx,
-        {values, b.getI32Type(), b.getI64Type(), indexArray, indexArray, ptr,
-         ptr, ptr, ptr},
-        {});
-    StringRef calleeName = component.isF64() ? "simit_rt_check_numerics_f64"
-                                             : "simit_rt_check_numerics_f32";
-    func::FuncOp callee = declareRuntime(loc, calleeName, calleeType);
-    if (!callee)
-      return op->emitError("@") << calleeName
-                                << " is declared with another type";
+    // An assembly over an edge set whose endpoints are the result's row (and
+    // column) set: its endpoint array lets the runtime name the elements
+    // that assembled the bad block (a tet, not only one of its vertices).
+    Value mapEndpoints;
+    int64_t mapCardinality = 0;
+    StringAttr mapSet;
+    if (mapped && !mapped.isGrid() && mapped.getCardinality() > 0 &&
+        mapped.isHomogeneous() && mapped.getEndpoint(0) == rowSet &&
+        (!colSet || colSet == rowSet) && layout != SIMIT_NUMERICS_STENCIL) {
+      mapCardinality = mapped.getCardinality();
+      mapSet = mapped.getName();
+      ReassociationIndices both = {0, 1};
+      mapEndpoints = memref::CollapseShapeOp::create(
+          b, loc, getEndpoints(mapped), ArrayRef<ReassociationIndices>{both});
+    }
     auto name = index < names.size() ? cast<StringAttr>(names[index])
                                      : StringAttr::get(ctx, "");
-    func::CallOp::create(
-        b, loc, callee,
-        ValueRange{memref::CastOp::create(b, loc, values, array),
-                   arith::ConstantIntOp::create(b, loc, b.getI32Type(),
-                                                layout),
-                   arith::ConstantIntOp::create(b, loc, b.getI64Type(),
-                                                perRow),
-                   rowptr, colidx, stringConstant(loc, what.getValue()),
-                   stringConstant(loc, name.getValue()),
-                   stringConstant(loc, rowSet ? rowSet.getValue() : ""),
-                   stringConstant(loc, colSet ? colSet.getValue() : "")});
+    if (failed(scan(array, type.getComponentType(), layout, perRow, rowptr,
+                    colidx, name.getValue(), rowSet, colSet, mapEndpoints,
+                    mapCardinality, mapSet)))
+      return failure();
+  }
+
+  // The float fields the element function writes (an `inout` element, as
+  // in `t.B = inv(Dm)`): a NaN stored there is named with this statement
+  // rather than found later by the scan of the state after the function.
+  if (auto fields = marks.getAs<ArrayAttr>("fields")) {
+    for (auto field : fields.getAsRange<StringAttr>()) {
+      Type fieldType = mapped.getElement().getFieldType(field.getValue());
+      Value array = getField(mapped.getName(), field, fieldType);
+      std::string name =
+          (mapped.getName().getValue() + "." + field.getValue()).str();
+      if (failed(scan(array, getComponentType(fieldType),
+                      SIMIT_NUMERICS_VECTOR, 0, {}, {}, name,
+                      mapped.getName(), {}, {}, 0, {})))
+        return failure();
+    }
   }
   return success();
 }

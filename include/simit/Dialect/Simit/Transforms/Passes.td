@@ -288,8 +288,11 @@ def SimitCheckNumerics : Pass<"simit-check-numerics", "::mlir::ModuleOp"> {
     `simit.check_numerics = {op = "<what> (<file>:<line>:<col>)",
     results = ["<name>", ...]}`: the source construct and the name of each
     result (an element function's result name, `solution` for solves).
+    A map or apply whose element function writes float fields of its
+    element (`inout`) is marked too, with `fields = ["<field>", ...]`.
     convert-simit-to-loops then calls the runtime's scan of each such
-    result array (`simit_rt_check_numerics_f64`/`_f32`), which records the
+    result array and field (`simit_rt_check_numerics_f64`/`_f32`), which
+    records the
     first NaN or infinity of a run for the host
     (simit::takeNumericsProblem()). Run it after simit-inline-functions, so
     that the solves of inlined functions are marked;

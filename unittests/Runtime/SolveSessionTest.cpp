@@ -179,6 +179,32 @@ TEST(SolveSession, SymmetricMethodsRefuseNonSymmetricMatrices) {
         << solveMethodName(method).str();
 }
 
+TEST(SolveSession, Float32SymmetryAllowsItsRounding) {
+  // An assembly computes A(i, j) and A(j, i) apart: in float32 they differ
+  // by rounding, which must not make Cholesky refuse the matrix; a real
+  // asymmetry still does.
+  Eigen::MatrixXd a = spd(3, 21);
+  double largest = a.cwiseAbs().maxCoeff();
+  for (double skew : {1e-6, 1e-3}) {
+    Eigen::MatrixXd skewed = a;
+    skewed(4, 1) += skew * largest;
+    SolveSession session(settingsOf(SolveMethod::Cholesky));
+    BandSystem<float> system(kBlocks, 3, skewed);
+    Eigen::VectorXd rhs = randomVector(kBlocks * 3, 22);
+    std::vector<float> bv(rhs.data(), rhs.data() + rhs.size()), x(rhs.size());
+    auto report = session.solve(system.view, bv.data(), x.data(), "test");
+    if (skew < 1e-5) {
+      ASSERT_TRUE(bool(report)) << llvm::toString(report.takeError());
+      Eigen::VectorXd exact = skewed.fullPivLu().solve(rhs);
+      for (int i = 0; i < rhs.size(); ++i)
+        EXPECT_NEAR(x[i], exact[i], 1e-4 * exact.norm()) << i;
+    } else {
+      EXPECT_THAT(errorOf(std::move(report)),
+                  HasSubstr("the matrix is not symmetric"));
+    }
+  }
+}
+
 TEST(SolveSession, IndefiniteMatrices) {
   SolveSession automatic;
   EXPECT_EQ(
@@ -255,6 +281,52 @@ TEST(SolveSession, ToleranceIsTheTrueRelativeResidual) {
   EXPECT_LE(residual, 1e-4);
   // Stopped early: looser than a converged solve.
   EXPECT_GT(residual, 1e-14);
+}
+
+/// Iterations of one solve of `system` x = rhs in `session` as `statement`;
+/// x starts as NaN (never read) and must match a dense LU to 1e-8.
+int iterationsOf(SolveSession &session, const BandSystem<double> &system,
+                 const Eigen::VectorXd &rhs, llvm::StringRef statement) {
+  std::vector<double> x(rhs.size(), std::nan(""));
+  auto report = session.solve(system.view, rhs.data(), x.data(), statement);
+  if (!report) {
+    ADD_FAILURE() << llvm::toString(report.takeError());
+    return -1;
+  }
+  Eigen::VectorXd exact = system.dense.fullPivLu().solve(rhs);
+  for (int i = 0; i < rhs.size(); ++i)
+    EXPECT_NEAR(x[i], exact[i], 1e-8 * exact.norm()) << i;
+  EXPECT_TRUE(report->converged);
+  return report->iterations;
+}
+
+TEST(SolveSession, WarmStartBeginsAtTheStatementsPreviousAnswer) {
+  SolveSettings settings = settingsOf(SolveMethod::ConjugateGradient);
+  settings.tolerance = 1e-10;
+  SolveSession warm(settings);
+  settings.warmStart = false;
+  SolveSession cold(settings);
+  BandSystem<double> system(kBlocks, 3, spd(3, 12));
+  Eigen::VectorXd first = randomVector(kBlocks * 3, 13);
+  Eigen::VectorXd nearby = first + 1e-4 * randomVector(kBlocks * 3, 14);
+
+  int fromZero = iterationsOf(cold, system, first, "s");
+  EXPECT_GT(fromZero, 3);
+  EXPECT_EQ(iterationsOf(warm, system, first, "s"), fromZero);
+  // A nearby right-hand side: fewer iterations from the previous answer.
+  int coldNearby = iterationsOf(cold, system, nearby, "s");
+  EXPECT_LT(iterationsOf(warm, system, nearby, "s"), coldNearby);
+  // The same system again: the previous answer already meets the tolerance.
+  EXPECT_EQ(iterationsOf(warm, system, nearby, "s"), 0);
+  EXPECT_EQ(iterationsOf(cold, system, nearby, "s"), coldNearby);
+  // Another statement starts from zero.
+  EXPECT_EQ(iterationsOf(warm, system, nearby, "t"), coldNearby);
+  // So does a statement whose unknowns changed size.
+  BandSystem<double> smaller(kBlocks, 1, spd(1, 15));
+  Eigen::VectorXd small = randomVector(kBlocks, 16);
+  SolveSession coldSmall(settings);
+  EXPECT_EQ(iterationsOf(warm, smaller, small, "s"),
+            iterationsOf(coldSmall, smaller, small, "s"));
 }
 
 TEST(SolveSession, FactorisationIsReusedForTheSameValues) {

@@ -937,7 +937,7 @@ llvm::Error SceneParser::parseOutput(const Json &value,
 }
 
 /// "solver": "method", or {"method": ..., "tol": ..., "maxIters": ...,
-/// "strict": ...}.
+/// "strict": ..., "warmStart": ...}.
 llvm::Error SceneParser::parseSolver(const Json &value,
                                      SolveSettings &settings) {
   auto method = [&](const Json &name, const std::string &path) -> llvm::Error {
@@ -957,7 +957,8 @@ llvm::Error SceneParser::parseSolver(const Json &value,
   if (auto err = expectObject(value, "solver"))
     return err;
   if (auto err = checkKeys(value, "solver",
-                           {"method", "tol", "maxIters", "strict"}))
+                           {"method", "tol", "maxIters", "strict",
+                            "warmStart"}))
     return err;
   if (value.contains("method"))
     if (auto err = method(value["method"], "solver.method"))
@@ -982,6 +983,13 @@ llvm::Error SceneParser::parseSolver(const Json &value,
       return error("solver.strict", llvm::Twine("expected a boolean, found ") +
                                         jsonKind(value["strict"]));
     settings.strict = value["strict"].get<bool>();
+  }
+  if (value.contains("warmStart")) {
+    if (!value["warmStart"].is_boolean())
+      return error("solver.warmStart",
+                   llvm::Twine("expected a boolean, found ") +
+                       jsonKind(value["warmStart"]));
+    settings.warmStart = value["warmStart"].get<bool>();
   }
   return llvm::Error::success();
 }

@@ -16,6 +16,7 @@
 #include "llvm/Support/FormatVariadic.h"
 #include "llvm/Support/raw_ostream.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -31,11 +32,9 @@ double millisecondsSince(Clock::time_point start) {
 
 /// The tolerances of one precision, relative to ||b||: `auto`'s CG stop,
 /// the default stop of the iterative methods, and the residual a direct
-/// answer must meet.
-// `symmetric`: how far (relative to A's largest magnitude) a block may
-// differ from its mirror's transpose in a symmetric matrix. Assembling the
-// two blocks by different sums rounds them differently: in float32 a
-// stiffness matrix's mirrors differ by some 1e-7 of its largest entry.
+/// answer must meet; and, relative to A's largest entry, how far A(i, j)
+/// and A(j, i) may differ for A to count as symmetric (an assembly computes
+/// the two apart, so float32 rounds them differently).
 template <typename T> struct Tolerances;
 template <> struct Tolerances<double> {
   static constexpr double autoCG = 1e-12, iterative = 1e-10, accept = 1e-8,
@@ -143,6 +142,8 @@ SolveSettings SolveSettingsOverride::appliedTo(SolveSettings settings) const {
     settings.maxIterations = maxIterations;
   if (strict)
     settings.strict = *strict;
+  if (warmStart)
+    settings.warmStart = *warmStart;
   return settings;
 }
 
@@ -237,6 +238,13 @@ SolveSession::iterative(const SquareBCSRView<T> &a, const T *b, T *x,
   options.tolerance = tolerance * bNorm * tolerance * bNorm;
   options.preconditioner = preconditionerOf(method);
   Clock::time_point start = Clock::now();
+  if (current.warmStart) {
+    auto previous = previousAnswers.find(stats.statement);
+    if (previous != previousAnswers.end() &&
+        previous->second.size() == static_cast<size_t>(a.size()))
+      std::transform(previous->second.begin(), previous->second.end(), x,
+                     [](double value) { return static_cast<T>(value); });
+  }
   llvm::Expected<SolverResult> cg = conjugateGradient(a, b, x, options);
   if (!cg)
     return cg.takeError();
@@ -331,6 +339,8 @@ SolveSession::solve(const SquareBCSRView<T> &a, const T *b, T *x,
     return notAccepted(report->relativeResidual);
   if (!std::isfinite(report->relativeResidual))
     return llvm::createStringError("the solution holds a NaN or an infinity");
+  if (current.warmStart && !factorKindOf(method))
+    previousAnswers[stats.statement].assign(x, x + n);
   record(stats, *report);
   return *report;
 }

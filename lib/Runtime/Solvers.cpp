@@ -80,6 +80,22 @@ inverseDiagonalBlocks(const SquareBCSRView<T> &a) {
   return inverse;
 }
 
+/// out = D res for D block diagonal (`rows` blocks of `b` x `b`, row-major,
+/// one after the other); `StaticBlock` as in multiplyBlocks.
+template <int64_t StaticBlock, typename T>
+void multiplyDiagonalBlocks(const std::vector<T> &d, const std::vector<T> &res,
+                            std::vector<T> &out, int64_t rows,
+                            int64_t blockSize) {
+  int64_t b = StaticBlock ? StaticBlock : blockSize;
+  for (int64_t r = 0; r < rows; ++r)
+    for (int64_t i = 0; i < b; ++i) {
+      T sum = 0;
+      for (int64_t j = 0; j < b; ++j)
+        sum += d[(r * b + i) * b + j] * res[r * b + j];
+      out[r * b + i] = sum;
+    }
+}
+
 /// out = b - A x, returning its r.r.
 template <typename T>
 double trueResidual(const SquareBCSRView<T> &a, const T *b, const T *x,
@@ -108,9 +124,12 @@ llvm::Expected<SquareBCSRView<double>> simit::squareView(const BCSRMatrix &a) {
   return view;
 }
 
-template <typename T>
-void simit::multiply(const SquareBCSRView<T> &a, const T *x, T *y) {
-  int64_t b = a.blockSize;
+namespace {
+/// y = A x with blocks of `b` x `b`; `b` a compile-time constant where the
+/// caller knows it (the block loops then unroll), else `blockSize`.
+template <int64_t StaticBlock, typename T>
+void multiplyBlocks(const SquareBCSRView<T> &a, const T *x, T *y) {
+  int64_t b = StaticBlock ? StaticBlock : a.blockSize;
   for (int64_t r = 0; r < a.rows; ++r) {
     T *yr = y + r * b;
     std::fill(yr, yr + b, T(0));
@@ -124,6 +143,21 @@ void simit::multiply(const SquareBCSRView<T> &a, const T *x, T *y) {
         yr[i] += sum;
       }
     }
+  }
+}
+} // namespace
+
+template <typename T>
+void simit::multiply(const SquareBCSRView<T> &a, const T *x, T *y) {
+  // The same sums in the same order for every block size: 3 (points in
+  // space) and 1 only unroll.
+  switch (a.blockSize) {
+  case 1:
+    return multiplyBlocks<1>(a, x, y);
+  case 3:
+    return multiplyBlocks<3>(a, x, y);
+  default:
+    return multiplyBlocks<0>(a, x, y);
   }
 }
 
@@ -181,14 +215,9 @@ simit::conjugateGradient(const SquareBCSRView<T> &a, const T *bIn, T *x,
         out[i] = inverse[i] * res[i];
       return;
     case Preconditioner::BlockJacobi:
-      for (int64_t r = 0; r < a.rows; ++r)
-        for (int64_t i = 0; i < bs; ++i) {
-          T sum = 0;
-          for (int64_t j = 0; j < bs; ++j)
-            sum += inverse[(r * bs + i) * bs + j] * res[r * bs + j];
-          out[r * bs + i] = sum;
-        }
-      return;
+      if (bs == 3)
+        return multiplyDiagonalBlocks<3>(inverse, res, out, a.rows, bs);
+      return multiplyDiagonalBlocks<0>(inverse, res, out, a.rows, bs);
     }
   };
 

@@ -81,7 +81,7 @@ def test_check_numerics_names_the_assembly():
     points, springs = springs_sets()  # both points at the origin: l = 0
     externs = dict(h=0.01, viscous=2.0, stiffness=1e4, density=1e3,
                    radius=0.01, grav=[0.0, -9.81, 0.0], cgTol=1e-12,
-                   cgMaxIters=50)
+                   cgMaxIters=50, runtimeSolve=0)
     program.bind(points=points, springs=springs, **externs)
     with pytest.raises(simit.NumericsError, match="produced nan") as info:
         program.step()

@@ -72,7 +72,8 @@ def net(springs_program):
     springs.add_field("k")
     springs.add_field("l0")
     externs = dict(h=H, viscous=VISCOUS, stiffness=STIFFNESS, density=DENSITY,
-                   radius=RADIUS, grav=GRAVITY, cgTol=1e-30, cgMaxIters=1000)
+                   radius=RADIUS, grav=GRAVITY, cgTol=1e-30, cgMaxIters=1000,
+                   runtimeSolve=0)
     springs_program.bind(points=points, springs=springs, **externs)
     # The rest state is stretched so that springs pull from frame 1.
     springs_program.init()

@@ -3,7 +3,7 @@
 //   simit-run PROGRAM --scene SCENE.json [--output-dir DIR] [--time]
 //             [--no-cache | --cache-dir DIR] [--threads N] [--stats]
 //             [--solver METHOD] [--tol T] [--max-iters N] [--solver-strict]
-//             [--no-sherman-morrison]
+//             [--no-warm-start] [--no-sherman-morrison]
 //   simit-run --test FILE.sim
 //   simit-run FILE.sim --eval 'f(1.0, [1, 2]')'
 //   simit-run FILE.sim --emit=simit|loops|llvm
@@ -123,6 +123,10 @@ static cl::opt<bool> solverStrict(
     cl::cat(runCategory), "solver-strict",
     cl::desc("An iterative solve stopped by the cap is an error, not a "
              "warning"));
+static cl::opt<bool> noWarmStart(
+    cl::cat(runCategory), "no-warm-start",
+    cl::desc("Iterative solves start from zero, not from the statement's "
+             "previous answer"));
 static cl::opt<bool> noShermanMorrison(
     cl::cat(runCategory), "no-sherman-morrison",
     cl::desc("Solve (A + u*v') \\ b as written instead of by "
@@ -211,6 +215,8 @@ static llvm::Expected<SolveSettingsOverride> solverOverride() {
     settings.maxIterations = solverMaxIterations;
   if (solverStrict)
     settings.strict = true;
+  if (noWarmStart)
+    settings.warmStart = false;
   if (llvm::Error err = checkSolveSettings(settings.appliedTo({}),
                                            "--tol/--max-iters"))
     return std::move(err);
@@ -228,6 +234,8 @@ static void printSolveStats(const SolveSession &solver) {
     os << ", max-iters " << *settings.maxIterations;
   if (settings.strict)
     os << ", strict";
+  if (!settings.warmStart)
+    os << ", no warm start";
   os << " (direct solvers on " << sparseDirectBLAS() << ")\n";
   for (const SolveStatementStats &stats : solver.statistics()) {
     os << "solve statement: " << stats.statement << "\n";

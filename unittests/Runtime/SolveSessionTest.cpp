@@ -282,6 +282,52 @@ TEST(SolveSession, ToleranceIsTheTrueRelativeResidual) {
   EXPECT_GT(residual, 1e-14);
 }
 
+/// Iterations of one solve of `system` x = rhs in `session` as `statement`;
+/// x starts as NaN (never read) and must match a dense LU to 1e-8.
+int iterationsOf(SolveSession &session, const BandSystem<double> &system,
+                 const Eigen::VectorXd &rhs, llvm::StringRef statement) {
+  std::vector<double> x(rhs.size(), std::nan(""));
+  auto report = session.solve(system.view, rhs.data(), x.data(), statement);
+  if (!report) {
+    ADD_FAILURE() << llvm::toString(report.takeError());
+    return -1;
+  }
+  Eigen::VectorXd exact = system.dense.fullPivLu().solve(rhs);
+  for (int i = 0; i < rhs.size(); ++i)
+    EXPECT_NEAR(x[i], exact[i], 1e-8 * exact.norm()) << i;
+  EXPECT_TRUE(report->converged);
+  return report->iterations;
+}
+
+TEST(SolveSession, WarmStartBeginsAtTheStatementsPreviousAnswer) {
+  SolveSettings settings = settingsOf(SolveMethod::ConjugateGradient);
+  settings.tolerance = 1e-10;
+  SolveSession warm(settings);
+  settings.warmStart = false;
+  SolveSession cold(settings);
+  BandSystem<double> system(kBlocks, 3, spd(3, 12));
+  Eigen::VectorXd first = randomVector(kBlocks * 3, 13);
+  Eigen::VectorXd nearby = first + 1e-4 * randomVector(kBlocks * 3, 14);
+
+  int fromZero = iterationsOf(cold, system, first, "s");
+  EXPECT_GT(fromZero, 3);
+  EXPECT_EQ(iterationsOf(warm, system, first, "s"), fromZero);
+  // A nearby right-hand side: fewer iterations from the previous answer.
+  int coldNearby = iterationsOf(cold, system, nearby, "s");
+  EXPECT_LT(iterationsOf(warm, system, nearby, "s"), coldNearby);
+  // The same system again: the previous answer already meets the tolerance.
+  EXPECT_EQ(iterationsOf(warm, system, nearby, "s"), 0);
+  EXPECT_EQ(iterationsOf(cold, system, nearby, "s"), coldNearby);
+  // Another statement starts from zero.
+  EXPECT_EQ(iterationsOf(warm, system, nearby, "t"), coldNearby);
+  // So does a statement whose unknowns changed size.
+  BandSystem<double> smaller(kBlocks, 1, spd(1, 15));
+  Eigen::VectorXd small = randomVector(kBlocks, 16);
+  SolveSession coldSmall(settings);
+  EXPECT_EQ(iterationsOf(warm, smaller, small, "s"),
+            iterationsOf(coldSmall, smaller, small, "s"));
+}
+
 TEST(SolveSession, FactorisationIsReusedForTheSameValues) {
   for (SolveMethod method :
        {SolveMethod::Cholesky, SolveMethod::LDLT, SolveMethod::LU}) {

@@ -63,6 +63,9 @@ struct SolveSettings {
   std::optional<int64_t> maxIterations;
   /// A solve stopped by the cap is an error rather than a warning.
   bool strict = false;
+  /// Iterative methods: start from the previous answer of the same
+  /// statement (when it has the same size) instead of from zero.
+  bool warmStart = true;
 };
 
 /// Settings given on top of others (the command line over a scene's).
@@ -71,6 +74,7 @@ struct SolveSettingsOverride {
   std::optional<double> tolerance;
   std::optional<int64_t> maxIterations;
   std::optional<bool> strict;
+  std::optional<bool> warmStart;
 
   SolveSettings appliedTo(SolveSettings settings) const;
 };
@@ -128,7 +132,9 @@ public:
   /// on a non-symmetric matrix, a direct answer whose relative residual is
   /// above 1e-8 (f32: 1e-3), and, with `strict`, an iterative solve stopped
   /// by the cap. Without `strict` such a solve warns on stderr once per
-  /// statement and counts in notConverged.
+  /// statement and counts in notConverged. With `warmStart`, an iterative
+  /// method starts from the statement's previous answer (x's contents on
+  /// entry are never read).
   template <typename T>
   llvm::Expected<SolveReport> solve(const SquareBCSRView<T> &a, const T *b,
                                     T *x, llvm::StringRef statement);
@@ -181,6 +187,9 @@ private:
   std::vector<SolveStatementStats> statements;
   /// Statements whose cap warning was printed.
   std::vector<bool> warned;
+  /// The latest answer of each statement solved iteratively, the starting
+  /// point of its next solve (SolveSettings::warmStart).
+  std::map<std::string, std::vector<double>, std::less<>> previousAnswers;
 };
 
 /// OpenBLAS's version and build: the BLAS the direct solvers run on.

@@ -27,14 +27,27 @@ constexpr StringLiteral kEnd = "simit_rt_phase_end";
 
 bool isAssembly(Operation *op) { return isa<MapOp, AssembleOp>(op); }
 
-/// The phase `op` is timed as, if any. `topLevel`: `op` is directly in the
-/// body of an exported function.
-std::optional<Phase> phaseOf(Operation *op, bool topLevel) {
+/// Whether `op` runs at most once per call of the function whose body is
+/// `body`: it is in the body, directly or inside `if`s only. Timer calls
+/// around it then cost nothing per iteration of an enclosing loop.
+bool runsAtMostOnce(Operation *op, Block *body) {
+  for (Block *block = op->getBlock(); block != body;) {
+    Operation *parent = block->getParentOp();
+    if (!isa<scf::IfOp>(parent))
+      return false;
+    block = parent->getBlock();
+  }
+  return true;
+}
+
+/// The phase `op` of the exported function with body `body` is timed as, if
+/// any.
+std::optional<Phase> phaseOf(Operation *op, Block *body) {
   if (isAssembly(op))
     return Assembly;
   if (isa<SolveOp>(op))
     return Solve;
-  if (topLevel && isa<scf::WhileOp>(op)) {
+  if (isa<scf::WhileOp>(op) && runsAtMostOnce(op, body)) {
     bool assembles = op->walk([](Operation *nested) {
                          return isAssembly(nested) ? WalkResult::interrupt()
                                                    : WalkResult::advance();
@@ -65,8 +78,7 @@ struct TimePhases : public simit::impl::SimitTimePhasesBase<TimePhases> {
         continue;
       Block *body = &function.getBody().front();
       function.walk<WalkOrder::PreOrder>([&](Operation *op) {
-        if (std::optional<Phase> phase =
-                phaseOf(op, op->getBlock() == body)) {
+        if (std::optional<Phase> phase = phaseOf(op, body)) {
           timed.emplace_back(op, *phase);
           return WalkResult::skip();
         }

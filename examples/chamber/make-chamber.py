@@ -15,9 +15,10 @@ Writes TetGen files into OUT:
                 and mesh paths pointing at this folder (unless --no-scene)
 
 The box is centred on the origin, so the origin lies inside the cavity.
---unknowns N picks the grid (a cube-like box with a one-cell wall, or a
-thicker wall for small N) whose free unknowns (3 per vertex off the fixed
-bottom face) come nearest to N.
+--unknowns N picks the grid (a cube-like box with a one-cell wall)
+whose Newton system has nearest to N unknowns: 3 per vertex, the fixed
+ones (the outer bottom face) included, as the program keeps them as
+identity rows.
 """
 
 import argparse
@@ -110,27 +111,28 @@ def generate(nx, ny, nz, wall, cell):
     return points, tet_ids, tri_ids
 
 
-def free_unknowns(nx, ny, nz, wall):
+def vertex_count(nx, ny, nz, wall):
     points = (nx + 1) * (ny + 1) * (nz + 1)
-    cavity_points = max(nx - 2 * wall - 1, 0) * max(ny - 2 * wall - 1, 0) * \
-        max(nz - 2 * wall - 1, 0)
-    return 3 * (points - cavity_points - (nx + 1) * (ny + 1))
+    return points - (nx - 2 * wall - 1) * (ny - 2 * wall - 1) * \
+        (nz - 2 * wall - 1)
+
+
+def fixed_count(nx, ny, nz):
+    return (nx + 1) * (ny + 1)
 
 
 def grid_for(unknowns):
-    """The box (sides within one cell of each other, wall 1 or 2 cells)
-    whose free unknowns are nearest to `unknowns`."""
+    """The box with a one-cell wall and sides within two cells of each
+    other with nearest to `unknowns` system unknowns."""
     best = None
-    for wall in (1, 2):
-        for nx in range(2 * wall + 1, 200):
-            for ny in (nx, nx + 1):
-                for nz in (ny, ny + 1):
-                    n = free_unknowns(nx, ny, nz, wall)
-                    key = (abs(n - unknowns), wall)
-                    if best is None or key < best[0]:
-                        best = (key, (nx, ny, nz, wall))
-            if free_unknowns(nx, nx, nx, wall) > 2 * unknowns:
-                break
+    for nx in range(3, 200):
+        for ny in range(nx, nx + 3):
+            for nz in range(ny, nx + 3):
+                key = abs(3 * vertex_count(nx, ny, nz, 1) - unknowns)
+                if best is None or key < best[0]:
+                    best = (key, (nx, ny, nz, 1))
+        if 3 * vertex_count(nx, nx, nx, 1) > 2 * unknowns:
+            break
     return best[1]
 
 
@@ -189,7 +191,8 @@ def main():
         write_scene(args.out, args.frames)
     print(f"chamber: cells {nx}x{ny}x{nz}, wall {wall}: {len(points)} "
           f"vertices, {len(tets)} tets, {len(tris)} cavity triangles, "
-          f"{free_unknowns(nx, ny, nz, wall)} free unknowns -> {args.out}")
+          f"{3 * len(points)} unknowns ({3 * fixed_count(nx, ny, nz)} of them "
+          f"fixed) -> {args.out}")
 
 
 if __name__ == "__main__":

@@ -18,6 +18,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <type_traits>
 
 using namespace simit;
 
@@ -365,6 +366,9 @@ llvm::Expected<SolveReport>
 SolveSession::shermanMorrison(const SquareBCSRView<T> &a, const T *u,
                               const T *v, const T *b, const T *w, const T *c,
                               T *x, llvm::StringRef statement) {
+  if constexpr (std::is_same_v<T, double>)
+    if (rankOneObserver)
+      rankOneObserver(RankOneSystem{statement, a, u, v, b});
   SolveStatementStats &stats = statsOf(statement);
   int64_t n = a.size();
   Clock::time_point start = Clock::now();

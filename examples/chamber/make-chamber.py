@@ -151,11 +151,22 @@ def write(out, points, tets, tris):
                 f.write(f"{i} " + " ".join(map(str, c)) + "\n")
 
 
-def write_scene(out, frames):
+def default_pressure(template_p0, cells, wall, cell):
+    """The scene's p0 up to a cavity of 4 cells; for larger boxes scaled
+    by wall / cavity side, which keeps the membrane stress p R / t of the
+    walls, so that large boxes inflate as much as small ones."""
+    ratio = wall * cell / ((max(cells) - 2 * wall) * cell)
+    return template_p0 * min(1.0, 4 * ratio)
+
+
+def write_scene(out, frames, pressure, cells, wall, cell):
     with open(os.path.join(HERE, "chamber.json")) as f:
         scene = json.load(f)
     scene["program"] = os.path.join(HERE, "chamber.sim")
     scene["meshes"]["chamber"] = "chamber.node"
+    externs = scene["externs"]
+    externs["p0"] = pressure if pressure is not None else \
+        default_pressure(externs["p0"], cells, wall, cell)
     if frames is not None:
         scene["frames"] = frames
     with open(os.path.join(out, "chamber.json"), "w") as f:
@@ -175,6 +186,10 @@ def main():
                         "free unknowns (instead of --cells/--wall)")
     parser.add_argument("--cell", type=float, default=0.1,
                         help="cell edge length (default 0.1)")
+    parser.add_argument("--pressure", type=float,
+                        help="the scene's p0 (default: that of chamber.json "
+                        "for cavities up to 4 cells wide, scaled by 4 cells "
+                        "/ cavity width beyond)")
     parser.add_argument("--frames", type=int,
                         help="the scene's frame count (Newton iterations)")
     parser.add_argument("--no-scene", action="store_true",
@@ -188,7 +203,8 @@ def main():
     points, tets, tris = generate(nx, ny, nz, wall, args.cell)
     write(args.out, points, tets, tris)
     if not args.no_scene:
-        write_scene(args.out, args.frames)
+        write_scene(args.out, args.frames, args.pressure, (nx, ny, nz), wall,
+                    args.cell)
     print(f"chamber: cells {nx}x{ny}x{nz}, wall {wall}: {len(points)} "
           f"vertices, {len(tets)} tets, {len(tris)} cavity triangles, "
           f"{3 * len(points)} unknowns ({3 * fixed_count(nx, ny, nz)} of them "

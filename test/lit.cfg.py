@@ -35,7 +35,7 @@ config.environment["XDG_CACHE_HOME"] = os.path.join(config.test_exec_root,
 llvm_config.use_default_substitutions()
 
 tool_dirs = [config.simit_tools_dir, config.llvm_tools_dir]
-tools = ["simit-opt", "simit-translate", "simit-run", "simit-bench-eigen", "mlir-opt", "mlir-runner"]
+tools = ["simit-opt", "simit-translate", "simit-run", "simit-bench-eigen", "simit-bench-sherman-morrison", "mlir-opt", "mlir-runner"]
 llvm_config.add_tool_substitutions(tools, tool_dirs)
 llvm_config.with_environment("PATH", config.llvm_tools_dir, append_path=True)
 llvm_config.with_environment("PATH", config.simit_tools_dir, append_path=True)

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <type_traits>
 
 using namespace simit;
 
@@ -389,6 +390,9 @@ llvm::Expected<SolveReport>
 SolveSession::shermanMorrison(const SquareBCSRView<T> &a, const T *u,
                               const T *v, const T *b, const T *w, const T *c,
                               T *x, llvm::StringRef statement) {
+  if constexpr (std::is_same_v<T, double>)
+    if (rankOneObserver)
+      rankOneObserver(RankOneSystem{statement, a, u, v, b});
   SolveStatementStats &stats = statsOf(statement);
   int64_t n = a.size();
   Clock::time_point start = Clock::now();

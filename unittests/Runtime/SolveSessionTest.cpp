@@ -463,6 +463,32 @@ TEST(SolveSession, ShermanMorrisonMatchesADenseSolve) {
   }
 }
 
+TEST(SolveSession, RankOneObserverSeesEverySystem) {
+  SolveSession session(settingsOf(SolveMethod::Cholesky));
+  BandSystem<double> system(kBlocks, 3, spd(3, 28));
+  Eigen::VectorXd u = randomVector(kBlocks * 3, 29),
+                  v = randomVector(kBlocks * 3, 30),
+                  b = randomVector(kBlocks * 3, 31);
+  int calls = 0;
+  session.observeRankOneSystems([&](const RankOneSystem &seen) {
+    ++calls;
+    EXPECT_EQ(seen.statement, "rank one");
+    EXPECT_EQ(seen.a.values, system.view.values);
+    EXPECT_EQ(seen.a.size(), system.view.size());
+    EXPECT_EQ(seen.u, u.data());
+    EXPECT_EQ(seen.v, v.data());
+    EXPECT_EQ(seen.b, b.data());
+  });
+  Eigen::MatrixXd full = system.dense + u * v.transpose();
+  expectShermanMorrison(session, system, u, v, b, full.fullPivLu().solve(b),
+                        1e-9);
+  EXPECT_EQ(calls, 1);
+  session.observeRankOneSystems(nullptr);
+  expectShermanMorrison(session, system, u, v, b, full.fullPivLu().solve(b),
+                        1e-9);
+  EXPECT_EQ(calls, 1);
+}
+
 TEST(SolveSession, ShermanMorrisonFallsBackToTheBorderedSystem) {
   // v = -(1 - 1e-10) w / |w|^2 for w = A^-1 u, plus a part orthogonal to
   // w: 1 + v.w = 1e-10 while |v||w| is about 1, so the formula would

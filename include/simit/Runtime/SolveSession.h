@@ -23,6 +23,7 @@
 #include "llvm/ADT/StringRef.h"
 #include "llvm/Support/Error.h"
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -116,6 +117,15 @@ struct SolveStatementStats {
 class FactorCache;
 class SparseFactorisation;
 
+/// A system `(A + u v^T) x = b` as the Sherman–Morrison rewrite hands it to
+/// the runtime; the pointers live only during the observer's call.
+struct RankOneSystem {
+  llvm::StringRef statement;
+  SquareBCSRView<double> a;
+  const double *u = nullptr, *v = nullptr, *b = nullptr;
+};
+using RankOneSystemObserver = std::function<void(const RankOneSystem &)>;
+
 class SolveSession {
 public:
   explicit SolveSession(SolveSettings settings = {});
@@ -163,6 +173,14 @@ public:
                   const T *b, const T *w, const T *c, T *x,
                   llvm::StringRef statement);
 
+  /// Calls `observer` (empty: none) with every double-precision system that
+  /// shermanMorrison solves, before solving it: a host keeps the systems a
+  /// program solves (bench/sherman-morrison takes the pressure chamber's
+  /// Newton systems from it).
+  void observeRankOneSystems(RankOneSystemObserver observer) {
+    rankOneObserver = std::move(observer);
+  }
+
   /// Per statement, in the order they first ran.
   std::vector<SolveStatementStats> statistics() const;
   /// All analyses, factorisations and reuses of the session.
@@ -190,6 +208,7 @@ private:
   /// The latest answer of each statement solved iteratively, the starting
   /// point of its next solve (SolveSettings::warmStart).
   std::map<std::string, std::vector<double>, std::less<>> previousAnswers;
+  RankOneSystemObserver rankOneObserver;
 };
 
 /// OpenBLAS's version and build: the BLAS the direct solvers run on.

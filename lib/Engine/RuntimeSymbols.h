@@ -12,6 +12,11 @@ namespace simit {
 /// the names lowered code calls them by.
 llvm::orc::SymbolMap runtimeSymbolMap(llvm::orc::MangleAndInterner interner);
 
+/// Calls `add` with the name and address of each function the host code of
+/// simit-gpu-pipeline calls (the mgpu* functions, GPURuntimeFunctions.cpp).
+void addGPURuntimeSymbols(
+    llvm::function_ref<void(llvm::StringRef, void *)> add);
+
 } // namespace simit
 
 #endif // SIMIT_LIB_ENGINE_RUNTIMESYMBOLS_H

@@ -196,7 +196,8 @@ static ProgramOptions programOptionsOf(const SceneRunOptions &options,
                          options.cacheDirectory,
                          options.solver.appliedTo(scene.solver),
                          options.shermanMorrison,
-                         options.hostLibraries};
+                         options.hostLibraries,
+                         options.target};
   llvm::append_range(program.hostLibraries, scene.libraries);
   return program;
 }

@@ -19,6 +19,8 @@ struct TestRunOptions {
   std::string cacheDirectory;
   /// ProgramOptions::hostLibraries (--extern-lib).
   std::vector<std::string> hostLibraries;
+  /// ProgramOptions::target (--target).
+  Target target = Target::CPU;
 };
 
 /// Runs the assertions of every enabled section of a .sim file, printing
@@ -33,6 +35,7 @@ struct EvalOptions {
   FloatPrecision precision = FloatPrecision::Double;
   std::string cacheDirectory;
   std::vector<std::string> hostLibraries;
+  Target target = Target::CPU;
 };
 
 /// Calls one function with literal arguments and prints each result as a

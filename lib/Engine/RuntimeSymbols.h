@@ -3,6 +3,7 @@
 #ifndef SIMIT_LIB_ENGINE_RUNTIMESYMBOLS_H
 #define SIMIT_LIB_ENGINE_RUNTIMESYMBOLS_H
 
+#include "llvm/ADT/STLFunctionalExtras.h"
 #include "llvm/ExecutionEngine/Orc/Core.h"
 #include "llvm/ExecutionEngine/Orc/Mangling.h"
 

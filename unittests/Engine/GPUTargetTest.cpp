@@ -89,7 +89,9 @@ llvm::StringSet<> runtimeNames() {
     EXPECT_NE(address, nullptr) << name.str();
     names.insert(name);
   });
-  auto jit = llvm::orc::LLJITBuilder().create();
+  auto jit = llvm::orc::LLJITBuilder()
+                 .setPlatformSetUp(llvm::orc::setUpInactivePlatform)
+                 .create();
   EXPECT_TRUE(bool(jit));
   if (!jit)
     return names;

@@ -28,18 +28,20 @@ def _is_path(program):
 
 
 def compile(program, *, name=None, float32=False, time=False,
-            check_numerics=False, host_functions=()):
+            check_numerics=False, host_functions=(), target="cpu"):
     """A Program from a .sim or .mlir file, or from Simit source text.
 
     `name` names source text in error messages (default "<string>"; a name
     ending in .mlir loads the text as MLIR). float32 compiles Simit's float
     as single precision; time brackets assemblies and solves with the phase
     timer (phase_times()); check_numerics makes calls raise NumericsError at
-    the first NaN or infinity an assembly or solve produces.
+    the first NaN or infinity an assembly or solve produces. target "gpu"
+    runs the set loops as CUDA kernels (docs/gpu.md); without a CUDA device
+    the first call raises an error that says why.
     """
     result = Program(float32=float32, time=time,
                      check_numerics=check_numerics,
-                     host_functions=list(host_functions))
+                     host_functions=list(host_functions), target=target)
     if _is_path(program):
         result.load_file(program)
     elif name is not None and name.endswith(".mlir"):

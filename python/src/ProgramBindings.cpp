@@ -322,8 +322,13 @@ compiled on first use: program.step, program["step"]. program.bind(...)
 binds externs for all of them at once.
 )doc")
       .def(py::init([](bool float32, bool time, bool checkNumerics,
-                       std::vector<std::string> hostFunctions) {
+                       std::vector<std::string> hostFunctions,
+                       const std::string &target) {
              ProgramOptions options;
+             if (target != "cpu" && target != "gpu")
+               throw py::value_error("target must be 'cpu' or 'gpu', not '" +
+                                     target + "'");
+             options.target = target == "gpu" ? Target::GPU : Target::CPU;
              options.precision =
                  float32 ? FloatPrecision::Single : FloatPrecision::Double;
              options.timePhases = time;
@@ -333,7 +338,8 @@ binds externs for all of them at once.
            }),
            py::kw_only(), py::arg("float32") = false, py::arg("time") = false,
            py::arg("check_numerics") = false,
-           py::arg("host_functions") = std::vector<std::string>{})
+           py::arg("host_functions") = std::vector<std::string>{},
+           py::arg("target") = "cpu")
       .def("load_file",
            [](PyProgram &self, const py::object &path) {
              std::string file =

@@ -158,7 +158,8 @@ llvm::Expected<Device &> cuda::defaultDevice() {
   static std::string reason;
   std::call_once(opened, [] {
     const char *library = std::getenv("SIMIT_CUDA_LIBRARY");
-    auto result = Device::open(library && *library ? library : kDriverLibrary);
+    auto result = Device::open(library && *library ? llvm::StringRef(library)
+                                                   : kDriverLibrary);
     if (result)
       device = result->release();
     else

@@ -157,9 +157,10 @@ llvm::Expected<Device &> cuda::defaultDevice() {
   static Device *device = nullptr;
   static std::string reason;
   std::call_once(opened, [] {
-    const char *library = std::getenv("SIMIT_CUDA_LIBRARY");
-    auto result = Device::open(library && *library ? llvm::StringRef(library)
-                                                   : kDriverLibrary);
+    llvm::StringRef library = kDriverLibrary;
+    if (const char *chosen = std::getenv("SIMIT_CUDA_LIBRARY"); chosen && *chosen)
+      library = chosen;
+    auto result = Device::open(library);
     if (result)
       device = result->release();
     else

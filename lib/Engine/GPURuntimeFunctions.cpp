@@ -81,7 +81,9 @@ Registry &registry() {
 }
 
 /// " in kernel K (launched by S)", for the kernel `function` and the
-/// statement `where`.
+/// statement `where`. (The strings of a failing call's message are not
+/// freed: simit_rt_fail leaves their frames without unwinding; a failure
+/// ends the run, so this costs bytes once per run, not per call.)
 std::string launchContext(CUfunction function, const char *where) {
   std::string context;
   {

@@ -1,5 +1,6 @@
 # -*- Python -*-
 import os
+import subprocess
 
 import lit.formats
 from lit.llvm import llvm_config
@@ -34,8 +35,33 @@ config.environment["XDG_CACHE_HOME"] = os.path.join(config.test_exec_root,
                                                     "xdg-cache")
 llvm_config.use_default_substitutions()
 
+# Feature cuda-device: simit-run finds a CUDA device (docs/gpu.md). The
+# answer is printed once, so a run without one says so in one line; tests
+# that need a device are then reported UNSUPPORTED, not passed.
+simit_run = os.path.join(config.simit_tools_dir, "simit-run")
+try:
+    probe = subprocess.run([simit_run, "--cuda-device"], capture_output=True,
+                           text=True, timeout=300)
+    answer = (probe.stdout + probe.stderr).strip()
+    if probe.returncode == 0:
+        config.available_features.add("cuda-device")
+except (OSError, subprocess.TimeoutExpired) as error:
+    answer = f"no CUDA device: cannot run {simit_run}: {error}"
+lit_config.note(answer.replace("simit-run: ", ""))
+
+# --param simit_target=gpu runs every simit-run of the suite with
+# --target gpu (scripts/gpu-check); tests of the CPU target's own output
+# say UNSUPPORTED: target-gpu.
+simit_target = lit_config.params.get("simit_target", "cpu")
+if simit_target not in ("cpu", "gpu"):
+    lit_config.fatal(f"simit_target must be cpu or gpu, not {simit_target}")
+config.available_features.add("target-" + simit_target)
+
 tool_dirs = [config.simit_tools_dir, config.llvm_tools_dir]
-tools = ["simit-opt", "simit-translate", "simit-run", "simit-bench-eigen", "simit-bench-sherman-morrison", "mlir-opt", "mlir-runner"]
+tools = ["simit-opt", "simit-translate", "simit-bench-eigen",
+         "simit-bench-sherman-morrison", "mlir-opt", "mlir-runner",
+         ToolSubst("simit-run", extra_args=["--target", simit_target]
+                   if simit_target == "gpu" else None)]
 llvm_config.add_tool_substitutions(tools, tool_dirs)
 llvm_config.with_environment("PATH", config.llvm_tools_dir, append_path=True)
 llvm_config.with_environment("PATH", config.simit_tools_dir, append_path=True)

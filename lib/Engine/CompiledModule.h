@@ -33,7 +33,16 @@ struct CompiledFunction {
 
 class CompiledModule {
 public:
+  CompiledModule() = default;
+  CompiledModule(const CompiledModule &) = delete;
+  CompiledModule &operator=(const CompiledModule &) = delete;
+  /// Runs the module's destructors (finalize), e.g. unloading its kernels,
+  /// before its code goes.
+  ~CompiledModule();
+
   std::unique_ptr<llvm::orc::LLJIT> jit;
+  /// `_simit_module_fini` once the module's constructors have run.
+  void (*finalize)(void **) = nullptr;
   llvm::StringMap<CompiledFunction> functions;
   /// The threads its parallel regions run on (1: it has none).
   int threads = 1;

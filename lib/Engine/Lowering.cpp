@@ -12,6 +12,7 @@
 #include "mlir/Dialect/Complex/IR/Complex.h"
 #include "mlir/Dialect/ControlFlow/IR/ControlFlow.h"
 #include "mlir/Dialect/Func/IR/FuncOps.h"
+#include "mlir/Dialect/GPU/IR/GPUDialect.h"
 #include "mlir/Dialect/Index/IR/IndexDialect.h"
 #include "mlir/Dialect/LLVMIR/LLVMDialect.h"
 #include "mlir/Dialect/Math/IR/Math.h"
@@ -26,10 +27,12 @@
 #include "mlir/Pass/PassInstrumentation.h"
 #include "mlir/Pass/PassManager.h"
 #include "mlir/Target/LLVMIR/Dialect/Builtin/BuiltinToLLVMIRTranslation.h"
+#include "mlir/Target/LLVMIR/Dialect/GPU/GPUToLLVMIRTranslation.h"
 #include "mlir/Target/LLVMIR/Dialect/LLVMIR/LLVMToLLVMIRTranslation.h"
 #include "mlir/Target/LLVMIR/Dialect/OpenMP/OpenMPToLLVMIRTranslation.h"
 #include "mlir/Target/LLVMIR/Export.h"
 
+#include "llvm/IR/Constants.h"
 #include "llvm/IR/IRBuilder.h"
 #include "llvm/IR/LegacyPassManager.h"
 #include "llvm/IR/Module.h"
@@ -53,6 +56,10 @@ void simit::registerEngineDialects(mlir::DialectRegistry &registry) {
   mlir::registerBuiltinDialectTranslation(registry);
   mlir::registerLLVMDialectTranslation(registry);
   mlir::registerOpenMPDialectTranslation(registry);
+  // Target::GPU: the host module keeps gpu.binary and gpu.launch_func,
+  // which translate to the kernels' PTX and mgpu* calls.
+  registry.insert<mlir::gpu::GPUDialect>();
+  mlir::registerGPUDialectTranslation(registry);
 }
 
 namespace {
@@ -154,9 +161,77 @@ private:
 };
 } // namespace
 
+GPUKernelTarget simit::gpuKernelTargetFor(int capability) {
+  GPUKernelTarget target;
+  target.chip = "sm_" + std::to_string(capability);
+  // The PTX ISA version that introduced each newer chip (PTX ISA notes).
+  int ptx = 80;
+  if (capability == 103 || capability == 121)
+    ptx = 88;
+  else if (capability >= 120)
+    ptx = 87;
+  else if (capability >= 100)
+    ptx = 86;
+  target.features = "+ptx" + std::to_string(ptx);
+  return target;
+}
+
+/// The simit-cpu-pipeline passes that work on the simit dialect before it
+/// becomes loops, then simit-gpu-pipeline (which inlines and lowers the
+/// rest itself).
+static void buildGpuPipeline(mlir::OpPassManager &pm,
+                             const mlir::simit::SimitCpuPipelineOptions &cpu,
+                             const GPUKernelTarget &gpu) {
+  pm.addPass(mlir::simit::createSimitInlineFunctions());
+  if (cpu.shermanMorrison)
+    pm.addPass(mlir::simit::createSimitShermanMorrison());
+  if (cpu.timePhases)
+    pm.addPass(mlir::simit::createSimitTimePhases());
+  if (cpu.checkNumerics)
+    pm.addPass(mlir::simit::createSimitCheckNumerics());
+  mlir::simit::SimitGpuPipelineOptions options;
+  options.chip = gpu.chip;
+  options.features = gpu.features;
+  options.format = "isa";
+  // The CPU path does not contract either: results agree to the rounding
+  // of the summation order, not that of fused multiply-adds as well.
+  options.fpContract = false;
+  options.lowerSimit = true;
+  pm.addPass(mlir::simit::createSimitGpuPipeline(options));
+}
+
+/// Precedes every kernel launch with `simit_rt_gpu_statement(where)`, where
+/// is the source position of the set loop the kernel came from, so that the
+/// runtime's errors name the Simit statement.
+static void markLaunchStatements(mlir::ModuleOp module) {
+  mlir::MLIRContext *context = module.getContext();
+  auto ptr = mlir::LLVM::LLVMPointerType::get(context);
+  llvm::SmallVector<mlir::gpu::LaunchFuncOp> launches;
+  module.walk([&](mlir::gpu::LaunchFuncOp launch) { launches.push_back(launch); });
+  if (launches.empty())
+    return;
+  mlir::OpBuilder builder(context);
+  builder.setInsertionPointToEnd(module.getBody());
+  auto marker = mlir::LLVM::LLVMFuncOp::create(
+      builder, module.getLoc(), "simit_rt_gpu_statement",
+      mlir::LLVM::LLVMFunctionType::get(mlir::LLVM::LLVMVoidType::get(context),
+                                        {ptr}));
+  for (auto [index, launch] : llvm::enumerate(launches)) {
+    builder.setInsertionPoint(launch);
+    mlir::Value text = mlir::LLVM::createGlobalString(
+        launch.getLoc(), builder,
+        "simit_gpu_statement_" + std::to_string(index),
+        describeLocation(launch.getLoc()) + '\0',
+        mlir::LLVM::Linkage::Internal);
+    mlir::LLVM::CallOp::create(builder, launch.getLoc(), marker,
+                               mlir::ValueRange{text});
+  }
+}
+
 llvm::Error
 simit::lowerToLLVM(mlir::ModuleOp module, LoweringResult &result,
-                   mlir::simit::SimitCpuPipelineOptions pipelineOptions) {
+                   mlir::simit::SimitCpuPipelineOptions pipelineOptions,
+                   const std::optional<GPUKernelTarget> &gpu) {
   mlir::MLIRContext *context = module.getContext();
   DiagnosticCollector diagnostics(context);
 
@@ -166,13 +241,18 @@ simit::lowerToLLVM(mlir::ModuleOp module, LoweringResult &result,
   pm.addInstrumentation(std::move(recorder));
 
   pipelineOptions.runtimeAllocator = true;
-  mlir::simit::buildSimitCpuPipeline(pm, pipelineOptions);
+  if (gpu)
+    buildGpuPipeline(pm, pipelineOptions, *gpu);
+  else
+    mlir::simit::buildSimitCpuPipeline(pm, pipelineOptions);
 
   mlir::LogicalResult status = pm.run(module);
   if (llvm::Error err = recorderPtr->takeError())
     return err;
   if (mlir::failed(status))
     return diagnostics.error("lowering failed");
+  if (gpu)
+    markLaunchStatements(module);
   return llvm::Error::success();
 }
 
@@ -210,6 +290,38 @@ static void addPackedEntryPoint(llvm::Function &function) {
   llvm::CallInst *call = builder.CreateCall(&function, values);
   if (!call->getType()->isVoidTy())
     builder.CreateStore(call, slot(function.arg_size()));
+  builder.CreateRetVoid();
+}
+
+/// Replaces the structor list `arrayName` (llvm.global_ctors or _dtors) by
+/// `void name(void **)` that calls its functions in the order the platform
+/// would: constructors by ascending priority, destructors by descending.
+static void gatherStructors(llvm::Module &module, llvm::StringRef arrayName,
+                            llvm::StringRef name) {
+  llvm::LLVMContext &context = module.getContext();
+  llvm::SmallVector<std::pair<uint64_t, llvm::Function *>> calls;
+  if (llvm::GlobalVariable *list = module.getNamedGlobal(arrayName)) {
+    if (auto *entries =
+            llvm::dyn_cast<llvm::ConstantArray>(list->getInitializer()))
+      for (llvm::Use &use : entries->operands()) {
+        auto *entry = llvm::cast<llvm::ConstantStruct>(use.get());
+        calls.push_back(
+            {llvm::cast<llvm::ConstantInt>(entry->getOperand(0))->getZExtValue(),
+             llvm::cast<llvm::Function>(entry->getOperand(1))});
+      }
+    list->eraseFromParent();
+  }
+  bool destructors = arrayName == "llvm.global_dtors";
+  llvm::stable_sort(calls, [&](const auto &a, const auto &b) {
+    return destructors ? a.first > b.first : a.first < b.first;
+  });
+  auto *function = llvm::Function::Create(
+      llvm::FunctionType::get(llvm::Type::getVoidTy(context),
+                              {llvm::PointerType::getUnqual(context)}, false),
+      llvm::GlobalValue::ExternalLinkage, name, module);
+  llvm::IRBuilder<> builder(llvm::BasicBlock::Create(context, "", function));
+  for (const auto &call : calls)
+    builder.CreateCall(call.second);
   builder.CreateRetVoid();
 }
 
@@ -256,10 +368,9 @@ simit::compileToObject(mlir::ModuleOp llvmModule,
     if (!module)
       return diagnostics.error("translation to LLVM IR failed");
   }
-  // The JIT runs no initializers (ObjectCode.cpp).
-  if (module->getNamedGlobal("llvm.global_ctors"))
-    return llvm::createStringError(
-        "the module has global constructors, which the engine does not run");
+  // The JIT runs no initializers (ObjectCode.cpp): the engine calls these.
+  gatherStructors(*module, "llvm.global_ctors", "_simit_module_init");
+  gatherStructors(*module, "llvm.global_dtors", "_simit_module_fini");
   mlir::ExecutionEngine::setupTargetTripleAndDataLayout(module.get(),
                                                         targetMachine->get());
   for (const auto &entry : code.functions)

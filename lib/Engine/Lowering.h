@@ -14,6 +14,7 @@
 #include "llvm/ADT/StringMap.h"
 #include "llvm/Support/Error.h"
 
+#include <optional>
 #include <string>
 
 namespace mlir {
@@ -36,17 +37,36 @@ struct LoweringResult {
   std::string loopsText;
 };
 
+/// What the kernels of Target::GPU are compiled for: the NVVM chip and the
+/// PTX ISA version it needs.
+struct GPUKernelTarget {
+  std::string chip = "sm_90";
+  std::string features = "+ptx80";
+};
+
+/// The kernel target of a device of compute capability `capability`
+/// (major * 10 + minor): sm_<capability>, with the oldest PTX version that
+/// knows the chip, and no older than 8.0.
+GPUKernelTarget gpuKernelTargetFor(int capability);
+
 /// Lowers `module` in place to the LLVM dialect. Errors carry the MLIR
 /// diagnostics with their locations.
 /// Runs simit-cpu-pipeline with `options` (the JIT always uses the
-/// runtime allocator).
+/// runtime allocator); with `gpu`, the passes of `options` that precede
+/// the loops (Sherman–Morrison, phase timer, numerics checks) and then
+/// simit-gpu-pipeline for `gpu`, and marks every kernel launch with its
+/// Simit statement (simit_rt_gpu_statement) for the runtime's messages.
 llvm::Error
 lowerToLLVM(mlir::ModuleOp module, LoweringResult &result,
-            mlir::simit::SimitCpuPipelineOptions options = {});
+            mlir::simit::SimitCpuPipelineOptions options = {},
+            const std::optional<GPUKernelTarget> &gpu = std::nullopt);
 
 /// Compiles a module in the LLVM dialect at -O3 for the host (hostTarget())
 /// into an object with a packed entry point for every function in
-/// `signatures`; records the time of LLVM's optimization and code
+/// `signatures`, and the module's constructors and destructors (GPU code
+/// loads its kernels in one) gathered into `_simit_module_init` and
+/// `_simit_module_fini` (packed, `void (void **)`), which loadObjectCode
+/// and the CompiledModule's end call; records the time of LLVM's optimization and code
 /// generation in `times`.
 llvm::Expected<ObjectCode>
 compileToObject(mlir::ModuleOp llvmModule,

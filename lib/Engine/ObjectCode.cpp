@@ -5,6 +5,8 @@
 #include "RuntimeSymbols.h"
 #include "Threads.h"
 
+#include "simit/Engine/RuntimeFunctions.h"
+
 #include "llvm/ExecutionEngine/Orc/ExecutionUtils.h"
 #include "llvm/ExecutionEngine/Orc/LLJIT.h"
 #include "llvm/Object/ObjectFile.h"
@@ -121,6 +123,25 @@ simit::loadObjectCode(const ObjectCode &code) {
       return address.takeError();
     entry.getValue().entry = address->toPtr<void (*)(void **)>();
   }
+  auto init = (*jit)->lookup("_simit_module_init");
+  if (!init)
+    return init.takeError();
+  auto fini = (*jit)->lookup("_simit_module_fini");
+  if (!fini)
+    return fini.takeError();
   compiled->jit = std::move(*jit);
+  // GPU code loads its kernels here; a failure (no device, PTX the driver
+  // cannot compile) ends the load, not the process.
+  if (llvm::Error err =
+          runGuarded(init->toPtr<void (*)(void **)>(), nullptr, nullptr))
+    return llvm::createStringError("loading the compiled module failed: " +
+                                   llvm::toString(std::move(err)));
+  compiled->finalize = fini->toPtr<void (*)(void **)>();
   return compiled;
+}
+
+CompiledModule::~CompiledModule() {
+  // What fails here (a device already torn down) has no one to tell.
+  if (finalize)
+    llvm::consumeError(runGuarded(finalize, nullptr, nullptr));
 }

@@ -10,6 +10,7 @@
 
 #include "simit/Dialect/Simit/IR/Simit.h"
 #include "simit/Frontend/IRGen.h"
+#include "simit/Runtime/CudaDriver.h"
 
 #include "mlir/IR/BuiltinOps.h"
 #include "mlir/IR/Diagnostics.h"
@@ -138,6 +139,19 @@ struct Program::Impl {
     return llvm::Error::success();
   }
 
+  /// What Target::GPU compiles kernels for: the device's chip, or sm_90
+  /// where there is none (emit() needs no device); nullopt for the CPU.
+  std::optional<GPUKernelTarget> kernelTarget() const {
+    if (options.target != Target::GPU)
+      return std::nullopt;
+    llvm::Expected<cuda::Device &> device = cuda::defaultDevice();
+    if (!device) {
+      llvm::consumeError(device.takeError());
+      return GPUKernelTarget();
+    }
+    return gpuKernelTargetFor(device->computeCapability());
+  }
+
   llvm::Error lower() {
     if (llvmModule)
       return llvm::Error::success();
@@ -152,7 +166,8 @@ struct Program::Impl {
     pipelineOptions.checkNumerics = options.checkNumerics;
     pipelineOptions.openmp = openmp();
     pipelineOptions.shermanMorrison = options.shermanMorrison;
-    if (llvm::Error err = lowerToLLVM(*clone, result, pipelineOptions))
+    if (llvm::Error err =
+            lowerToLLVM(*clone, result, pipelineOptions, kernelTarget()))
       return err;
     llvmModule = std::move(clone);
     lowering = std::move(result);
@@ -180,7 +195,11 @@ struct Program::Impl {
        << "\nhost functions " << llvm::join(options.hostFunctions, ",")
        << "\ntime phases " << options.timePhases << "\ncheck numerics "
        << options.checkNumerics << "\nsherman-morrison "
-       << options.shermanMorrison << "\nopenmp " << openmp() << "\n"
+       << options.shermanMorrison << "\nopenmp " << openmp() << "\ntarget "
+       << targetName(options.target);
+    if (std::optional<GPUKernelTarget> gpu = kernelTarget())
+      os << " " << gpu->chip << " " << gpu->features;
+    os << "\n"
        << (from.kind == Source::Kind::Sim ? "sim " : "mlir ") << from.name
        << "\n"
        << from.text;
@@ -223,6 +242,13 @@ struct Program::Impl {
       return llvm::Error::success();
     if (!threadsError.empty())
       return llvm::createStringError(threadsError);
+    // Before anything heavy: without a device nothing can run.
+    if (options.target == Target::GPU) {
+      llvm::Expected<cuda::Device &> device = cuda::defaultDevice();
+      if (!device)
+        return llvm::createStringError("no CUDA device: " +
+                                       llvm::toString(device.takeError()));
+    }
     // Their symbols join the process's, where the JIT looks for what the
     // runtime does not define.
     for (const std::string &library : options.hostLibraries) {
@@ -275,6 +301,10 @@ struct Program::Impl {
     return llvm::Error::success();
   }
 };
+
+llvm::StringRef simit::targetName(Target target) {
+  return target == Target::GPU ? "gpu" : "cpu";
+}
 
 Program::Program(ProgramOptions options)
     : impl(std::make_unique<Impl>(std::move(options))) {}

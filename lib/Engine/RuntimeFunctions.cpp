@@ -910,5 +910,6 @@ simit::runtimeSymbolMap(llvm::orc::MangleAndInterner interner) {
   add("simit_rt_cholfree", reinterpret_cast<void *>(&simit_rt_cholfree));
   add("_mlir_ciface_simit_rt_triangularSolve",
       reinterpret_cast<void *>(&_mlir_ciface_simit_rt_triangularSolve));
+  addGPURuntimeSymbols(add);
   return symbols;
 }

@@ -3,6 +3,7 @@
 #ifndef SIMIT_LIB_ENGINE_RUNTIMESYMBOLS_H
 #define SIMIT_LIB_ENGINE_RUNTIMESYMBOLS_H
 
+#include "llvm/ADT/STLFunctionalExtras.h"
 #include "llvm/ExecutionEngine/Orc/Core.h"
 #include "llvm/ExecutionEngine/Orc/Mangling.h"
 
@@ -11,6 +12,11 @@ namespace simit {
 /// The runtime functions of include/simit/Engine/RuntimeFunctions.h under
 /// the names lowered code calls them by.
 llvm::orc::SymbolMap runtimeSymbolMap(llvm::orc::MangleAndInterner interner);
+
+/// Calls `add` with the name and address of each function the host code of
+/// simit-gpu-pipeline calls (the mgpu* functions, GPURuntimeFunctions.cpp).
+void addGPURuntimeSymbols(
+    llvm::function_ref<void(llvm::StringRef, void *)> add);
 
 } // namespace simit
 

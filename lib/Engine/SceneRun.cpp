@@ -198,6 +198,7 @@ static ProgramOptions programOptionsOf(const SceneRunOptions &options,
   program.solver = options.solver.appliedTo(scene.solver);
   program.shermanMorrison = options.shermanMorrison;
   program.hostLibraries = options.hostLibraries;
+  program.target = options.target;
   llvm::append_range(program.hostLibraries, scene.libraries);
   return program;
 }

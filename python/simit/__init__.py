@@ -28,7 +28,8 @@ def _is_path(program):
 
 
 def compile(program, *, name=None, float32=False, time=False,
-            check_numerics=False, host_functions=(), threads=0):
+            check_numerics=False, host_functions=(), threads=0,
+            target="cpu"):
     """A Program from a .sim or .mlir file, or from Simit source text.
 
     `name` names source text in error messages (default "<string>"; a name
@@ -37,11 +38,14 @@ def compile(program, *, name=None, float32=False, time=False,
     timer (phase_times()); check_numerics makes calls raise NumericsError at
     the first NaN or infinity an assembly or solve produces. threads runs
     the set loops on that many threads (0: $SIMIT_NUM_THREADS, else every
-    core); the results are the same for every count.
+    core); the results are the same for every count. target "gpu" runs the
+    set loops as CUDA kernels (docs/gpu.md); without a CUDA device the first
+    call raises an error that says why.
     """
     result = Program(float32=float32, time=time,
                      check_numerics=check_numerics,
-                     host_functions=list(host_functions), threads=threads)
+                     host_functions=list(host_functions), threads=threads,
+                     target=target)
     if _is_path(program):
         result.load_file(program)
     elif name is not None and name.endswith(".mlir"):

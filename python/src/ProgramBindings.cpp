@@ -329,9 +329,14 @@ compiled on first use: program.step, program["step"]. program.bind(...)
 binds externs for all of them at once.
 )doc")
       .def(py::init([](bool float32, bool time, bool checkNumerics,
-                       std::vector<std::string> hostFunctions, int threads) {
+                       std::vector<std::string> hostFunctions, int threads,
+                       const std::string &target) {
              ProgramOptions options;
              options.threads = threads;
+             if (target != "cpu" && target != "gpu")
+               throw py::value_error("target must be 'cpu' or 'gpu', not '" +
+                                     target + "'");
+             options.target = target == "gpu" ? Target::GPU : Target::CPU;
              options.precision =
                  float32 ? FloatPrecision::Single : FloatPrecision::Double;
              options.timePhases = time;
@@ -342,7 +347,7 @@ binds externs for all of them at once.
            py::kw_only(), py::arg("float32") = false, py::arg("time") = false,
            py::arg("check_numerics") = false,
            py::arg("host_functions") = std::vector<std::string>{},
-           py::arg("threads") = 0)
+           py::arg("threads") = 0, py::arg("target") = "cpu")
       .def("load_file",
            [](PyProgram &self, const py::object &path) {
              std::string file =

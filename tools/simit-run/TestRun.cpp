@@ -89,6 +89,7 @@ public:
 
     ProgramOptions programOptions;
     programOptions.precision = options.precision;
+    programOptions.target = options.target;
     programOptions.cacheDirectory = options.cacheDirectory;
     programOptions.hostLibraries = options.hostLibraries;
     programOptions.threads = options.threads;
@@ -210,6 +211,7 @@ int simit::runEval(const EvalOptions &options, llvm::raw_ostream &os) {
   }
   ProgramOptions programOptions;
   programOptions.precision = options.precision;
+  programOptions.target = options.target;
   programOptions.hostFunctions = {call->function};
   programOptions.cacheDirectory = options.cacheDirectory;
   programOptions.hostLibraries = options.hostLibraries;

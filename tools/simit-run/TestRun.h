@@ -21,6 +21,8 @@ struct TestRunOptions {
   int threads = 0;
   /// ProgramOptions::hostLibraries (--extern-lib).
   std::vector<std::string> hostLibraries;
+  /// ProgramOptions::target (--target).
+  Target target = Target::CPU;
 };
 
 /// Runs the assertions of every enabled section of a .sim file, printing
@@ -36,6 +38,7 @@ struct EvalOptions {
   std::string cacheDirectory;
   int threads = 0;
   std::vector<std::string> hostLibraries;
+  Target target = Target::CPU;
 };
 
 /// Calls one function with literal arguments and prints each result as a

@@ -7,6 +7,8 @@
 //   simit-run --test FILE.sim
 //   simit-run FILE.sim --eval 'f(1.0, [1, 2]')'
 //   simit-run FILE.sim --emit=simit|loops|llvm
+//   simit-run --cuda-device
+// Every mode takes --target cpu|gpu.
 //
 // docs/simit-run.md describes the modes and options.
 //
@@ -16,6 +18,7 @@
 
 #include "simit/Engine/Program.h"
 #include "simit/Engine/SceneRun.h"
+#include "simit/Runtime/CudaDriver.h"
 
 #include "llvm/ADT/SmallString.h"
 #include "llvm/ADT/StringMap.h"
@@ -131,6 +134,17 @@ static cl::opt<bool> noShermanMorrison(
     cl::cat(runCategory), "no-sherman-morrison",
     cl::desc("Solve (A + u*v') \\ b as written instead of by "
              "Sherman-Morrison"));
+static cl::opt<Target> target(
+    cl::cat(runCategory), "target",
+    cl::desc("Where the program's set loops run (default: cpu)"),
+    cl::values(clEnumValN(Target::CPU, "cpu", "the host CPU"),
+               clEnumValN(Target::GPU, "gpu",
+                          "CUDA kernels on the first NVIDIA GPU")),
+    cl::init(Target::CPU));
+static cl::opt<bool> cudaDevice(
+    cl::cat(runCategory), "cuda-device",
+    cl::desc("Print the CUDA device --target gpu runs on, or why there is "
+             "none (then exit 1)"));
 /// --stats: registered in main, in place of LLVM's -stats (pass statistics,
 /// which this tool has no use for).
 static std::optional<cl::opt<bool>> printStats;
@@ -290,6 +304,7 @@ static int runSceneFile(FloatPrecision precision,
     return fail(solver.takeError());
   options.solver = *solver;
   options.shermanMorrison = !noShermanMorrison;
+  options.target = target;
   auto runner = SceneRunner::create(std::move(*scene), options);
   if (!runner)
     return fail(runner.takeError());
@@ -335,27 +350,22 @@ int main(int argc, char **argv) {
       : cacheDir.getNumOccurrences() ? std::string(cacheDir)
                                      : defaultCompileCacheDirectory();
 
-  if (testMode) {
-    if (programPath.empty())
-      return fail(llvm::createStringError("--test needs a .sim file"));
-    return runTests({programPath, precision, cacheDirectory, *threadCount,
-                     externLibraries},
-                    llvm::outs());
-  }
-  if (!evalCall.empty()) {
-    if (programPath.empty())
-      return fail(llvm::createStringError("--eval needs a program file"));
-    return runEval(
-        {programPath, evalCall, precision, cacheDirectory, *threadCount,
-         externLibraries},
-        llvm::outs());
+  if (cudaDevice) {
+    llvm::Expected<cuda::Device &> device = cuda::defaultDevice();
+    if (!device)
+      return fail(llvm::createStringError("no CUDA device: " +
+                                          llvm::toString(device.takeError())));
+    llvm::outs() << "CUDA device: " << cuda::describeDevice(*device) << "\n";
+    return 0;
   }
   if (emitStage.getNumOccurrences()) {
     if (programPath.empty())
       return fail(llvm::createStringError("--emit needs a program file"));
+    // Lowering needs no device: without one, kernels are for sm_90.
     ProgramOptions programOptions;
     programOptions.precision = precision;
     programOptions.threads = *threadCount;
+    programOptions.target = target;
     Program program(programOptions);
     if (llvm::Error err = program.loadFile(programPath))
       return fail(std::move(err));
@@ -364,6 +374,25 @@ int main(int argc, char **argv) {
       return fail(text.takeError());
     llvm::outs() << *text;
     return 0;
+  }
+  // Running needs the device: say so in one line before compiling anything.
+  if (target == Target::GPU)
+    if (llvm::Expected<cuda::Device &> device = cuda::defaultDevice(); !device)
+      return fail(llvm::createStringError(
+          "no CUDA device: " + llvm::toString(device.takeError())));
+  if (testMode) {
+    if (programPath.empty())
+      return fail(llvm::createStringError("--test needs a .sim file"));
+    return runTests({programPath, precision, cacheDirectory, *threadCount,
+                     externLibraries, target},
+                    llvm::outs());
+  }
+  if (!evalCall.empty()) {
+    if (programPath.empty())
+      return fail(llvm::createStringError("--eval needs a program file"));
+    return runEval({programPath, evalCall, precision, cacheDirectory,
+                    *threadCount, externLibraries, target},
+                   llvm::outs());
   }
   if (scenePath.empty())
     return fail(llvm::createStringError(

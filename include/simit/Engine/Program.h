@@ -36,6 +36,10 @@ namespace simit {
 /// setting that also fixes the type of bound float fields and externs.
 enum class FloatPrecision { Double, Single };
 
+/// Where the set loops of exported functions run: on the host CPU, or as
+/// CUDA kernels on the process's first NVIDIA GPU (docs/gpu.md).
+enum class Target { CPU, GPU };
+
 struct ProgramOptions {
   FloatPrecision precision = FloatPrecision::Double;
   /// Functions of a .sim program to compile with a host ABI although they
@@ -69,6 +73,11 @@ struct ProgramOptions {
   /// `extern func`s (docs/lowering.md, "Host functions"), loaded into the
   /// process when the Program is made.
   std::vector<std::string> hostLibraries;
+  /// With Target::GPU, compile() compiles through simit-gpu-pipeline for
+  /// the compute capability of the device (cuda::defaultDevice()), and
+  /// fails with "no CUDA device: <reason>" before lowering when there is
+  /// none. emit() needs no device (it lowers for sm_90).
+  Target target = Target::CPU;
 };
 
 /// The number of threads `requested` stands for: itself when positive;
@@ -76,6 +85,9 @@ struct ProgramOptions {
 /// integer), else the number of cores this process may run on. A negative
 /// number, or a malformed variable, is an error naming it.
 llvm::Expected<int> resolveThreadCount(int requested);
+
+/// "cpu" or "gpu".
+llvm::StringRef targetName(Target target);
 
 /// $XDG_CACHE_HOME/simit, else $HOME/.cache/simit; empty when neither
 /// variable is set.

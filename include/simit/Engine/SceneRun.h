@@ -58,6 +58,8 @@ struct SceneRunOptions {
   bool shermanMorrison = true;
   /// ProgramOptions::hostLibraries, with the scene's "libraries" after them.
   std::vector<std::string> hostLibraries;
+  /// ProgramOptions::target (simit-run --target).
+  Target target = Target::CPU;
 };
 
 /// The medians of SceneTimes, as simit-run --time prints them.

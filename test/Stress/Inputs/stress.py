@@ -125,9 +125,13 @@ def write_scene(o):
         text = text.replace(old, new)
     with open(os.path.join(o.out, "neo-hookean-solve.sim"), "w") as f:
         f.write(text)
+    # The program's own CG runs only with --example (runtimeSolve 0), but
+    # the step uses its externs in either branch.
     externs = {"h": o.h, "density": o.density, "grav": [0, -10, 0],
                "runtimeSolve": {"type": "int32",
-                                "value": 0 if o.example else 1}}
+                                "value": 0 if o.example else 1},
+               "cgTol": 1e-30, "cgMaxIters": {
+                   "type": "int32", "value": o.cg_max_iters}}
     if not o.example:
         mu, lam = materials(o, pts, tets)
         tet_fields = {"u": {"values": mu.tolist()},
@@ -135,9 +139,7 @@ def write_scene(o):
     else:
         assert o.ratio == 1, "the example has one Young's modulus"
         tet_fields = {}
-        externs.update({"youngs": o.youngs, "poisson": o.poisson,
-                        "cgTol": 1e-30, "cgMaxIters": {
-                            "type": "int32", "value": o.cg_max_iters}})
+        externs.update({"youngs": o.youngs, "poisson": o.poisson})
     tip = f"x > {o.cubes - 1e-9}"
     scene = {
         "program": (os.path.abspath(PROGRAM) if o.example

@@ -12,6 +12,7 @@
 
 #include "simit/Engine/Program.h"
 #include "simit/Engine/RuntimeFunctions.h"
+#include "simit/Runtime/SolveSession.h"
 
 #include <pybind11/stl.h>
 
@@ -348,6 +349,56 @@ binds externs for all of them at once.
            py::arg("check_numerics") = false,
            py::arg("host_functions") = std::vector<std::string>{},
            py::arg("threads") = 0, py::arg("target") = "cpu")
+      .def(
+          "set_solver",
+          [](PyProgram &self, const std::string &method,
+             std::optional<double> tol, std::optional<int64_t> maxIters,
+             bool strict, bool warmStart) {
+            std::optional<SolveMethod> parsed = parseSolveMethod(method);
+            if (!parsed)
+              throw py::value_error("the solver method must be one of " +
+                                    solveMethodNames().str() + ", not '" +
+                                    method + "'");
+            SolveSettings settings{*parsed, tol, maxIters, strict, warmStart};
+            if (llvm::Error err = checkSolveSettings(settings, "set_solver"))
+              throw py::value_error(llvm::toString(std::move(err)));
+            self.program.solver().setSettings(settings);
+          },
+          R"doc(How `x = A \ b` and chol/lu on system matrices solve from the
+next call on (docs/solvers.md): method auto, cg, pcg-jacobi,
+pcg-block-jacobi, cholesky, ldlt or lu; tol and max_iters for the iterative
+methods; strict makes a solve stopped by the cap an error; warm_start starts
+iterative solves from the statement's previous answer.)doc",
+          py::arg("method"), py::kw_only(), py::arg("tol") = py::none(),
+          py::arg("max_iters") = py::none(), py::arg("strict") = false,
+          py::arg("warm_start") = true)
+      .def(
+          "solver_stats",
+          [](PyProgram &self) {
+            py::list statements;
+            for (const SolveStatementStats &stats :
+                 self.program.solver().statistics()) {
+              py::list methods;
+              for (SolveMethod method : stats.methods)
+                methods.append(solveMethodName(method).str());
+              py::dict entry;
+              entry["statement"] = stats.statement;
+              entry["methods"] = methods;
+              entry["solves"] = stats.solves;
+              entry["iterations"] = stats.iterations;
+              entry["max_iterations"] = stats.maxIterations;
+              entry["not_converged"] = stats.notConverged;
+              entry["last_relative_residual"] = stats.lastRelativeResidual;
+              entry["max_relative_residual"] = stats.maxRelativeResidual;
+              entry["analyses"] = stats.analyses;
+              entry["factorisations"] = stats.factorisations;
+              entry["reuses"] = stats.reuses;
+              statements.append(entry);
+            }
+            return statements;
+          },
+          "Per solve statement: the methods, solves, iterations, residuals "
+          "and factorisations so far (simit-run --stats)")
       .def("load_file",
            [](PyProgram &self, const py::object &path) {
              std::string file =

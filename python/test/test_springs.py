@@ -114,3 +114,38 @@ def test_an_extern_array_is_shared_with_the_program(net):
     np.testing.assert_array_equal(points["x"], x)
     with pytest.raises(TypeError, match="would have to be copied"):
         program.step.bind(h=np.array(0.01, dtype=np.float32))
+
+
+def test_set_solver_chooses_how_the_step_solves(net):
+    """runtimeSolve=1 solves with `A \\ b`; Cholesky through set_solver
+    matches the dense NumPy solve, and solver_stats says what it did."""
+    program, points, springs, edges = net
+    program.bind(runtimeSolve=1)
+    program.set_solver("cholesky")
+    x, v = points["x"].copy(), points["v"].copy()
+    m, c, l0 = points["m"].copy(), points["c"].copy(), springs["l0"].copy()
+    for _ in range(3):
+        x, v = numpy_step(x, v, m, c, edges, l0)
+        program.step()
+        np.testing.assert_allclose(points["v"], v, rtol=0, atol=1e-10)
+    (stats,) = program.solver_stats()
+    assert stats["methods"] == ["cholesky"]
+    assert stats["solves"] == 3 and stats["factorisations"] == 3
+    assert stats["analyses"] == 1
+    assert stats["last_relative_residual"] < 1e-12
+
+
+def test_a_strict_capped_solve_raises(net):
+    program, *_ = net
+    program.bind(runtimeSolve=1)
+    program.set_solver("cg", max_iters=1, strict=True)
+    with pytest.raises(simit.Error, match="iteration cap of 1"):
+        program.step()
+
+
+def test_bad_solver_settings_are_value_errors(net):
+    program, *_ = net
+    with pytest.raises(ValueError, match="not 'choleski'"):
+        program.set_solver("choleski")
+    with pytest.raises(ValueError, match="set_solver"):
+        program.set_solver("cg", tol=2.0)

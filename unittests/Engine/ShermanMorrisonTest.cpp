@@ -75,7 +75,8 @@ struct Scene {
   Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(3 * kPoints, 3 * kPoints);
   Eigen::VectorXd uv, vv, bv;
 
-  Scene() {
+  /// `sign` 1: A + u v^T; -1: A - u v^T.
+  explicit Scene(double sign) {
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> value(-1, 1);
     uv.resize(3 * kPoints);
@@ -105,15 +106,25 @@ struct Scene {
         dense(3 * (p + 1) + i, 3 * p + i) -= stiffness;
       }
     }
-    dense += uv * vv.transpose();
+    dense += sign * uv * vv.transpose();
   }
 };
 
+/// kSource solving (A - u v^T) \ b instead.
+std::string differenceSource() {
+  std::string source = kSource;
+  llvm::StringRef sum = "(A + points.u";
+  source.replace(source.find(sum.str()), sum.size(), "(A - points.u");
+  return source;
+}
+
 /// Runs main with the given options and checks x against Eigen; returns
-/// the program's statistics.
-std::vector<SolveStatementStats> expectDenseAnswer(ProgramOptions options) {
+/// the program's statistics. `sign` -1 runs differenceSource().
+std::vector<SolveStatementStats> expectDenseAnswer(ProgramOptions options,
+                                                   double sign = 1) {
   Program program(options);
-  if (llvm::Error err = program.loadString(kSource, "rank-one.sim")) {
+  std::string source = sign > 0 ? std::string(kSource) : differenceSource();
+  if (llvm::Error err = program.loadString(source, "rank-one.sim")) {
     ADD_FAILURE() << message(std::move(err));
     return {};
   }
@@ -122,7 +133,7 @@ std::vector<SolveStatementStats> expectDenseAnswer(ProgramOptions options) {
     ADD_FAILURE() << message(main.takeError());
     return {};
   }
-  Scene scene;
+  Scene scene(sign);
   EXPECT_EQ(message(main->bind("points", scene.points)), "success");
   EXPECT_EQ(message(main->bind("springs", scene.springs)), "success");
   EXPECT_EQ(message(main->run()), "success");
@@ -151,6 +162,15 @@ TEST(ShermanMorrison, RewriteMatchesADenseSolve) {
   EXPECT_EQ(stats[2].methods,
             std::vector<SolveMethod>{SolveMethod::ShermanMorrison});
   EXPECT_LE(stats[2].maxRelativeResidual, 1e-12);
+}
+
+TEST(ShermanMorrison, DifferenceMatchesADenseSolve) {
+  ProgramOptions options;
+  options.solver.method = SolveMethod::Cholesky;
+  std::vector<SolveStatementStats> stats = expectDenseAnswer(options, -1);
+  ASSERT_EQ(stats.size(), 3u);
+  EXPECT_EQ(stats[2].methods,
+            std::vector<SolveMethod>{SolveMethod::ShermanMorrison});
 }
 
 TEST(ShermanMorrison, AutoSolvesWithConjugateGradients) {

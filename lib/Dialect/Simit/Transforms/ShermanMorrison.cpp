@@ -30,21 +30,37 @@ namespace {
 
 constexpr StringLiteral kRuntimeName = "simit_rt_sherman_morrison";
 
-/// The outer product among the operands of `add`, and the other operand.
-std::optional<std::pair<OuterOp, Value>> splitOuter(AddOp add) {
-  for (auto [outer, other] : {std::pair(add.getLhs(), add.getRhs()),
-                              std::pair(add.getRhs(), add.getLhs())})
-    if (auto op = outer.getDefiningOp<OuterOp>())
-      return std::pair(op, other);
+/// `matrix` as A + u v^T or A - u v^T: the outer product, A, and whether
+/// the product is subtracted.
+struct RankOneSum {
+  OuterOp outer;
+  Value a;
+  bool subtracted = false;
+};
+
+std::optional<RankOneSum> splitOuter(Value matrix) {
+  if (auto add = matrix.getDefiningOp<AddOp>()) {
+    for (auto [outer, other] : {std::pair(add.getLhs(), add.getRhs()),
+                                std::pair(add.getRhs(), add.getLhs())})
+      if (auto op = outer.getDefiningOp<OuterOp>())
+        return RankOneSum{op, other};
+    return std::nullopt;
+  }
+  // u v^T - A would need -A's factorisation: left as written.
+  if (auto sub = matrix.getDefiningOp<SubOp>())
+    if (auto op = sub.getRhs().getDefiningOp<OuterOp>())
+      return RankOneSum{op, sub.getLhs(), /*subtracted=*/true};
   return std::nullopt;
 }
 
-/// A sum with an outer product among its terms (through nested adds).
+/// A sum with an outer product among its terms (through nested adds and
+/// subs).
 bool holdsOuterProduct(Value value) {
-  auto add = value.getDefiningOp<AddOp>();
-  if (!add)
-    return isa_and_present<OuterOp>(value.getDefiningOp());
-  return holdsOuterProduct(add.getLhs()) || holdsOuterProduct(add.getRhs());
+  Operation *op = value.getDefiningOp();
+  if (isa_and_present<AddOp, SubOp>(op))
+    return holdsOuterProduct(op->getOperand(0)) ||
+           holdsOuterProduct(op->getOperand(1));
+  return isa_and_present<OuterOp>(op);
 }
 
 bool isSystemVector(Type type) {
@@ -81,13 +97,11 @@ struct RewriteRankOneSolve : OpRewritePattern<SolveOp> {
 
   LogicalResult matchAndRewrite(SolveOp solve,
                                 PatternRewriter &rewriter) const override {
-    auto add = solve.getMatrix().getDefiningOp<AddOp>();
-    if (!add)
-      return rewriter.notifyMatchFailure(solve, "the matrix is not a sum");
-    std::optional<std::pair<OuterOp, Value>> split = splitOuter(add);
+    std::optional<RankOneSum> split = splitOuter(solve.getMatrix());
     if (!split)
-      return rewriter.notifyMatchFailure(solve, "no outer product term");
-    auto [outer, a] = *split;
+      return rewriter.notifyMatchFailure(
+          solve, "the matrix is not A + u v^T or A - u v^T");
+    auto [outer, a, subtracted] = *split;
     auto matrixType = dyn_cast<SystemTensorType>(a.getType());
     if (!matrixType || !matrixType.isSetMatrix() ||
         a.getType() != solve.getMatrix().getType())
@@ -106,6 +120,9 @@ struct RewriteRankOneSolve : OpRewritePattern<SolveOp> {
       return rewriter.notifyMatchFailure(solve, "not a float matrix");
 
     Location loc = solve.getLoc();
+    // A - u v^T = A + (-u) v^T.
+    if (subtracted)
+      u = NegOp::create(rewriter, loc, u.getType(), u);
     auto solveWithA = [&](Value rhs, StringRef note) {
       auto op = SolveOp::create(rewriter, loc, b.getType(), a, rhs);
       op->setAttr("simit.solve_note", rewriter.getStringAttr(note));

@@ -1,6 +1,8 @@
 // RUN: simit-opt %s --simit-sherman-morrison | FileCheck %s
 
-// A - u v^T is not the pattern (a simit.sub): left as written.
+// (A - u v^T) \ b is (A + (-u) v^T) \ b: u is negated and the rewrite
+// applies. u v^T - A, and a difference whose A holds another outer product
+// (rank 2), are left as written.
 
 !Point = !simit.element<"Point", {u : tensor<3xf64>, v : tensor<3xf64>, b : tensor<3xf64>}>
 !Spring = !simit.element<"Spring", {k : f64}>
@@ -13,9 +15,16 @@ simit.extern @springs : !Springs
 func.func private @stiffness(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> !A
 
 // CHECK-LABEL: func.func @difference(
-// CHECK: %[[M:.*]] = simit.sub
-// CHECK: simit.solve %[[M]], %{{.*}} : !simit.tensor
-// CHECK-NOT: simit_rt_sherman_morrison
+// CHECK: %[[A:.*]] = simit.assemble @stiffness()
+// CHECK-DAG: %[[U:.*]] = simit.field_read %{{.*}}["u"]
+// CHECK-DAG: %[[V:.*]] = simit.field_read %{{.*}}["v"]
+// CHECK-DAG: %[[B:.*]] = simit.field_read %{{.*}}["b"]
+// CHECK: %[[NEG:.*]] = simit.neg %[[U]]
+// CHECK: %[[W:.*]] = simit.solve %[[A]], %[[NEG]] {simit.solve_note = "Sherman-Morrison A^-1 u"}
+// CHECK: %[[C:.*]] = simit.solve %[[A]], %[[B]] {simit.solve_note = "Sherman-Morrison A^-1 b"}
+// CHECK: %[[X:.*]] = call @simit_rt_sherman_morrison(%[[A]], %[[NEG]], %[[V]], %[[B]], %[[W]], %[[C]])
+// CHECK-NOT: simit.sub
+// CHECK: return %[[X]]
 func.func @difference() -> !V attributes {simit.export} {
   %springs = simit.get_set @springs : !Springs
   %points = simit.get_set @points : !Points
@@ -25,6 +34,45 @@ func.func @difference() -> !V attributes {simit.export} {
   %b = simit.field_read %points["b"] : !Points -> !V
   %uv = simit.outer %u, %v : !V, !V -> !A
   %M = simit.sub %A, %uv : !A
+  %x = simit.solve %M, %b : !A, !V -> !V
+  return %x : !V
+}
+
+// CHECK-LABEL: func.func @outer_minus_matrix(
+// CHECK: %[[M:.*]] = simit.sub %{{.*}}, %{{.*}} : !simit.tensor
+// CHECK: simit.solve %[[M]], %{{.*}} : !simit.tensor
+// CHECK-NOT: simit_rt_sherman_morrison
+// CHECK: return
+func.func @outer_minus_matrix() -> !V attributes {simit.export} {
+  %springs = simit.get_set @springs : !Springs
+  %points = simit.get_set @points : !Points
+  %A = simit.assemble @stiffness() to %springs reduce <add> : (!Springs) -> !A
+  %u = simit.field_read %points["u"] : !Points -> !V
+  %v = simit.field_read %points["v"] : !Points -> !V
+  %b = simit.field_read %points["b"] : !Points -> !V
+  %uv = simit.outer %u, %v : !V, !V -> !A
+  %M = simit.sub %uv, %A : !A
+  %x = simit.solve %M, %b : !A, !V -> !V
+  return %x : !V
+}
+
+// CHECK-LABEL: func.func @rank_two_difference(
+// CHECK: %[[A1:.*]] = simit.sub %{{.*}}, %{{.*}} : !simit.tensor
+// CHECK: %[[M:.*]] = simit.sub %[[A1]], %{{.*}} : !simit.tensor
+// CHECK: simit.solve %[[M]], %{{.*}} : !simit.tensor
+// CHECK-NOT: simit_rt_sherman_morrison
+// CHECK: return
+func.func @rank_two_difference() -> !V attributes {simit.export} {
+  %springs = simit.get_set @springs : !Springs
+  %points = simit.get_set @points : !Points
+  %A = simit.assemble @stiffness() to %springs reduce <add> : (!Springs) -> !A
+  %u = simit.field_read %points["u"] : !Points -> !V
+  %v = simit.field_read %points["v"] : !Points -> !V
+  %b = simit.field_read %points["b"] : !Points -> !V
+  %uv = simit.outer %u, %v : !V, !V -> !A
+  %vb = simit.outer %v, %b : !V, !V -> !A
+  %A1 = simit.sub %A, %uv : !A
+  %M = simit.sub %A1, %vb : !A
   %x = simit.solve %M, %b : !A, !V -> !V
   return %x : !V
 }

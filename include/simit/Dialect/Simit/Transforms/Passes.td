@@ -43,8 +43,9 @@ def SimitShermanMorrison : Pass<"simit-sherman-morrison", "::mlir::ModuleOp"> {
   let summary = "Solves a sparse matrix plus an outer product by Sherman–Morrison";
   let description = [{
     Rewrites `simit.solve (A + u v^T), b` — a `simit.add` of a system matrix
-    A and a `simit.outer` of two system vectors, in either order — into
-    two solves with A and the runtime's last step:
+    A and a `simit.outer` of two system vectors, in either order, or a
+    `simit.sub` of A and the outer product, solved as A + (-u) v^T with a
+    `simit.neg` of u — into two solves with A and the runtime's last step:
 
     ```mlir
     %w = simit.solve %A, %u {simit.solve_note = "Sherman-Morrison A^-1 u"}
@@ -57,8 +58,8 @@ def SimitShermanMorrison : Pass<"simit-sherman-morrison", "::mlir::ModuleOp"> {
     last step computes x = c - w (v.c) / (1 + v.w), or, when |1 + v.w| is
     tiny next to |v||w|, solves the bordered system [A u; v^T -1] instead
     of dividing (docs/solvers.md). A that itself holds an outer product (the
-    rank-k form A + u1 v1^T + u2 v2^T) is left alone, as are differences
-    and other forms. Run it after simit-inline-functions.
+    rank-k form A + u1 v1^T + u2 v2^T) is left alone, as are u v^T - A and
+    other forms. Run it after simit-inline-functions.
   }];
   let dependentDialects = ["::mlir::simit::SimitDialect",
                            "::mlir::func::FuncDialect"];

@@ -51,6 +51,10 @@ bool isContiguous(const StridedMemRefType<T, N> &m) {
 /// The run in progress on this thread, where simit_rt_fail returns to, and
 /// the message of its failure.
 thread_local std::jmp_buf *activeRun = nullptr;
+/// The OpenMP nesting level at which that run began: deeper, its code is
+/// inside one of its own parallel regions (a caller may run Simit functions
+/// inside parallel regions of its own).
+thread_local int activeRunLevel = 0;
 thread_local std::string runFailure;
 
 /// Ends the run in progress with the message recorded in runFailure. The
@@ -247,7 +251,10 @@ std::optional<std::string> parallelFailure;
 
 extern "C" void simit_rt_fail(const char *message) {
   std::string text = message ? message : "the program failed";
-  if (omp_get_level() > 0) {
+  // Inside a parallel region of the run's code, on any of its threads (the
+  // pool's threads run no run of their own).
+  int level = omp_get_level();
+  if (level > 0 && (!activeRun || level > activeRunLevel)) {
     std::lock_guard<std::mutex> lock(parallelFailureMutex);
     if (!parallelFailure || text < *parallelFailure)
       parallelFailure = std::move(text);
@@ -273,16 +280,20 @@ llvm::Error simit::runGuarded(void (*entry)(void **), void **args,
                               SolveSession *session) {
   std::jmp_buf buffer;
   std::jmp_buf *outer = activeRun;
+  int outerLevel = activeRunLevel;
   SolveSession *outerSolver = activeSolver;
   activeRun = &buffer;
+  activeRunLevel = omp_get_level();
   activeSolver = session;
   if (setjmp(buffer)) {
     activeRun = outer;
+    activeRunLevel = outerLevel;
     activeSolver = outerSolver;
     return llvm::createStringError(runFailure);
   }
   entry(args);
   activeRun = outer;
+  activeRunLevel = outerLevel;
   activeSolver = outerSolver;
   return llvm::Error::success();
 }

@@ -230,33 +230,32 @@ llvm::Expected<Captured> chamberSystems(const std::string &scenePath) {
     const double *x = static_cast<const double *>(verts->fieldData("x"));
     return std::vector<double>(x, x + 3 * verts->size());
   };
+  // One frame is one Newton step; `step` is its number, for the message.
+  auto nextSystem = [&](int64_t step) -> llvm::Expected<System> {
+    captured.reset();
+    if (llvm::Error err = (*runner)->step(1))
+      return std::move(err);
+    if (!captured)
+      return llvm::createStringError(
+          llvm::formatv("Newton step {0} solved no (A + u v^T) system (the "
+                        "iteration had converged?)",
+                        step)
+              .str());
+    return std::move(*captured);
+  };
   std::vector<double> before = positions();
-  captured.reset();
-  if (llvm::Error err = (*runner)->step(1))
-    return std::move(err);
-  if (!captured)
-    return llvm::createStringError(
-        llvm::formatv("Newton step {0} solved no (A + u v^T) system (the "
-                      "iteration had converged?)",
-                      newtonStep.getValue())
-            .str());
+  llvm::Expected<System> system = nextSystem(newtonStep);
+  if (!system)
+    return system.takeError();
   std::vector<double> step = positions();
   for (size_t i = 0; i < step.size(); ++i)
     step[i] -= before[i];
-  if (static_cast<int64_t>(step.size()) != captured->size())
+  if (static_cast<int64_t>(step.size()) != system->size())
     return llvm::createStringError("the system's unknowns are not verts.x");
-  Captured out{std::move(*captured), {}, std::move(step)};
-  captured.reset();
-  if (llvm::Error err = (*runner)->step(1))
-    return std::move(err);
-  if (!captured)
-    return llvm::createStringError(
-        llvm::formatv("Newton step {0} solved no (A + u v^T) system (the "
-                      "iteration had converged?)",
-                      newtonStep + 1)
-            .str());
-  out.next = std::move(*captured);
-  return out;
+  llvm::Expected<System> next = nextSystem(newtonStep + 1);
+  if (!next)
+    return next.takeError();
+  return Captured{std::move(*system), std::move(*next), std::move(step)};
 }
 
 llvm::Expected<Row> measure(int seedSize, const std::string &scenePath) {

@@ -87,12 +87,7 @@ public:
     if (ast->tests.empty())
       return;
 
-    ProgramOptions programOptions;
-    programOptions.precision = options.precision;
-    programOptions.target = options.target;
-    programOptions.cacheDirectory = options.cacheDirectory;
-    programOptions.hostLibraries = options.hostLibraries;
-    programOptions.threads = options.threads;
+    ProgramOptions programOptions = options.program;
     for (const frontend::TestLine &test : ast->tests)
       if (test.func)
         programOptions.hostFunctions.push_back(test.funcName);
@@ -209,13 +204,8 @@ int simit::runEval(const EvalOptions &options, llvm::raw_ostream &os) {
     llvm::errs() << llvm::toString(call.takeError()) << "\n";
     return 1;
   }
-  ProgramOptions programOptions;
-  programOptions.precision = options.precision;
-  programOptions.target = options.target;
+  ProgramOptions programOptions = options.program;
   programOptions.hostFunctions = {call->function};
-  programOptions.cacheDirectory = options.cacheDirectory;
-  programOptions.hostLibraries = options.hostLibraries;
-  programOptions.threads = options.threads;
   Program program(programOptions);
   if (llvm::Error err = program.loadFile(options.path)) {
     llvm::errs() << llvm::toString(std::move(err)) << "\n";

@@ -8,21 +8,14 @@
 #include "llvm/Support/raw_ostream.h"
 
 #include <string>
-#include <vector>
 
 namespace simit {
 
 struct TestRunOptions {
   std::string path;
-  FloatPrecision precision = FloatPrecision::Double;
-  /// ProgramOptions::cacheDirectory of every section's Program.
-  std::string cacheDirectory;
-  /// ProgramOptions::threads of every section's Program.
-  int threads = 0;
-  /// ProgramOptions::hostLibraries (--extern-lib).
-  std::vector<std::string> hostLibraries;
-  /// ProgramOptions::target (--target).
-  Target target = Target::CPU;
+  /// The options of every section's Program; the functions the assertions
+  /// call are added to its hostFunctions.
+  ProgramOptions program;
 };
 
 /// Runs the assertions of every enabled section of a .sim file, printing
@@ -34,11 +27,8 @@ struct EvalOptions {
   std::string path;
   /// `name(literal, ...)`.
   std::string call;
-  FloatPrecision precision = FloatPrecision::Double;
-  std::string cacheDirectory;
-  int threads = 0;
-  std::vector<std::string> hostLibraries;
-  Target target = Target::CPU;
+  /// The Program's options; the called function is its host function.
+  ProgramOptions program;
 };
 
 /// Calls one function with literal arguments and prints each result as a

@@ -380,19 +380,22 @@ int main(int argc, char **argv) {
     if (llvm::Expected<cuda::Device &> device = cuda::defaultDevice(); !device)
       return fail(llvm::createStringError(
           "no CUDA device: " + llvm::toString(device.takeError())));
+  // The Program of --test's sections and of --eval.
+  ProgramOptions programOptions;
+  programOptions.precision = precision;
+  programOptions.threads = *threadCount;
+  programOptions.cacheDirectory = cacheDirectory;
+  programOptions.hostLibraries = externLibraries;
+  programOptions.target = target;
   if (testMode) {
     if (programPath.empty())
       return fail(llvm::createStringError("--test needs a .sim file"));
-    return runTests({programPath, precision, cacheDirectory, *threadCount,
-                     externLibraries, target},
-                    llvm::outs());
+    return runTests({programPath, programOptions}, llvm::outs());
   }
   if (!evalCall.empty()) {
     if (programPath.empty())
       return fail(llvm::createStringError("--eval needs a program file"));
-    return runEval({programPath, evalCall, precision, cacheDirectory,
-                    *threadCount, externLibraries, target},
-                   llvm::outs());
+    return runEval({programPath, evalCall, programOptions}, llvm::outs());
   }
   if (scenePath.empty())
     return fail(llvm::createStringError(

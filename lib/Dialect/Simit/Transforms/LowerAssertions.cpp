@@ -1,5 +1,6 @@
 //===- LowerAssertions.cpp - Failed assertions end the run ----------------===//
 
+#include "RuntimeFunction.h"
 #include "StringConstant.h"
 
 #include "simit/Dialect/Simit/Transforms/Passes.h"
@@ -93,17 +94,11 @@ struct LowerAssertions
       return;
 
     MLIRContext *ctx = module.getContext();
-    auto failType =
-        FunctionType::get(ctx, {LLVM::LLVMPointerType::get(ctx)}, {});
-    auto fail = module.lookupSymbol<func::FuncOp>(kRuntimeFail);
-    if (!fail) {
-      OpBuilder b = OpBuilder::atBlockEnd(module.getBody());
-      fail = func::FuncOp::create(b, module.getLoc(), kRuntimeFail, failType);
-      fail.setPrivate();
-    } else if (fail.getFunctionType() != failType) {
-      fail.emitError("@") << kRuntimeFail << " is declared with another type";
+    func::FuncOp fail = declareRuntimeFunction(
+        module, kRuntimeFail,
+        FunctionType::get(ctx, {LLVM::LLVMPointerType::get(ctx)}, {}));
+    if (!fail)
       return signalPassFailure();
-    }
 
     for (cf::AssertOp op : assertions)
       lowerAssertion(op, fail, module);

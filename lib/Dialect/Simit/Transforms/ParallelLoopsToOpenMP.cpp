@@ -10,6 +10,8 @@
 //
 //===----------------------------------------------------------------------===//
 
+#include "RuntimeFunction.h"
+
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
 #include "mlir/Dialect/OpenMP/OpenMPDialect.h"
@@ -75,14 +77,11 @@ LogicalResult convertLoop(scf::ParallelOp loop) {
                      })
                      .wasInterrupted();
   if (mayFail) {
-    auto module = region->getParentOfType<ModuleOp>();
-    auto raise = module.lookupSymbol<func::FuncOp>(kRaise);
-    if (!raise) {
-      OpBuilder top = OpBuilder::atBlockEnd(module.getBody());
-      raise = func::FuncOp::create(top, loc, kRaise,
-                                   top.getFunctionType({}, {}));
-      raise.setPrivate();
-    }
+    func::FuncOp raise = declareRuntimeFunction(
+        region->getParentOfType<ModuleOp>(), kRaise,
+        b.getFunctionType({}, {}));
+    if (!raise)
+      return failure();
     b.setInsertionPointAfter(region);
     func::CallOp::create(b, loc, raise, ValueRange{});
   }

@@ -7,6 +7,8 @@
 //
 //===----------------------------------------------------------------------===//
 
+#include "RuntimeFunction.h"
+
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
 namespace mlir {
@@ -59,14 +61,14 @@ std::optional<Phase> phaseOf(Operation *op, Block *body) {
 }
 
 /// Declares `name(i32)` as a runtime function unless the module has it.
-void declareTimer(ModuleOp module, StringRef name) {
-  if (module.lookupSymbol(name))
-    return;
-  OpBuilder b = OpBuilder::atBlockEnd(module.getBody());
-  auto type = b.getFunctionType({b.getI32Type()}, {});
-  auto decl = func::FuncOp::create(b, module.getLoc(), name, type);
-  decl.setPrivate();
-  decl->setAttr("simit.runtime_function", b.getUnitAttr());
+LogicalResult declareTimer(ModuleOp module, StringRef name) {
+  Builder b(module.getContext());
+  func::FuncOp timer = declareRuntimeFunction(
+      module, name, b.getFunctionType({b.getI32Type()}, {}));
+  if (!timer)
+    return failure();
+  timer->setAttr("simit.runtime_function", b.getUnitAttr());
+  return success();
 }
 
 struct TimePhases : public simit::impl::SimitTimePhasesBase<TimePhases> {
@@ -87,8 +89,9 @@ struct TimePhases : public simit::impl::SimitTimePhasesBase<TimePhases> {
     }
     if (timed.empty())
       return;
-    declareTimer(module, kBegin);
-    declareTimer(module, kEnd);
+    if (failed(declareTimer(module, kBegin)) ||
+        failed(declareTimer(module, kEnd)))
+      return signalPassFailure();
     for (auto [op, phase] : timed) {
       OpBuilder b(op);
       Value id = arith::ConstantIntOp::create(b, op->getLoc(), b.getI32Type(),

@@ -18,6 +18,7 @@
 
 #include "simit/Engine/Program.h"
 #include "simit/Engine/SceneRun.h"
+#include "simit/Engine/ThreadsOption.h"
 #include "simit/Runtime/CudaDriver.h"
 
 #include "llvm/ADT/SmallString.h"
@@ -83,25 +84,6 @@ static cl::opt<std::string> cacheDir(
     cl::desc("The compile cache (default: $XDG_CACHE_HOME/simit, else "
              "~/.cache/simit)"),
     cl::value_desc("dir"));
-/// --threads. Debian's libLLVM registers an undocumented integer option of
-/// that name (nothing here reads it), so it is renamed first and this
-/// option is made afterwards, in main().
-static cl::opt<int> &threadsOption() {
-  static bool renamed = [] {
-    cl::Option *taken = cl::getRegisteredOptions().lookup("threads");
-    if (taken)
-      taken->setArgStr("llvm-threads");
-    return taken != nullptr;
-  }();
-  (void)renamed;
-  static cl::opt<int> threads(
-      cl::cat(runCategory), "threads",
-      cl::desc("Threads that run the set loops (default: "
-               "$SIMIT_NUM_THREADS, else every core); the results are the "
-               "same for every count"),
-      cl::value_desc("N"), cl::init(0));
-  return threads;
-}
 static cl::opt<bool> noProgress(cl::cat(runCategory), "no-progress",
                                 cl::desc("No progress lines on long runs"));
 static cl::list<std::string>
@@ -323,7 +305,10 @@ static int runSceneFile(FloatPrecision precision,
 
 int main(int argc, char **argv) {
   llvm::InitLLVM init(argc, argv);
-  cl::opt<int> &threads = threadsOption();
+  cl::opt<int> &threads = threadsOption(
+      runCategory, "Threads that run the set loops (default: "
+                   "$SIMIT_NUM_THREADS, else every core); the results are the "
+                   "same for every count");
   cl::HideUnrelatedOptions(runCategory);
   if (cl::Option *llvmStats = cl::getRegisteredOptions().lookup("stats"))
     llvmStats->removeArgument();

@@ -59,7 +59,8 @@ config.available_features.add("target-" + simit_target)
 
 tool_dirs = [config.simit_tools_dir, config.llvm_tools_dir]
 tools = ["simit-opt", "simit-translate", "simit-bench-eigen",
-         "simit-bench-sherman-morrison", "mlir-opt", "mlir-runner",
+         "simit-bench-sherman-morrison", "simit-bench-spmv", "mlir-opt",
+         "mlir-runner",
          ToolSubst("simit-run", extra_args=["--target", simit_target]
                    if simit_target == "gpu" else None)]
 llvm_config.add_tool_substitutions(tools, tool_dirs)

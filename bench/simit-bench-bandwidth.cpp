@@ -129,7 +129,7 @@ void report(llvm::StringRef kind, int threadCount, uint64_t arrayBytes,
       arrayBytes >> 20);
   llvm::outs() << llvm::formatv(
       "RESULT bandwidth kind={0} threads={1} array_bytes={2} "
-      "bytes_per_rep={3} reps={4} best_gbs={5} median_gbs={6}\n",
+      "bytes_per_rep={3} reps={4} best_gbs={5:F4} median_gbs={6:F4}\n",
       kind, threadCount, arrayBytes, bytesPerRep, repetitions.getValue(), best,
       median);
 }

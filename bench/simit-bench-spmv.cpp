@@ -169,8 +169,8 @@ llvm::Error measure(int threads) {
       products, bytes, gbs, *threadCount, targetName(target), error);
   llvm::outs() << llvm::formatv(
       "RESULT spmv target={0} threads={1} rows={2} blocks={3} "
-      "matrix_bytes={4} bytes={5} products={6} frames={7} ms_per_product={8} "
-      "gbs={9} error={10:e}\n",
+      "matrix_bytes={4} bytes={5} products={6} frames={7} "
+      "ms_per_product={8:F5} gbs={9:F4} error={10:e}\n",
       targetName(target), *threadCount, rows, blocks, matrixBytes, bytes,
       products, times.frames, msPerProduct, gbs, error);
   return llvm::Error::success();

@@ -23,41 +23,6 @@ using namespace mlir::simit;
 using namespace mlir::simit::loops;
 
 namespace {
-/// Whether every additive term of the body has a factor read from a matrix
-/// input, so the result is zero wherever those inputs are and fits in the
-/// union of their sparsity. A term without one (the outer product u(i) v(j)
-/// of `A + u * v'`, a constant added to a matrix) is nonzero outside the
-/// pattern: it would be silently cut off.
-bool zeroOutsideMatrices(IndexExprOp op) {
-  Block &body = op.getBody().front();
-  DenseMap<Value, bool> confined;
-  for (BlockArgument arg : body.getArguments())
-    confined[arg] = op.getInputIndexList(arg.getArgNumber()).size() == 2;
-  auto isConfined = [&](Value v) { return confined.lookup(v); };
-  for (Operation &inner : body.without_terminator()) {
-    if (inner.getNumResults() != 1)
-      continue;
-    bool value;
-    if (isa<arith::AddFOp, arith::SubFOp, arith::AddIOp, arith::SubIOp,
-            complex::AddOp, complex::SubOp>(inner))
-      value = isConfined(inner.getOperand(0)) &&
-              isConfined(inner.getOperand(1));
-    else if (isa<arith::DivFOp, arith::DivSIOp, complex::DivOp>(inner))
-      value = isConfined(inner.getOperand(0));
-    else if (auto constant = dyn_cast<arith::ConstantOp>(inner))
-      value = isa<FloatAttr>(constant.getValue())
-                  ? cast<FloatAttr>(constant.getValue()).getValue().isZero()
-                  : isa<IntegerAttr>(constant.getValue()) &&
-                        cast<IntegerAttr>(constant.getValue())
-                            .getValue()
-                            .isZero();
-    else // products, negation, and what keeps a factor's zeros
-      value = llvm::any_of(inner.getOperands(), isConfined);
-    confined[inner.getResult(0)] = value;
-  }
-  return isConfined(body.getTerminator()->getOperand(0));
-}
-
 /// Whether the body multiplies or divides two values that both come from
 /// matrix inputs.
 bool multipliesMatrices(IndexExprOp op) {
@@ -113,7 +78,7 @@ private:
   Storage storageOf(unsigned i) {
     Storage storage = i == op.getInputs().size()
                           ? resultStorage
-                          : l.storages.lookup(op.getInputs()[i]);
+                          : l.storageOf(op.getInputs()[i]);
     if (storage.kind == Storage::Kind::Incidence && storage.transposed)
       return Storage::incidence(storage.edges, storage.rows,
                                 storage.cardinality);
@@ -262,24 +227,40 @@ FailureOr<Value> IndexExprLowering::access(unsigned i) {
                                    l.zeroOf(scalarType))
         .getResult();
   }
-  return op.emitError("input #")
-         << i << " (" << storage.describe()
-         << ") is read at blocks the loop nest does not enumerate; the loop "
-            "lowering needs every pattern matrix read along its own rows";
+  if (storage.kind == Storage::Kind::Incidence)
+    return op.emitError("input #")
+           << i << " (" << storage.describe()
+           << ") is read at blocks the loop nest does not enumerate; the loop "
+              "lowering reads an incidence along its own rows only";
+  // Elsewhere a search of the row (a diagonal result read from a
+  // pattern): zero where the matrix has no block.
+  Value position = l.findBlock(loc, storage, row, col);
+  Value present = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::sge,
+                                        position, l.indexConstant(0));
+  inner.insert(inner.begin(), arith::SelectOp::create(b, loc, present, position,
+                                                      l.indexConstant(0)));
+  Value value = memref::LoadOp::create(b, loc, lowered, inner);
+  return arith::SelectOp::create(b, loc, present, value, l.zeroOf(scalarType))
+      .getResult();
 }
 
 std::optional<IndexExprLowering::Choice>
 IndexExprLowering::choose(ArrayRef<unsigned> vars) {
-  // A set level that a bound variable's matrix row gives comes first; among
-  // the matrices pairing the same variables, the largest sparsity leads
-  // (an edge pattern holds a diagonal).
+  // A set level that a bound variable's matrix row gives comes first. A
+  // matrix result leads: its storage holds every nonzero of the body.
+  // Otherwise, among the matrices pairing the same variables, the largest
+  // sparsity leads (an edge pattern holds a diagonal).
+  unsigned result = op.getInputs().size();
   for (unsigned v : vars) {
     if (isSetBound(v) || !isa<StringAttr>(level(v, 0)))
       continue;
     int best = -1;
     unsigned partner = 0;
     std::optional<Storage> joined;
-    for (unsigned o = 0; o < numMatrixOperands(); ++o) {
+    for (unsigned n = 0; n < numMatrixOperands(); ++n) {
+      unsigned o = (result + n) % numMatrixOperands();
+      if (best == static_cast<int>(result))
+        break;
       Storage storage = storageOf(o);
       ArrayRef<int64_t> list = indexList(o);
       if (!storage.isMatrix() || list.size() != 2 || list[0] == list[1])
@@ -416,12 +397,17 @@ IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
         positions[o] = position;
         continue;
       }
+      // Another pattern or union over the same sets: its block at this
+      // position (for a transposed read, the block at the mirrored
+      // position), or -1, from a gather map built once per binding.
+      auto gatherable = [](const Storage &s) {
+        return s.kind == Storage::Kind::Pattern ||
+               s.kind == Storage::Kind::Union;
+      };
       std::optional<Storage> read = transposed ? transposedStorage(own) : own;
-      if (!storage.isBCSR() || !own.isBCSR() || !read ||
-          !storage.contains(*read))
+      if (!gatherable(storage) || !gatherable(own) || !read ||
+          read->rows != storage.rows || read->cols != storage.cols)
         continue;
-      // Part of the loop's pattern: its block at this position (for a
-      // transposed read, the block at the mirrored position), or -1.
       positions[o] = arith::IndexCastOp::create(
           b, loc, b.getIndexType(),
           memref::LoadOp::create(b, loc,
@@ -667,7 +653,7 @@ LogicalResult IndexExprLowering::lower() {
     if (type && type.isSystem() && type.getOrder() == 2 &&
         isa<StringAttr>(type.getDims()[0]) &&
         isa<StringAttr>(type.getDims()[1]) &&
-        !l.storages.lookup(input).isMatrix())
+        !l.storageOf(input).isMatrix())
       return op.emitError("input #")
              << i << " is a system matrix of unknown sparsity";
   }
@@ -677,7 +663,7 @@ LogicalResult IndexExprLowering::lower() {
   // the entry. Sums and scalings of the blocks are right; products and
   // quotients of two matrices' blocks are not.
   for (Value input : op.getInputs()) {
-    Storage s = l.storages.lookup(input);
+    Storage s = l.storageOf(input);
     if (s.kind == Storage::Kind::Incidence && multipliesMatrices(op))
       return op.emitError("element-wise products and quotients of matrices "
                           "stored as ")
@@ -685,7 +671,7 @@ LogicalResult IndexExprLowering::lower() {
   }
   swappedLists.resize(op.getInputs().size());
   for (auto [i, input] : llvm::enumerate(op.getInputs())) {
-    Storage s = l.storages.lookup(input);
+    Storage s = l.storageOf(input);
     if (s.kind == Storage::Kind::Incidence && s.transposed)
       swappedLists[i] = {op.getInputIndexList(i)[1], op.getInputIndexList(i)[0]};
   }
@@ -710,53 +696,22 @@ LogicalResult IndexExprLowering::lower() {
   if (!type || !type.isSystem())
     return op.emitError("an index expression over sets must produce a "
                         "system tensor or a scalar");
-  // A matrix result takes the union of its inputs' sparsity; a vector
-  // result is dense.
+  // A matrix result is stored as its type says (simit-assign-storage reads
+  // the body as a path expression, so the storage holds every nonzero); a
+  // vector result is dense.
   if (type.getOrder() == 2 && isa<StringAttr>(type.getDims()[0]) &&
       isa<StringAttr>(type.getDims()[1])) {
     if (!summed.empty())
       return op.emitError("products of system matrices are not supported by "
                           "the loop lowering");
-    std::optional<Storage> storage;
-    for (auto [i, input] : llvm::enumerate(op.getInputs())) {
-      Storage s = l.storages.lookup(input);
-      if (!s.isMatrix())
-        continue;
-      ArrayRef<int64_t> list = op.getInputIndexList(i);
-      std::optional<Storage> read = s;
-      if (list != resultVars) {
-        read = transposedStorage(s);
-        if (list.size() != 2 || list[0] != resultVars[1] ||
-            list[1] != resultVars[0] || !read)
-          return op.emitError("input #")
-                 << i << " (" << s.describe()
-                 << ") is read in an orientation the loop lowering does not "
-                    "support";
-      }
-      s = *read;
-      std::optional<Storage> joined =
-          storage ? joinStorages(*storage, s) : std::optional<Storage>(s);
-      if (!joined)
-        return op.emitError("cannot combine matrices stored as ")
-               << storage->describe() << " and " << s.describe()
-               << "; neither sparsity contains the other and their sets "
-                  "differ";
-      storage = *joined;
-    }
-    if (!storage)
+    resultStorage = l.storageOf(op);
+    if (!resultStorage.isMatrix())
       return op.emitError("a system matrix result needs a sparse input");
-    if (!zeroOutsideMatrices(op))
-      return op.emitError("this matrix is nonzero outside the sparsity of "
-                          "its matrix operands (a term without a matrix "
-                          "factor, such as an outer product of vectors "
-                          "added to a sparse matrix): its result would be "
-                          "dense, which the loop lowering does not support");
-    if (storage->kind == Storage::Kind::Incidence && storage->transposed)
+    if (resultStorage.kind == Storage::Kind::Incidence &&
+        resultStorage.transposed)
       return op.emitError("a matrix result stored as ")
-             << storage->describe()
+             << resultStorage.describe()
              << " is not supported by the loop lowering yet";
-
-    resultStorage = *storage;
   }
   SmallVector<unsigned> free(resultVars.begin(), resultVars.end());
   bool sparseSum =
@@ -773,7 +728,6 @@ LogicalResult IndexExprLowering::lower() {
     l.fill(loc, output, l.zeroOf(scalarType));
   if (!output)
     output = l.allocSystem(loc, type, resultStorage, sparseSum);
-  l.storages[op] = resultStorage;
   if (sparseSum) {
     SmallVector<unsigned> all(free);
     llvm::append_range(all, summed);

@@ -29,10 +29,9 @@ static bool isVisible(OpBuilder &b, Value value) {
   return false;
 }
 
-/// The position of block (row, col) in a matrix stored as `storage`, or -1.
-static Value findBlock(FunctionLowering &l, Location loc,
-                       const Storage &storage, Value row, Value col) {
-  OpBuilder &b = l.b;
+Value FunctionLowering::findBlock(Location loc, const Storage &storage,
+                                  Value row, Value col) {
+  FunctionLowering &l = *this;
   // Patterns do not change while the function runs: a scan done earlier
   // (the read of `A(q,q) = 1 + A(q,q)`) serves the write too.
   for (auto &[s, r, c, position] : l.blockPositions)
@@ -43,6 +42,18 @@ static Value findBlock(FunctionLowering &l, Location loc,
     Value onDiagonal =
         arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq, row, col);
     return arith::SelectOp::create(b, loc, onDiagonal, row, none);
+  }
+  if (storage.kind == Storage::Kind::Stencil) {
+    // The first offset whose point is the column, as writes choose.
+    Value found = none;
+    for (int64_t k = storage.offsets.size(); k-- > 0;) {
+      Value kv = indexConstant(k);
+      Value match = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq,
+                                          stencilColumn(storage, row, kv), col);
+      found = arith::SelectOp::create(b, loc, match,
+                                      stencilBlock(storage, row, kv), found);
+    }
+    return found;
   }
   Value rowPtr = l.rowPointers(storage);
   Value colIdx = l.columnIndices(storage);
@@ -75,7 +86,7 @@ LogicalResult FunctionLowering::lowerMatrixBlockAccess(Operation *op) {
   auto insert = dyn_cast<InsertOp>(op);
   Value matrix = extract ? extract.getTensor() : insert.getTensor();
   ValueRange indices = extract ? extract.getIndices() : insert.getIndices();
-  Storage storage = storages.lookup(matrix);
+  Storage storage = storageOf(matrix);
   if (!storage.isMatrix())
     return op->emitError("a block of a system matrix of unknown sparsity "
                          "cannot be ")
@@ -89,7 +100,7 @@ LogicalResult FunctionLowering::lowerMatrixBlockAccess(Operation *op) {
   Value row = lookup(indices[0]), col = lookup(indices[1]);
   Value array = lookup(matrix);
   auto type = cast<MemRefType>(array.getType());
-  Value position = findBlock(*this, loc, storage, row, col);
+  Value position = findBlock(loc, storage, row, col);
   Value found = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::sge,
                                       position, indexConstant(0));
 
@@ -136,7 +147,6 @@ LogicalResult FunctionLowering::lowerMatrixBlockAccess(Operation *op) {
     memref::StoreOp::create(b, loc,
                             component(insert.getValue().getType(), value, c),
                             target, blockIndices(type, {position}, c));
-  storages[insert] = storage;
   map(insert, target);
   return success();
 }
@@ -148,7 +158,7 @@ LogicalResult FunctionLowering::lowerMatrixSlice(SliceOp op) {
   if (!type || type.getOrder() != 2 || kept.size() != 2 || kept[0] == kept[1])
     return op.emitError("slices of system tensors are supported as rows "
                         "A(p, :) and columns A(:, q) of matrices");
-  Storage storage = storages.lookup(op.getTensor());
+  Storage storage = storageOf(op.getTensor());
   Value matrix = lookup(op.getTensor());
   Value index = lookup(op.getIndices()[0]);
   bool row = kept[1];
@@ -214,7 +224,7 @@ LogicalResult FunctionLowering::lowerMatrixSlice(SliceOp op) {
   } else {
     // Column q: row r's block (r, q), found in its row, or zero.
     forEach(indexConstant(0), getSetSize(storage.rows), [&](Value r) {
-      Value position = findBlock(*this, loc, storage, r, index);
+      Value position = findBlock(loc, storage, r, index);
       Value found = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::sge,
                                           position, indexConstant(0));
       auto branch = scf::IfOp::create(b, loc, TypeRange{}, found,
@@ -224,7 +234,6 @@ LogicalResult FunctionLowering::lowerMatrixSlice(SliceOp op) {
       copy(position, r, /*add=*/false);
     });
   }
-  storages[op] = Storage::dense();
   map(op, result);
   return success();
 }

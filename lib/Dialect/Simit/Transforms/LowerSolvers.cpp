@@ -58,7 +58,7 @@ LogicalResult FunctionLowering::lowerSystemSolve(Operation *op, Value matrix,
                                                  StringRef method,
                                                  StringRef what) {
   Location loc = op->getLoc();
-  Storage storage = storages.lookup(matrix);
+  Storage storage = storageOf(matrix);
   auto matrixType = cast<SystemTensorType>(matrix.getType());
   // `\` also takes block diagonal matrices.
   bool diagonal = storage.kind == Storage::Kind::Diagonal && method == "solve";
@@ -112,7 +112,6 @@ LogicalResult FunctionLowering::lowerSystemSolve(Operation *op, Value matrix,
   args.append({asRuntimeBlocks(loc, x, vector),
                stringConstant(loc, what.str() + sourcePositionSuffix(op))});
   func::CallOp::create(b, loc, callee, args);
-  storages[result] = Storage::dense();
   map(result, x);
   return success();
 }
@@ -148,7 +147,7 @@ LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
   bool factorise = name == "simit_rt_lu" || name == "simit_rt_chol";
   bool solve = name == "simit_rt_lusolve" || name == "simit_rt_lltsolve";
   Value matrix = factorise ? call.getOperand(0) : Value();
-  Storage storage = matrix ? storages.lookup(matrix) : Storage();
+  Storage storage = matrix ? storageOf(matrix) : Storage();
   auto f64Blocks = [](Type t, unsigned order) {
     auto type = dyn_cast<SystemTensorType>(t);
     if (!type || !type.isSystem() || type.getOrder() != order ||
@@ -218,7 +217,6 @@ LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
       ValueRange{lookup(call.getOperand(0)),
                  asRuntimeBlocks(loc, lookup(call.getOperand(1)), vector),
                  asRuntimeBlocks(loc, x, vector), where});
-  storages[call.getResult(0)] = Storage::dense();
   map(call.getResult(0), x);
   return success();
 }

@@ -315,6 +315,12 @@ public:
   /// The position of block (row, col) in a matrix stored as `storage`
   /// (diagonal, stencil or BCSR), or -1 where it stores none.
   Value findBlock(Location loc, const Storage &storage, Value row, Value col);
+  /// The sum over the blocks of an incidence (or transposed incidence)
+  /// matrix at (row, col) of `read(position)`: an edge naming one endpoint
+  /// twice has two blocks there, and none is zero.
+  Value sumIncidenceBlocks(Location loc, const Storage &storage, Value row,
+                           Value col, Type scalar,
+                           function_ref<Value(Value)> read);
   /// simit.convert: a matrix moved to a storage that contains its own.
   LogicalResult lowerConvert(ConvertOp op);
   /// The positions of blocks (row, col) of pattern matrices found so far.

@@ -142,7 +142,7 @@ private:
   /// The operands whose position comes from a union's gather map, so may
   /// be -1 (no block there).
   llvm::SmallDenseSet<unsigned> gathered;
-  /// The swapped variable lists of transposed incidence inputs, by input.
+  /// The swapped variable lists of transposed incidences, by operand.
   SmallVector<SmallVector<int64_t, 2>> swappedLists;
   /// Variables summed by a simit.index_sum in the body.
   llvm::SmallDenseSet<unsigned> nestedVars;
@@ -227,11 +227,16 @@ FailureOr<Value> IndexExprLowering::access(unsigned i) {
                                    l.zeroOf(scalarType))
         .getResult();
   }
+  // Row and column are the input's own: read it in its own orientation.
   if (storage.kind == Storage::Kind::Incidence)
-    return op.emitError("input #")
-           << i << " (" << storage.describe()
-           << ") is read at blocks the loop nest does not enumerate; the loop "
-              "lowering reads an incidence along its own rows only";
+    return l.sumIncidenceBlocks(loc, l.storageOf(input), row, col, scalarType,
+                                [&](Value position) {
+                                  SmallVector<Value> at(inner);
+                                  at.insert(at.begin(), position);
+                                  return memref::LoadOp::create(b, loc,
+                                                                lowered, at)
+                                      .getResult();
+                                });
   // Elsewhere a search of the row (a diagonal result read from a
   // pattern): zero where the matrix has no block.
   Value position = l.findBlock(loc, storage, row, col);
@@ -669,7 +674,8 @@ LogicalResult IndexExprLowering::lower() {
                           "stored as ")
              << s.describe() << " are not supported by the loop lowering yet";
   }
-  swappedLists.resize(op.getInputs().size());
+  // Inputs, then the result.
+  swappedLists.resize(op.getInputs().size() + 1);
   for (auto [i, input] : llvm::enumerate(op.getInputs())) {
     Storage s = l.storageOf(input);
     if (s.kind == Storage::Kind::Incidence && s.transposed)
@@ -707,13 +713,14 @@ LogicalResult IndexExprLowering::lower() {
     resultStorage = l.storageOf(op);
     if (!resultStorage.isMatrix())
       return op.emitError("a system matrix result needs a sparse input");
+    // A transposed incidence result is written edge by edge, as the
+    // incidence it transposes: the edge variable's loop comes first.
     if (resultStorage.kind == Storage::Kind::Incidence &&
         resultStorage.transposed)
-      return op.emitError("a matrix result stored as ")
-             << resultStorage.describe()
-             << " is not supported by the loop lowering yet";
+      swappedLists.back() = {resultVars[1], resultVars[0]};
   }
-  SmallVector<unsigned> free(resultVars.begin(), resultVars.end());
+  ArrayRef<int64_t> resultOrder = indexList(op.getInputs().size());
+  SmallVector<unsigned> free(resultOrder.begin(), resultOrder.end());
   bool sparseSum =
       !resultStorage.isMatrix() && llvm::any_of(summed, [&](unsigned v) {
         return isa<StringAttr>(level(v, 0));

@@ -80,6 +80,35 @@ Value FunctionLowering::findBlock(Location loc, const Storage &storage,
   return scan.getResult(0);
 }
 
+Value FunctionLowering::sumIncidenceBlocks(Location loc,
+                                           const Storage &storage, Value row,
+                                           Value col, Type scalar,
+                                           function_ref<Value(Value)> read) {
+  Value edge = storage.transposed ? col : row;
+  Value endpoint = storage.transposed ? row : col;
+  Value ends = getEndpoints(storage.edges, storage.cardinality);
+  Value sum = zeroOf(scalar);
+  for (int64_t k = 0; k < storage.cardinality; ++k) {
+    Value kv = indexConstant(k);
+    Value at = arith::IndexCastOp::create(
+        b, loc, b.getIndexType(),
+        memref::LoadOp::create(b, loc, ends, ValueRange{edge, kv}));
+    Value match =
+        arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq, at, endpoint);
+    Value position = arith::AddIOp::create(
+        b, loc,
+        arith::MulIOp::create(b, loc, edge,
+                              indexConstant(storage.cardinality)),
+        kv);
+    Value value = arith::SelectOp::create(b, loc, match, read(position),
+                                          zeroOf(scalar));
+    sum = isa<FloatType>(scalar)
+              ? arith::AddFOp::create(b, loc, sum, value).getResult()
+              : arith::AddIOp::create(b, loc, sum, value).getResult();
+  }
+  return sum;
+}
+
 LogicalResult FunctionLowering::lowerMatrixBlockAccess(Operation *op) {
   Location loc = op->getLoc();
   auto extract = dyn_cast<ExtractOp>(op);
@@ -91,15 +120,27 @@ LogicalResult FunctionLowering::lowerMatrixBlockAccess(Operation *op) {
     return op->emitError("a block of a system matrix of unknown sparsity "
                          "cannot be ")
            << (extract ? "read" : "written") << " by the loop lowering";
-  if (storage.kind == Storage::Kind::Incidence)
+  if (storage.kind == Storage::Kind::Incidence && insert)
     return op->emitError("blocks of a matrix stored as ")
            << storage.describe()
-           << " cannot be accessed one at a time by the loop lowering";
+           << " cannot be written one at a time by the loop lowering";
   if (indices.size() != 2)
     return op->emitError("a block of a system matrix needs two indices");
   Value row = lookup(indices[0]), col = lookup(indices[1]);
   Value array = lookup(matrix);
   auto type = cast<MemRefType>(array.getType());
+  if (storage.kind == Storage::Kind::Incidence) {
+    SmallVector<Value> components;
+    for (int64_t c = 0, n = numComponents(extract.getType()); c < n; ++c)
+      components.push_back(sumIncidenceBlocks(
+          loc, storage, row, col, type.getElementType(), [&](Value p) {
+            return memref::LoadOp::create(b, loc, array,
+                                          blockIndices(type, {p}, c))
+                .getResult();
+          }));
+    map(extract, fromComponents(convertType(extract.getType()), components));
+    return success();
+  }
   Value position = findBlock(loc, storage, row, col);
   Value found = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::sge,
                                       position, indexConstant(0));
@@ -165,13 +206,19 @@ LogicalResult FunctionLowering::lowerMatrixSlice(SliceOp op) {
   // The result: a zero-filled vector over the kept dimension's set.
   Value result = allocSystem(loc, op.getType(), Storage::dense());
   Type scalar = type.getComponentType();
+  auto matrixType = cast<MemRefType>(matrix.getType());
+  auto resultType = cast<MemRefType>(result.getType());
+  // Block `from` of the matrix to block `to` of the result, each component.
   auto copy = [&](Value from, Value to, bool add) {
-    Value value = memref::LoadOp::create(b, loc, matrix, ValueRange{from});
-    if (add)
-      value = arith::AddFOp::create(
-          b, loc, memref::LoadOp::create(b, loc, result, ValueRange{to}),
-          value);
-    memref::StoreOp::create(b, loc, value, result, ValueRange{to});
+    for (int64_t c = 0, n = numComponents(getBlockType(type)); c < n; ++c) {
+      SmallVector<Value> at = blockIndices(resultType, {to}, c);
+      Value value = memref::LoadOp::create(
+          b, loc, matrix, blockIndices(matrixType, {from}, c));
+      if (add)
+        value = arith::AddFOp::create(
+            b, loc, memref::LoadOp::create(b, loc, result, at), value);
+      memref::StoreOp::create(b, loc, value, result, at);
+    }
   };
   auto forEach = [&](Value lb, Value ub, function_ref<void(Value)> body) {
     scf::ForOp::create(b, loc, lb, ub, indexConstant(1), ValueRange{},

@@ -181,7 +181,8 @@ func.func @late(%c : i1) attributes {simit.export} {
 
 // -----
 
-// Blocks of an incidence matrix are not read one at a time.
+// Blocks of an incidence matrix are not written one at a time (an edge
+// naming one endpoint twice holds two blocks at one place).
 !Point = !simit.element<"Point", {x : f64}>
 !Spring = !simit.element<"Spring", {g : f64}>
 !D = !simit.tensor<["springs", "points"] x f64>
@@ -202,8 +203,10 @@ func.func @entry(%i : index) -> f64 attributes {simit.export} {
   %D = simit.assemble @difference() to %springs reduce <add> : (!Springs) -> !D
   %s = simit.set_element %springs[%i] : !Springs -> !Spring
   %p = simit.set_element %points[%i] : !Points -> !Point
-  // expected-error @below {{blocks of a matrix stored as incidence of 'springs' over ('springs', 'points') cannot be accessed one at a time by the loop lowering}}
-  %v = simit.extract %D[%s, %p] : !D, (!Spring, !Point) -> f64
+  %one = arith.constant 1.0 : f64
+  // expected-error @below {{blocks of a matrix stored as incidence of 'springs' over ('springs', 'points') cannot be written one at a time by the loop lowering}}
+  %E = simit.insert %one into %D[%s, %p] : f64 into !D, (!Spring, !Point)
+  %v = simit.extract %E[%s, %p] : !D, (!Spring, !Point) -> f64
   return %v : f64
 }
 

@@ -1,16 +1,17 @@
 //===- LoopsLowering.h - State of the simit-to-loops lowering ---*- C++ -*-===//
 //
 // convert-simit-to-loops rebuilds every exported function op by op: a value
-// map takes each simit value to its lowered form, a storage map records how
-// each system matrix is stored, and bindings become new function arguments
-// as the lowering first needs them. The implementation is split by subject:
-// ConvertSimitToLoops.cpp (driver, types, op dispatch), LoopStorage.cpp
-// (storages, containment, joins), LoopBindings.cpp (function arguments),
+// map takes each simit value to its lowered form, each system matrix is
+// stored as its type's encoding says, and bindings become new function
+// arguments as the lowering first needs them. The implementation is split
+// by subject: ConvertSimitToLoops.cpp (driver, types, op dispatch),
+// LoopStorage.cpp (layouts of encodings, containment, joins), LoopBindings.cpp (function arguments),
 // LowerControlFlow.cpp (scf ops), LowerSystemOps.cpp (host-level ops on
 // system tensors), LowerLocalTensors.cpp (small dense tensors as flat
 // vectors), LowerMaps.cpp (map/assemble as set loops), LowerGridStencils.cpp
 // (maps through grids), LowerMatrixBlocks.cpp (blocks and slices of
-// matrices), LowerIndexExpr.cpp (index expressions as loop nests),
+// matrices), LowerConvert.cpp (simit.convert), LowerIndexExpr.cpp and
+// IndexExprLoops.cpp (index expressions as loop nests),
 // LowerProducts.cpp (matrix products), LowerSolvers.cpp (solves and
 // factorisations), LowerPrint.cpp (printing and strings) and
 // LowerCheckNumerics.cpp (scans of results for --check-numerics).

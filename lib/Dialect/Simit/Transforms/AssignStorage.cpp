@@ -206,6 +206,42 @@ static LogicalResult convertOperands(Operation *op) {
       .Default([](Operation *) { return success(); });
 }
 
+LogicalResult mlir::simit::assignStorage(func::FuncOp function) {
+  DataFlowSolver solver(DataFlowConfig().setInterprocedural(false));
+  solver.load<dataflow::DeadCodeAnalysis>();
+  solver.load<dataflow::SparseConstantPropagation>();
+  solver.load<StorageAnalysis>();
+  if (failed(solver.initializeAndRun(function)) ||
+      failed(reportUnsupported(function, solver)))
+    return failure();
+  retype(function, solver);
+  SmallVector<Operation *> ops;
+  function.walk([&](Operation *op) { ops.push_back(op); });
+  for (Operation *op : ops)
+    if (failed(convertOperands(op)))
+      return failure();
+  return success();
+}
+
+bool mlir::simit::needsStorageAssignment(func::FuncOp function) {
+  auto unassigned = [](Value value) {
+    Type type = value.getType();
+    if (auto ref = dyn_cast<RefType>(type))
+      type = ref.getValueType();
+    return holdsSetMatrix(type) && !getStorage(type);
+  };
+  WalkResult walk = function.walk([&](Operation *op) {
+    // A conversion to a type without storage feeds a runtime function.
+    bool found =
+        !isa<ConvertOp>(op) && llvm::any_of(op->getResults(), unassigned);
+    for (Region &region : op->getRegions())
+      for (Block &block : region)
+        found |= llvm::any_of(block.getArguments(), unassigned);
+    return found ? WalkResult::interrupt() : WalkResult::advance();
+  });
+  return walk.wasInterrupted();
+}
+
 namespace {
 struct AssignStorage
     : public simit::impl::SimitAssignStorageBase<AssignStorage> {
@@ -221,26 +257,9 @@ struct AssignStorage
     for (auto function : module.getOps<func::FuncOp>())
       if (!function.isExternal() &&
           !elementFunctions.contains(function.getSymNameAttr()))
-        failed |= mlir::failed(assign(function));
+        failed |= mlir::failed(assignStorage(function));
     if (failed)
       signalPassFailure();
-  }
-
-  LogicalResult assign(func::FuncOp function) {
-    DataFlowSolver solver(DataFlowConfig().setInterprocedural(false));
-    solver.load<dataflow::DeadCodeAnalysis>();
-    solver.load<dataflow::SparseConstantPropagation>();
-    solver.load<StorageAnalysis>();
-    if (failed(solver.initializeAndRun(function)) ||
-        failed(reportUnsupported(function, solver)))
-      return failure();
-    retype(function, solver);
-    SmallVector<Operation *> ops;
-    function.walk([&](Operation *op) { ops.push_back(op); });
-    for (Operation *op : ops)
-      if (failed(convertOperands(op)))
-        return failure();
-    return success();
   }
 };
 } // namespace

@@ -10,6 +10,7 @@
 //===----------------------------------------------------------------------===//
 
 #include "LoopsLowering.h"
+#include "StorageAnalysis.h"
 #include "SourcePosition.h"
 
 #include "mlir/IR/IRMapping.h"
@@ -137,6 +138,82 @@ Type FunctionLowering::convertType(Type type) {
 Value FunctionLowering::lookup(Value original) {
   auto it = values.find(original);
   return it == values.end() ? Value() : it->second;
+}
+
+/// The matrix type `type` is or a variable of `type` holds, if any.
+static SystemTensorType matrixTypeOf(Type type) {
+  if (auto ref = dyn_cast<RefType>(type))
+    type = ref.getValueType();
+  auto tensor = dyn_cast<SystemTensorType>(type);
+  if (!tensor || tensor.getOrder() != 2 ||
+      !isa<StringAttr>(tensor.getDims()[0]) ||
+      !isa<StringAttr>(tensor.getDims()[1]))
+    return nullptr;
+  return tensor;
+}
+
+Storage FunctionLowering::storageOf(Value original) {
+  auto it = storages.find(original);
+  if (it != storages.end())
+    return it->second;
+  SystemTensorType type = matrixTypeOf(original.getType());
+  StorageAttr encoding = type ? getStorage(type) : StorageAttr();
+  if (!encoding)
+    return Storage::dense();
+  // checkStorages reported every encoding without a layout.
+  std::optional<Storage> storage = storageOfEncoding(
+      encoding, cast<StringAttr>(type.getDims()[0]),
+      cast<StringAttr>(type.getDims()[1]), setTypes);
+  assert(storage && "encoding without a layout");
+  return storages[original] = *storage;
+}
+
+void FunctionLowering::carryStorage(Value to, Value from) {
+  SystemTensorType type = matrixTypeOf(to.getType());
+  if (type && !getStorage(type) && storages.count(from))
+    storages[to] = storages[from];
+}
+
+LogicalResult FunctionLowering::checkStorages(func::FuncOp original) {
+  auto collect = [&](Type type) {
+    if (auto set = dyn_cast<SetType>(type))
+      setTypes[set.getName()] = set;
+  };
+  for (auto global : module.getOps<ExternOp>())
+    collect(global.getType());
+  original.walk([&](Operation *op) {
+    for (Type type : op->getOperandTypes())
+      collect(type);
+    for (Type type : op->getResultTypes())
+      collect(type);
+  });
+  bool unsupported = false;
+  auto check = [&](Value value) {
+    SystemTensorType type = matrixTypeOf(value.getType());
+    StorageAttr encoding = type ? getStorage(type) : StorageAttr();
+    if (!encoding ||
+        storageOfEncoding(encoding, cast<StringAttr>(type.getDims()[0]),
+                          cast<StringAttr>(type.getDims()[1]), setTypes))
+      return;
+    unsupported = true;
+    Location loc = value.getDefiningOp() ? value.getDefiningOp()->getLoc()
+                                         : value.getLoc();
+    if (encoding.getKind() == StorageKind::Empty)
+      emitError(loc, "a zero system matrix (stored as 'empty') cannot be "
+                     "created here; assemble it with a map");
+    else
+      emitError(loc, "a matrix stored as '")
+          << encoding.str() << "' is not supported by the loop lowering yet";
+  };
+  original.walk([&](Operation *op) {
+    for (Value result : op->getResults())
+      check(result);
+    for (Region &region : op->getRegions())
+      for (Block &block : region)
+        for (Value arg : block.getArguments())
+          check(arg);
+  });
+  return failure(unsupported);
 }
 
 //===----------------------------------------------------------------------===//
@@ -281,7 +358,7 @@ bool FunctionLowering::canAlias(Operation *read,
 LogicalResult FunctionLowering::lowerFunctionReturn(func::ReturnOp op) {
   SmallVector<Value> results;
   for (auto [operand, type] : llvm::zip_equal(op.getOperands(), resultTypes)) {
-    if (storages.lookup(operand).isMatrix())
+    if (storageOf(operand).isMatrix())
       return op.emitError("exported functions cannot return system matrices");
     Value result = lookup(operand);
     if (result.getType() != type)
@@ -418,6 +495,8 @@ LogicalResult FunctionLowering::lowerOp(Operation *op) {
   }
   if (isa<MapOp, AssembleOp>(op))
     return lowerMapLike(op);
+  if (auto convert = dyn_cast<ConvertOp>(op))
+    return lowerConvert(convert);
   if (isa<GridPointOp, GridEdgeOp>(op))
     return lowerGridAccess(op);
   if (isa<PrintOp, StringConstantOp, StringConcatOp, StringCmpOp>(op))
@@ -456,6 +535,8 @@ static Type hostType(Type original, Type lowered) {
 
 LogicalResult FunctionLowering::run(func::FuncOp original) {
   MLIRContext *ctx = original.getContext();
+  if (failed(checkStorages(original)))
+    return failure();
   Block *entry = function.addEntryBlock();
   allocaBlock = entry;
   SmallVector<Attribute> bindingAttrs;
@@ -481,8 +562,6 @@ LogicalResult FunctionLowering::run(func::FuncOp original) {
                  ? param
                  : vector::ShapeCastOp::create(b, arg.getLoc(), type, param)
                        .getResult());
-    if (isSystem(arg.getType()))
-      storages[arg] = Storage::dense();
     bindingAttrs.push_back(DictionaryAttr::get(
         ctx, {NamedAttribute(StringAttr::get(ctx, "kind"),
                              StringAttr::get(ctx, "param")),
@@ -571,6 +650,13 @@ struct ConvertSimitToLoops
         if (failed(symbols.rename(
                 function, ("simit.extern." + function.getSymName()).str())))
           return signalPassFailure();
+
+    // Storage comes from the types; input that simit-assign-storage has
+    // not seen gets it here.
+    for (func::FuncOp original : exported)
+      if (needsStorageAssignment(original) &&
+          failed(assignStorage(original)))
+        return signalPassFailure();
 
     bool failedAny = false;
     for (func::FuncOp original : exported) {

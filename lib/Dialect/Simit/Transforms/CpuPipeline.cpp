@@ -35,6 +35,7 @@ void mlir::simit::buildSimitCpuPipeline(
     pm.addPass(createSimitCheckNumerics());
   pm.addPass(createSimitLinalgToIndexExpr());
   pm.addPass(createSimitFuseIndexExpr());
+  pm.addPass(createSimitAssignStorage());
   pm.addPass(createConvertSimitToLoops());
   pm.addPass(createCanonicalizerPass());
   pm.addPass(createCSEPass());

@@ -41,6 +41,7 @@ struct GpuPipeline : public simit::impl::SimitGpuPipelineBase<GpuPipeline> {
       pm.addPass(simit::createSimitInlineFunctions());
       pm.addPass(simit::createSimitLinalgToIndexExpr());
       pm.addPass(simit::createSimitFuseIndexExpr());
+      pm.addPass(simit::createSimitAssignStorage());
       pm.addPass(simit::createConvertSimitToLoops());
       pm.addPass(createCanonicalizerPass());
       pm.addPass(createCSEPass());

@@ -119,3 +119,164 @@ std::string Storage::describe() const {
   }
   llvm_unreachable("storage kind");
 }
+
+namespace {
+/// Reads encodings into the loop lowering's storages.
+struct EncodingReader {
+  const DenseMap<StringAttr, SetType> &sets;
+
+  /// The endpoint set at `position` of edge set `edges`.
+  StringAttr endpointSet(StringAttr edges, int64_t position) {
+    SetType set = sets.lookup(edges);
+    if (!set || position < 0 ||
+        position >= static_cast<int64_t>(set.getCardinality()))
+      return nullptr;
+    return set.getEndpoint(position);
+  }
+
+  /// The column set of a matrix stored as `e` (its row set with
+  /// `rowsOf`); null when the encoding does not say.
+  StringAttr colSet(StorageAttr e, bool rowsOf = false) {
+    switch (e.getKind()) {
+    case StorageKind::Diag:
+      return e.getSet();
+    case StorageKind::Pattern: {
+      ArrayRef<int64_t> positions = rowsOf ? e.getRows() : e.getCols();
+      return positions.empty() ? nullptr
+                               : endpointSet(e.getSet(), positions.front());
+    }
+    case StorageKind::Incidence:
+      return rowsOf ? e.getSet()
+                    : (e.getCols().empty()
+                           ? nullptr
+                           : endpointSet(e.getSet(), e.getCols().front()));
+    case StorageKind::Transpose:
+      return colSet(e.getOperand(), !rowsOf);
+    case StorageKind::Union:
+    case StorageKind::LowRank:
+      return colSet(e.getMember(0), rowsOf);
+    case StorageKind::Product:
+      return colSet(e.getMember(rowsOf ? 0 : e.getMembers().size() - 1),
+                    rowsOf);
+    default:
+      return nullptr;
+    }
+  }
+
+  /// The edge sets of a pattern, a union of patterns or their transposes
+  /// (whose pattern over (C, R) is the same edges' endpoint pairs,
+  /// swapped); none for other encodings.
+  std::optional<SmallVector<StringAttr, 2>> patternSets(StorageAttr e) {
+    switch (e.getKind()) {
+    case StorageKind::Pattern:
+      return SmallVector<StringAttr, 2>{e.getSet()};
+    case StorageKind::Transpose:
+      return patternSets(e.getOperand());
+    case StorageKind::Union: {
+      SmallVector<StringAttr, 2> all;
+      for (unsigned i = 0, n = e.getMembers().size(); i < n; ++i) {
+        // A diagonal member is held by any square pattern.
+        if (e.getMember(i).getKind() == StorageKind::Diag)
+          continue;
+        std::optional<SmallVector<StringAttr, 2>> part =
+            patternSets(e.getMember(i));
+        if (!part)
+          return std::nullopt;
+        llvm::append_range(all, *part);
+      }
+      if (all.empty())
+        return std::nullopt;
+      return all;
+    }
+    default:
+      return std::nullopt;
+    }
+  }
+
+  std::optional<Storage> read(StorageAttr e, StringAttr rows,
+                              StringAttr cols) {
+    switch (e.getKind()) {
+    case StorageKind::Diag:
+      return Storage::diagonal(e.getSet());
+    case StorageKind::Pattern:
+      // Runtime patterns hold every endpoint pair of the rows' and columns'
+      // sets, which is what simit-assign-storage derives from set types.
+      return Storage::pattern(e.getSet(), rows, cols);
+    case StorageKind::Stencil: {
+      SmallVector<Attribute> offsets(e.getOffsets().begin(),
+                                     e.getOffsets().end());
+      return Storage::stencil(e.getSet(), rows,
+                              ArrayAttr::get(e.getContext(), offsets));
+    }
+    case StorageKind::Incidence: {
+      // The layout holds a block per endpoint position of each edge.
+      SetType set = sets.lookup(e.getSet());
+      if (!set || e.getCols().size() != set.getCardinality())
+        return std::nullopt;
+      return Storage::incidence(e.getSet(), cols, set.getCardinality());
+    }
+    case StorageKind::Transpose: {
+      StorageAttr inner = e.getOperand();
+      if (inner.getKind() == StorageKind::Incidence) {
+        std::optional<Storage> stored = read(inner, cols, rows);
+        if (!stored)
+          return std::nullopt;
+        return Storage::incidenceTransposed(stored->edges, rows,
+                                            stored->cardinality);
+      }
+      std::optional<Storage> stored = read(inner, cols, rows);
+      return stored ? transposedStorage(*stored) : std::nullopt;
+    }
+    case StorageKind::Union: {
+      // A square pattern, union, product or stencil stores the diagonal
+      // (runtime patterns over one set hold every (r, r)): a diagonal
+      // member next to one other member adds nothing.
+      if (e.getMembers().size() == 2 && rows == cols) {
+        for (unsigned d = 0; d < 2; ++d) {
+          if (e.getMember(d).getKind() != StorageKind::Diag)
+            continue;
+          std::optional<Storage> other = read(e.getMember(1 - d), rows, cols);
+          if (other && other->contains(Storage::diagonal(rows)))
+            return other;
+        }
+      }
+      std::optional<SmallVector<StringAttr, 2>> members = patternSets(e);
+      if (!members)
+        return std::nullopt;
+      return Storage::unionOf(*members, rows, cols);
+    }
+    case StorageKind::Product: {
+      if (e.getMembers().size() != 2)
+        return std::nullopt;
+      std::optional<SmallVector<StringAttr, 2>> left =
+          patternSets(e.getMember(0));
+      std::optional<SmallVector<StringAttr, 2>> right =
+          patternSets(e.getMember(1));
+      StringAttr mid = colSet(e.getMember(0));
+      if (!left || !right || !mid)
+        return std::nullopt;
+      Storage product;
+      product.kind = Storage::Kind::Product;
+      product.rows = rows;
+      product.cols = cols;
+      product.mid = mid;
+      product.members = Storage::unionOf(*left, rows, mid).patternSets();
+      product.rightMembers = Storage::unionOf(*right, mid, cols).patternSets();
+      return product;
+    }
+    case StorageKind::Dense:
+    case StorageKind::Empty:
+    case StorageKind::LowRank:
+      return std::nullopt;
+    }
+    llvm_unreachable("storage kind");
+  }
+};
+} // namespace
+
+std::optional<Storage>
+mlir::simit::loops::storageOfEncoding(StorageAttr encoding, StringAttr rows,
+                                      StringAttr cols,
+                                      const DenseMap<StringAttr, SetType> &sets) {
+  return EncodingReader{sets}.read(encoding, rows, cols);
+}

@@ -1,16 +1,17 @@
 //===- LoopsLowering.h - State of the simit-to-loops lowering ---*- C++ -*-===//
 //
 // convert-simit-to-loops rebuilds every exported function op by op: a value
-// map takes each simit value to its lowered form, a storage map records how
-// each system matrix is stored, and bindings become new function arguments
-// as the lowering first needs them. The implementation is split by subject:
-// ConvertSimitToLoops.cpp (driver, types, op dispatch), LoopStorage.cpp
-// (storages, containment, joins), LoopBindings.cpp (function arguments),
+// map takes each simit value to its lowered form, each system matrix is
+// stored as its type's encoding says, and bindings become new function
+// arguments as the lowering first needs them. The implementation is split
+// by subject: ConvertSimitToLoops.cpp (driver, types, op dispatch),
+// LoopStorage.cpp (layouts of encodings, containment, joins), LoopBindings.cpp (function arguments),
 // LowerControlFlow.cpp (scf ops), LowerSystemOps.cpp (host-level ops on
 // system tensors), LowerLocalTensors.cpp (small dense tensors as flat
 // vectors), LowerMaps.cpp (map/assemble as set loops), LowerGridStencils.cpp
 // (maps through grids), LowerMatrixBlocks.cpp (blocks and slices of
-// matrices), LowerIndexExpr.cpp (index expressions as loop nests),
+// matrices), LowerConvert.cpp (simit.convert), LowerIndexExpr.cpp and
+// IndexExprLoops.cpp (index expressions as loop nests),
 // LowerProducts.cpp (matrix products), LowerSolvers.cpp (solves and
 // factorisations), LowerPrint.cpp (printing and strings) and
 // LowerCheckNumerics.cpp (scans of results for --check-numerics).
@@ -20,6 +21,7 @@
 #ifndef SIMIT_LIB_DIALECT_SIMIT_TRANSFORMS_LOOPSLOWERING_H
 #define SIMIT_LIB_DIALECT_SIMIT_TRANSFORMS_LOOPSLOWERING_H
 
+#include "simit/Dialect/Simit/IR/SimitStorage.h"
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
 #include "mlir/IR/Builders.h"
@@ -143,6 +145,14 @@ std::optional<Storage> transposedStorage(const Storage &s);
 /// sets; none when neither holds and they do not combine.
 std::optional<Storage> joinStorages(const Storage &a, const Storage &b);
 
+/// The storage the loop lowering gives a matrix over (rows, cols) whose type
+/// carries `encoding` (simit-assign-storage), or none where it has no layout
+/// for the encoding. `sets` gives the types of the edge sets and grids the
+/// encoding names.
+std::optional<Storage>
+storageOfEncoding(StorageAttr encoding, StringAttr rows, StringAttr cols,
+                  const DenseMap<StringAttr, SetType> &sets);
+
 /// The kinds of function arguments of a lowered exported function.
 enum class BindingKind {
   SetSize,
@@ -197,6 +207,17 @@ public:
   Type convertType(Type type);
   Value lookup(Value original);
   void map(Value original, Value lowered) { values[original] = lowered; }
+  /// How `original` is stored: by the encoding of its type (or of the
+  /// type a variable holds), dense for vectors; a value whose type has no
+  /// encoding (a runtime function's operand, an element function's
+  /// parameter) is stored like the value it stands for (`alias`).
+  Storage storageOf(Value original);
+  void alias(Value original, Value source) {
+    storages[original] = storageOf(source);
+  }
+  /// Gives `to`, when its type has no encoding (a value of an element
+  /// function, a loop-carried value there), the storage of `from`.
+  void carryStorage(Value to, Value from);
   /// Whether `original` is a result slot of the element function being
   /// inlined (it has no lowered value).
   bool isSink(Value original) const {
@@ -278,11 +299,6 @@ public:
   // Grid stencils (LowerGridStencils.cpp).
   /// grid_point and grid_edge.
   LogicalResult lowerGridAccess(Operation *op);
-  /// The stencil storage of a matrix that `callee` (mapped through `grid`)
-  /// writes as result `r`: the point offsets of its column indices.
-  FailureOr<Storage> stencilStorage(Operation *map, func::FuncOp callee,
-                                    SetType grid, unsigned r,
-                                    const DenseMap<Value, unsigned> &sinks);
   /// The block of a stencil matrix that the write `insert` of the element
   /// function goes to (the first offset naming the same point).
   FailureOr<Value> stencilWriteBlock(InsertOp insert, const Storage &storage);
@@ -297,6 +313,17 @@ public:
   /// simit.slice of a system matrix: a row A(p, :) or column A(:, q) as a
   /// system vector.
   LogicalResult lowerMatrixSlice(SliceOp op);
+  /// The position of block (row, col) in a matrix stored as `storage`
+  /// (diagonal, stencil or BCSR), or -1 where it stores none.
+  Value findBlock(Location loc, const Storage &storage, Value row, Value col);
+  /// The sum over the blocks of an incidence (or transposed incidence)
+  /// matrix at (row, col) of `read(position)`: an edge naming one endpoint
+  /// twice has two blocks there, and none is zero.
+  Value sumIncidenceBlocks(Location loc, const Storage &storage, Value row,
+                           Value col, Type scalar,
+                           function_ref<Value(Value)> read);
+  /// simit.convert: a matrix moved to a storage that contains its own.
+  LogicalResult lowerConvert(ConvertOp op);
   /// The positions of blocks (row, col) of pattern matrices found so far.
   SmallVector<std::tuple<Storage, Value, Value, Value>> blockPositions;
 
@@ -312,8 +339,8 @@ public:
   func::FuncOp function;
   OpBuilder b;
   DenseMap<Value, Value> values;
-  /// The storage of every lowered system tensor value (original values).
-  DenseMap<Value, Storage> storages;
+  /// The types of the sets the function names, by name.
+  DenseMap<StringAttr, SetType> setTypes;
   /// For lowered element values: the set they belong to, and for endpoints
   /// of the mapped edge the endpoint position (an index value).
   DenseMap<Value, StringAttr> elementSets;
@@ -327,6 +354,11 @@ public:
   Block *allocaBlock = nullptr;
 
 private:
+  /// Storages by original value: those computed from types, and aliases.
+  DenseMap<Value, Storage> storages;
+  /// Collects setTypes and reports every matrix whose encoding has no
+  /// layout in the loop lowering.
+  LogicalResult checkStorages(func::FuncOp original);
   /// The function argument of binding `kind` of the named sets (for union
   /// bindings, the member sets joined by '+'; a union gather map names
   /// its part as a fourth, "part").

@@ -106,7 +106,7 @@ LogicalResult FunctionLowering::scanForNonFinite(Operation *op) {
     if (!type || !type.isSystem() || !array ||
         !isa<Float64Type, Float32Type>(type.getComponentType()))
       continue;
-    Storage storage = storages.lookup(result);
+    Storage storage = storageOf(result);
     SimitNumericsLayout layout = layoutOf(storage);
     Value rowptr, colidx;
     int64_t perRow = 0;

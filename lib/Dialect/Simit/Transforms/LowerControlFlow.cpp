@@ -38,14 +38,11 @@ LogicalResult FunctionLowering::lowerFor(scf::ForOp op) {
   SmallVector<Value> inits = keptOperands(*this, op.getInitArgs());
   if (llvm::is_contained(inits, Value()))
     return op.emitError("cannot lower a loop-carried value");
-  // Storage of loop-carried matrices must not change across iterations.
-  for (auto [init, yielded, result, arg] :
-       llvm::zip(op.getInitArgs(), op.getYieldedValues(), op.getResults(),
-                 op.getRegionIterArgs()))
-    if (storages.count(init)) {
-      storages[arg] = storages[init];
-      storages[result] = storages[init];
-    }
+  for (auto [init, result, arg] :
+       llvm::zip(op.getInitArgs(), op.getResults(), op.getRegionIterArgs())) {
+    carryStorage(arg, init);
+    carryStorage(result, init);
+  }
   // The body is lowered into the finished loop: index checks look at the
   // bounds of the loop that defines their index.
   auto loop = scf::ForOp::create(b, op.getLoc(), lookup(op.getLowerBound()),
@@ -110,18 +107,10 @@ LogicalResult FunctionLowering::lowerIf(scf::IfOp op) {
   for (Value result : op.getResults())
     if (!isSink(result))
       map(result, lowered.getResult(next++));
-  // A matrix chosen by a branch keeps the sparsity both branches agree on.
-  if (op.getNumResults() && !op.getElseRegion().empty())
-    for (auto [result, x, y] :
-         llvm::zip(op.getResults(), op.thenYield().getOperands(),
-                   op.elseYield().getOperands()))
-      if (storages.count(x) && storages.count(y)) {
-        if (storages[x] != storages[y])
-          return op.emitError("the branches yield matrices stored as ")
-                 << storages[x].describe() << " and "
-                 << storages[y].describe();
-        storages[result] = storages[x];
-      }
+  if (op.getNumResults())
+    for (auto [result, x] :
+         llvm::zip(op.getResults(), op.thenYield().getOperands()))
+      carryStorage(result, x);
   return success();
 }
 
@@ -137,8 +126,7 @@ LogicalResult FunctionLowering::lowerWhile(scf::WhileOp op) {
       llvm::is_contained(afterTypes, Type()))
     return op.emitError("cannot lower a loop-carried value");
   for (auto [init, arg] : llvm::zip(op.getInits(), op.getBeforeArguments()))
-    if (storages.count(init))
-      storages[arg] = storages[init];
+    carryStorage(arg, init);
 
   auto loop = scf::WhileOp::create(b, op.getLoc(), afterTypes, inits);
   OpBuilder::InsertionGuard guard(b);
@@ -156,8 +144,7 @@ LogicalResult FunctionLowering::lowerWhile(scf::WhileOp op) {
     return failure();
   scf::ConditionOp condition = op.getConditionOp();
   for (auto [arg, result] : llvm::zip(condition.getArgs(), op.getResults()))
-    if (storages.count(arg))
-      storages[result] = storages[arg];
+    carryStorage(result, arg);
   scf::ConditionOp::create(b, condition.getLoc(),
                            lookup(condition.getCondition()),
                            keptOperands(*this, condition.getArgs()));
@@ -165,8 +152,7 @@ LogicalResult FunctionLowering::lowerWhile(scf::WhileOp op) {
   for (auto [from, to] :
        llvm::zip(op.getAfterArguments(), after->getArguments())) {
     map(from, to);
-    if (storages.count(condition.getArgs()[to.getArgNumber()]))
-      storages[from] = storages[condition.getArgs()[to.getArgNumber()]];
+    carryStorage(from, condition.getArgs()[to.getArgNumber()]);
   }
   b.setInsertionPointToEnd(after);
   if (failed(lowerOps(op.getAfter().front())))

@@ -126,46 +126,6 @@ LogicalResult FunctionLowering::lowerGridAccess(Operation *op) {
   return success();
 }
 
-FailureOr<Storage>
-FunctionLowering::stencilStorage(Operation *map, func::FuncOp callee,
-                                 SetType grid, unsigned r,
-                                 const DenseMap<Value, unsigned> &sinks) {
-  unsigned rank = grid.getGridRank();
-  // The element parameter follows the extra arguments; the grid is last.
-  Value point = callee.getArgument(callee.getNumArguments() - 2);
-  auto isPoint = [&](Value v) { return v == point; };
-  // The diagonal is always stored, so that the matrix holds the diagonal
-  // matrices of the point set (sums with them need no new storage).
-  SmallVector<SmallVector<int64_t>> offsets{SmallVector<int64_t>(rank, 0)};
-  WalkResult walk = callee.walk([&](InsertOp insert) {
-    auto it = sinks.find(insert.getResult());
-    if (it == sinks.end() || it->second != r)
-      return WalkResult::advance();
-    std::optional<SmallVector<int64_t>> offset;
-    if (insert.getIndices().size() == 2 && isPoint(insert.getIndices()[0]))
-      offset = pointOffset(insert.getIndices()[1], rank, isPoint);
-    if (!offset) {
-      insert.emitError("a matrix assembled through a grid can only be "
-                       "written at (p, p) and (p, P[offset]) of the mapped "
-                       "point p");
-      return WalkResult::interrupt();
-    }
-    offsets.push_back(std::move(*offset));
-    return WalkResult::advance();
-  });
-  if (walk.wasInterrupted())
-    return map->emitError("cannot store this map's result ")
-           << r << " as a grid stencil";
-  llvm::sort(offsets);
-  offsets.erase(llvm::unique(offsets), offsets.end());
-  SmallVector<Attribute> attrs = llvm::map_to_vector(
-      offsets, [&](ArrayRef<int64_t> o) -> Attribute {
-        return b.getDenseI64ArrayAttr(o);
-      });
-  return Storage::stencil(grid.getName(), grid.getEndpoint(0),
-                          b.getArrayAttr(attrs));
-}
-
 /// The grid rank of a stencil storage (it always holds offset 0).
 static unsigned rankOf(const Storage &storage) {
   return cast<DenseI64ArrayAttr>(storage.offsets[0]).size();

@@ -155,7 +155,7 @@ LogicalResult FunctionLowering::lowerHostCall(func::CallOp call,
                    flatten(b, loc, slot)});
       continue;
     }
-    Storage storage = storages.lookup(operand);
+    Storage storage = storageOf(operand);
     if (storage.kind == Storage::Kind::Dense) {
       args.append({i32Of(memref::DimOp::create(b, loc, lowered, 0)),
                    flatten(b, loc, lowered)});
@@ -213,7 +213,6 @@ LogicalResult FunctionLowering::lowerHostCall(func::CallOp call,
     if (system.getOrder() != 1)
       return unsupported(type, "a matrix result");
     Value array = allocSystem(loc, type, Storage::dense());
-    storages[result] = Storage::dense();
     args.append({i32Of(memref::DimOp::create(b, loc, array, 0)),
                  flatten(b, loc, array)});
     readResults.push_back([array]() { return array; });

@@ -16,48 +16,13 @@
 //
 //===----------------------------------------------------------------------===//
 
-#include "LoopsLowering.h"
+#include "IndexExprLowering.h"
 
 using namespace mlir;
 using namespace mlir::simit;
 using namespace mlir::simit::loops;
 
 namespace {
-/// Whether every additive term of the body has a factor read from a matrix
-/// input, so the result is zero wherever those inputs are and fits in the
-/// union of their sparsity. A term without one (the outer product u(i) v(j)
-/// of `A + u * v'`, a constant added to a matrix) is nonzero outside the
-/// pattern: it would be silently cut off.
-bool zeroOutsideMatrices(IndexExprOp op) {
-  Block &body = op.getBody().front();
-  DenseMap<Value, bool> confined;
-  for (BlockArgument arg : body.getArguments())
-    confined[arg] = op.getInputIndexList(arg.getArgNumber()).size() == 2;
-  auto isConfined = [&](Value v) { return confined.lookup(v); };
-  for (Operation &inner : body.without_terminator()) {
-    if (inner.getNumResults() != 1)
-      continue;
-    bool value;
-    if (isa<arith::AddFOp, arith::SubFOp, arith::AddIOp, arith::SubIOp,
-            complex::AddOp, complex::SubOp>(inner))
-      value = isConfined(inner.getOperand(0)) &&
-              isConfined(inner.getOperand(1));
-    else if (isa<arith::DivFOp, arith::DivSIOp, complex::DivOp>(inner))
-      value = isConfined(inner.getOperand(0));
-    else if (auto constant = dyn_cast<arith::ConstantOp>(inner))
-      value = isa<FloatAttr>(constant.getValue())
-                  ? cast<FloatAttr>(constant.getValue()).getValue().isZero()
-                  : isa<IntegerAttr>(constant.getValue()) &&
-                        cast<IntegerAttr>(constant.getValue())
-                            .getValue()
-                            .isZero();
-    else // products, negation, and what keeps a factor's zeros
-      value = llvm::any_of(inner.getOperands(), isConfined);
-    confined[inner.getResult(0)] = value;
-  }
-  return isConfined(body.getTerminator()->getOperand(0));
-}
-
 /// Whether the body multiplies or divides two values that both come from
 /// matrix inputs.
 bool multipliesMatrices(IndexExprOp op) {
@@ -84,430 +49,7 @@ bool multipliesMatrices(IndexExprOp op) {
   });
   return walk.wasInterrupted();
 }
-
-class IndexExprLowering {
-public:
-  IndexExprLowering(FunctionLowering &l, IndexExprOp op)
-      : l(l), b(l.b), op(op), loc(op.getLoc()),
-        scalarType(getComponentType(op.getType())) {}
-
-  LogicalResult lower();
-
-private:
-  unsigned numLevels(unsigned v) { return op.getDomain(v).size(); }
-  Attribute level(unsigned v, unsigned i) { return op.getDomain(v)[i]; }
-  bool isBound(unsigned v) {
-    auto it = bound.find(v);
-    return it != bound.end() && llvm::all_of(it->second, [](Value x) {
-             return bool(x);
-           });
-  }
-  bool isSetBound(unsigned v) {
-    auto it = bound.find(v);
-    return it != bound.end() && it->second[0];
-  }
-  /// The storage of input `i` (or of the result for i == number of inputs)
-  /// as the loops follow it: a transposed incidence H(v, e) is followed as
-  /// the incidence G(e, v) it is stored as (indexList swaps its variables;
-  /// access() still reads each block in H's orientation).
-  Storage storageOf(unsigned i) {
-    Storage storage = i == op.getInputs().size()
-                          ? resultStorage
-                          : l.storages.lookup(op.getInputs()[i]);
-    if (storage.kind == Storage::Kind::Incidence && storage.transposed)
-      return Storage::incidence(storage.edges, storage.rows,
-                                storage.cardinality);
-    return storage;
-  }
-  /// The variables of input `i` (or of the result) in storageOf's order.
-  ArrayRef<int64_t> indexList(unsigned i) {
-    if (i < swappedLists.size() && !swappedLists[i].empty())
-      return swappedLists[i];
-    if (i == op.getInputs().size())
-      return op.getResultIndices();
-    return op.getInputIndexList(i);
-  }
-  unsigned numMatrixOperands() { return op.getInputs().size() + 1; }
-
-  /// The level indices of a tensor's components in level-major order (all
-  /// dimensions' outer levels, then their first block levels, ...).
-  SmallVector<Value> levelMajor(Type type, ArrayRef<int64_t> vars);
-  Value extent(unsigned v, unsigned i);
-  /// Reads the component of input `i` at the bound variables.
-  FailureOr<Value> access(unsigned i);
-  /// Picks how to bind the next level of one of `vars`: returns the variable
-  /// and whether a matrix couples it (then the loop runs over its pattern).
-  struct Choice {
-    unsigned var;
-    unsigned levelIndex;
-    int coupledBy = -1; // an operand that couples the variable
-    unsigned partner = 0;
-    /// The sparsity the loop follows: the coupling operands' join (a
-    /// union of their patterns when none holds the others).
-    Storage storage;
-  };
-  std::optional<Choice> choose(ArrayRef<unsigned> vars);
-  /// Emits the loop for `choice`, calls `inner` inside it with the builder
-  /// in the body; returns the loop's results.
-  SmallVector<Value>
-  emitLoop(const Choice &choice, ValueRange inits, bool parallel,
-           function_ref<SmallVector<Value>(ValueRange)> inner);
-  void unbind(const Choice &choice);
-  /// The sum over `vars` of `body` (nested loops, loop-carried scalar).
-  FailureOr<Value> sum(SmallVector<unsigned> vars,
-                       function_ref<FailureOr<Value>()> body,
-                       bool parallelTop);
-  /// Evaluates the body with the bound variables: the scalar it yields.
-  FailureOr<Value> evaluate(Block &block);
-  LogicalResult lowerLocal();
-  /// The array the result may be computed into directly: that of the
-  /// variable or field the next operation stores the result to, when every
-  /// input reading that array reads it at the result's own position.
-  Value inPlaceTarget();
-
-  FunctionLowering &l;
-  OpBuilder &b;
-  IndexExprOp op;
-  Location loc;
-  Type scalarType;
-  Storage resultStorage;
-  DenseMap<unsigned, SmallVector<Value>> bound;
-  /// Block positions of matrix operands bound by a pattern loop.
-  DenseMap<unsigned, Value> positions;
-  /// The operands whose position comes from a union's gather map, so may
-  /// be -1 (no block there).
-  llvm::SmallDenseSet<unsigned> gathered;
-  /// The swapped variable lists of transposed incidence inputs, by input.
-  SmallVector<SmallVector<int64_t, 2>> swappedLists;
-  /// Variables summed by a simit.index_sum in the body.
-  llvm::SmallDenseSet<unsigned> nestedVars;
-  bool failedInside = false;
-};
 } // namespace
-
-Value IndexExprLowering::extent(unsigned v, unsigned i) {
-  Attribute lvl = level(v, i);
-  if (auto set = dyn_cast<StringAttr>(lvl))
-    return l.getSetSize(set);
-  return l.indexConstant(cast<IntegerAttr>(lvl).getInt());
-}
-
-SmallVector<Value> IndexExprLowering::levelMajor(Type type,
-                                                 ArrayRef<int64_t> vars) {
-  SmallVector<Value> indices;
-  unsigned maxLevels = 0;
-  for (int64_t v : vars)
-    maxLevels = std::max(maxLevels, numLevels(v));
-  for (unsigned lvl = 0; lvl < maxLevels; ++lvl)
-    for (int64_t v : vars)
-      if (lvl < numLevels(v))
-        indices.push_back(bound[v][lvl]);
-  return indices;
-}
-
-FailureOr<Value> IndexExprLowering::access(unsigned i) {
-  Value input = op.getInputs()[i];
-  Value lowered = l.lookup(input);
-  Type type = input.getType();
-  ArrayRef<int64_t> vars = op.getInputIndexList(i);
-  if (vars.empty())
-    return lowered;
-  SmallVector<Value> indices = levelMajor(type, vars);
-  if (!hasSetDimension(type)) {
-    // A flat vector: row-major over the level-major extents.
-    SmallVector<int64_t> extents;
-    unsigned maxLevels = 0;
-    for (int64_t v : vars)
-      maxLevels = std::max(maxLevels, numLevels(v));
-    for (unsigned lvl = 0; lvl < maxLevels; ++lvl)
-      for (int64_t v : vars)
-        if (lvl < numLevels(v))
-          extents.push_back(cast<IntegerAttr>(level(v, lvl)).getInt());
-    Value flat = l.indexConstant(0);
-    for (auto [index, size] : llvm::zip(indices, extents)) {
-      flat = arith::MulIOp::create(b, loc, flat, l.indexConstant(size));
-      flat = arith::AddIOp::create(b, loc, flat, index);
-    }
-    return l.component(type, lowered, flat);
-  }
-  Storage storage = storageOf(i);
-  if (!storage.isMatrix())
-    return memref::LoadOp::create(b, loc, lowered, indices).getResult();
-  // Matrices: the outer pair of indices becomes a block position.
-  Value row = indices[0], col = indices[1];
-  SmallVector<Value> inner(indices.begin() + 2, indices.end());
-  if (Value position = positions.lookup(i)) {
-    if (!gathered.contains(i)) {
-      inner.insert(inner.begin(), position);
-      return memref::LoadOp::create(b, loc, lowered, inner).getResult();
-    }
-    // A union member without this block reads zero (at a valid position).
-    Value present = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::sge,
-                                          position, l.indexConstant(0));
-    inner.insert(inner.begin(),
-                 arith::SelectOp::create(b, loc, present, position,
-                                         l.indexConstant(0)));
-    Value value = memref::LoadOp::create(b, loc, lowered, inner);
-    return arith::SelectOp::create(b, loc, present, value,
-                                   l.zeroOf(scalarType))
-        .getResult();
-  }
-  if (storage.kind == Storage::Kind::Diagonal) {
-    // Off the diagonal the block is zero; rows are in range either way.
-    inner.insert(inner.begin(), row);
-    Value value = memref::LoadOp::create(b, loc, lowered, inner);
-    Value onDiagonal = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq,
-                                             row, col);
-    return arith::SelectOp::create(b, loc, onDiagonal, value,
-                                   l.zeroOf(scalarType))
-        .getResult();
-  }
-  return op.emitError("input #")
-         << i << " (" << storage.describe()
-         << ") is read at blocks the loop nest does not enumerate; the loop "
-            "lowering needs every pattern matrix read along its own rows";
-}
-
-std::optional<IndexExprLowering::Choice>
-IndexExprLowering::choose(ArrayRef<unsigned> vars) {
-  // A set level that a bound variable's matrix row gives comes first; among
-  // the matrices pairing the same variables, the largest sparsity leads
-  // (an edge pattern holds a diagonal).
-  for (unsigned v : vars) {
-    if (isSetBound(v) || !isa<StringAttr>(level(v, 0)))
-      continue;
-    int best = -1;
-    unsigned partner = 0;
-    std::optional<Storage> joined;
-    for (unsigned o = 0; o < numMatrixOperands(); ++o) {
-      Storage storage = storageOf(o);
-      ArrayRef<int64_t> list = indexList(o);
-      if (!storage.isMatrix() || list.size() != 2 || list[0] == list[1])
-        continue;
-      // A(u, v) couples v along its rows; A(v, u), read transposed, along
-      // the rows of its transpose.
-      bool transposed = list[0] == v;
-      if ((!transposed && list[1] != v) ||
-          !isSetBound(transposed ? list[1] : list[0]))
-        continue;
-      unsigned u = transposed ? list[1] : list[0];
-      if (best >= 0 && u != partner)
-        continue;
-      std::optional<Storage> own =
-          transposed ? transposedStorage(storage) : storage;
-      if (!own)
-        continue;
-      if (best < 0) {
-        best = o;
-        partner = u;
-        joined = own;
-        continue;
-      }
-      // Operands that do not combine are read by search-free means only
-      // when the loop's storage holds them; access() says otherwise.
-      if (std::optional<Storage> both = joinStorages(*joined, *own))
-        joined = both;
-    }
-    if (best >= 0)
-      return Choice{v, 0, best, partner, *joined};
-  }
-  for (unsigned v : vars)
-    if (!isSetBound(v) && isa<StringAttr>(level(v, 0)))
-      return Choice{v, 0};
-  for (unsigned v : vars)
-    for (unsigned i = 0; i < numLevels(v); ++i)
-      if (!bound.count(v) || !bound[v][i])
-        return Choice{v, i};
-  return std::nullopt;
-}
-
-void IndexExprLowering::unbind(const Choice &choice) {
-  bound[choice.var][choice.levelIndex] = Value();
-  if (choice.coupledBy >= 0)
-    for (unsigned o = 0; o < numMatrixOperands(); ++o)
-      if (indexList(o).size() == 2 &&
-          llvm::is_contained(indexList(o), choice.var)) {
-        positions.erase(o);
-        gathered.erase(o);
-      }
-}
-
-SmallVector<Value>
-IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
-                            bool parallel,
-                            function_ref<SmallVector<Value>(ValueRange)> inner) {
-  unsigned v = choice.var;
-  if (!bound.count(v))
-    bound[v].assign(numLevels(v), Value());
-  Value lb = l.indexConstant(0), ub = extent(v, choice.levelIndex);
-  Value rowPtr, colIdx, row;
-  if (choice.coupledBy >= 0) {
-    const Storage &storage = choice.storage;
-    row = bound[choice.partner][0];
-    if (storage.kind == Storage::Kind::Diagonal) {
-      // v = u: no loop, the diagonal block is the row's.
-      bound[v][0] = row;
-      for (unsigned o = 0; o < numMatrixOperands(); ++o)
-        if (indexList(o).size() == 2 && indexList(o)[1] == v &&
-            indexList(o)[0] == choice.partner && storageOf(o) == storage)
-          positions[o] = row;
-      // Without a loop the results are the inner values themselves.
-      SmallVector<Value> results = inner(inits);
-      unbind(choice);
-      return results;
-    }
-    if (storage.kind == Storage::Kind::Stencil) {
-      // One block per stencil offset; the column follows from the row.
-      ub = l.indexConstant(storage.offsets.size());
-    } else if (storage.kind == Storage::Kind::Incidence) {
-      // Row u (an edge) has a block per endpoint k: column endpoints[u, k].
-      colIdx = l.getEndpoints(storage.edges, storage.cardinality);
-      ub = l.indexConstant(storage.cardinality);
-    } else {
-      rowPtr = l.rowPointers(storage);
-      colIdx = l.columnIndices(storage);
-      Value next = arith::AddIOp::create(b, loc, row, l.indexConstant(1));
-      lb = arith::IndexCastOp::create(
-          b, loc, b.getIndexType(),
-          memref::LoadOp::create(b, loc, rowPtr, ValueRange{row}));
-      ub = arith::IndexCastOp::create(
-          b, loc, b.getIndexType(),
-          memref::LoadOp::create(b, loc, rowPtr, ValueRange{next}));
-    }
-  }
-  auto bindAt = [&](OpBuilder &nb, Value iv) {
-    OpBuilder::InsertionGuard guard(b);
-    if (choice.coupledBy < 0) {
-      bound[v][choice.levelIndex] = iv;
-      return;
-    }
-    b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
-    const Storage &storage = choice.storage;
-    Value position = iv;
-    if (storage.kind == Storage::Kind::Stencil) {
-      bound[v][0] = l.stencilColumn(storage, row, iv);
-      position = l.stencilBlock(storage, row, iv);
-    } else if (storage.kind == Storage::Kind::Incidence) {
-      bound[v][0] = arith::IndexCastOp::create(
-          b, loc, b.getIndexType(),
-          memref::LoadOp::create(b, loc, colIdx, ValueRange{row, iv}));
-      position = arith::AddIOp::create(
-          b, loc,
-          arith::MulIOp::create(b, loc, row,
-                                l.indexConstant(storage.cardinality)),
-          iv);
-    } else {
-      bound[v][0] = arith::IndexCastOp::create(
-          b, loc, b.getIndexType(),
-          memref::LoadOp::create(b, loc, colIdx, ValueRange{iv}));
-    }
-    for (unsigned o = 0; o < numMatrixOperands(); ++o) {
-      ArrayRef<int64_t> list = indexList(o);
-      if (list.size() != 2 || list[0] == list[1] ||
-          !llvm::is_contained(list, v))
-        continue;
-      // Only a matrix that pairs v with the loop's row variable is read at
-      // this row's blocks.
-      bool transposed = list[0] == v;
-      if ((transposed ? list[1] : list[0]) != choice.partner)
-        continue;
-      Storage own = storageOf(o);
-      if (!transposed && own == storage) {
-        positions[o] = position;
-        continue;
-      }
-      std::optional<Storage> read = transposed ? transposedStorage(own) : own;
-      if (!storage.isBCSR() || !own.isBCSR() || !read ||
-          !storage.contains(*read))
-        continue;
-      // Part of the loop's pattern: its block at this position (for a
-      // transposed read, the block at the mirrored position), or -1.
-      positions[o] = arith::IndexCastOp::create(
-          b, loc, b.getIndexType(),
-          memref::LoadOp::create(b, loc,
-                                 l.gatherMap(storage, own, transposed),
-                                 ValueRange{iv}));
-      gathered.insert(o);
-    }
-    nb.setInsertionPoint(b.getInsertionBlock(), b.getInsertionPoint());
-  };
-  Value step = l.indexConstant(1);
-  if (parallel) {
-    auto loop = scf::ParallelOp::create(
-        b, loc, ValueRange{lb}, ValueRange{ub}, ValueRange{step}, inits,
-        [&](OpBuilder &nb, Location, ValueRange ivs, ValueRange) {
-          bindAt(nb, ivs[0]);
-          OpBuilder::InsertionGuard guard(b);
-          b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
-          SmallVector<Value> results = inner({});
-          if (inits.empty()) {
-            scf::ReduceOp::create(b, loc);
-            return;
-          }
-          auto reduce = scf::ReduceOp::create(b, loc, results);
-          for (Region &region : reduce.getReductions()) {
-            Block &block = region.front();
-            OpBuilder rb = OpBuilder::atBlockEnd(&block);
-            Value s = arith::AddFOp::create(rb, loc, block.getArgument(0),
-                                            block.getArgument(1));
-            scf::ReduceReturnOp::create(rb, loc, s);
-          }
-        });
-    unbind(choice);
-    return SmallVector<Value>(loop.getResults());
-  }
-  auto loop = scf::ForOp::create(
-      b, loc, lb, ub, step, inits,
-      [&](OpBuilder &nb, Location, Value iv, ValueRange args) {
-        bindAt(nb, iv);
-        OpBuilder::InsertionGuard guard(b);
-        b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
-        SmallVector<Value> results = inner(args);
-        scf::YieldOp::create(b, loc, results);
-      });
-  unbind(choice);
-  return SmallVector<Value>(loop.getResults());
-}
-
-FailureOr<Value>
-IndexExprLowering::sum(SmallVector<unsigned> vars,
-                       function_ref<FailureOr<Value>()> body,
-                       bool parallelTop) {
-  std::optional<Choice> choice = choose(vars);
-  if (!choice)
-    return body();
-  Value zero = l.zeroOf(scalarType);
-  bool failedBody = false;
-  auto accumulate = [&](Value acc, Value term) -> Value {
-    if (isa<FloatType>(scalarType))
-      return arith::AddFOp::create(b, loc, acc, term);
-    return arith::AddIOp::create(b, loc, acc, term);
-  };
-  if (parallelTop && choice->coupledBy < 0 && isa<FloatType>(scalarType)) {
-    SmallVector<Value> results = emitLoop(*choice, {zero}, true, [&](ValueRange) {
-      FailureOr<Value> term = sum(vars, body, false);
-      if (failed(term)) {
-        failedBody = true;
-        return SmallVector<Value>{zero};
-      }
-      return SmallVector<Value>{*term};
-    });
-    if (failedBody)
-      return failure();
-    return results[0];
-  }
-  SmallVector<Value> results = emitLoop(*choice, {zero}, false, [&](ValueRange args) {
-    FailureOr<Value> term = sum(vars, body, false);
-    if (failed(term)) {
-      failedBody = true;
-      return SmallVector<Value>{args[0]};
-    }
-    return SmallVector<Value>{accumulate(args[0], *term)};
-  });
-  if (failedBody)
-    return failure();
-  return results[0];
-}
 
 FailureOr<Value> IndexExprLowering::evaluate(Block &block) {
   for (Operation &inner : block) {
@@ -667,7 +209,7 @@ LogicalResult IndexExprLowering::lower() {
     if (type && type.isSystem() && type.getOrder() == 2 &&
         isa<StringAttr>(type.getDims()[0]) &&
         isa<StringAttr>(type.getDims()[1]) &&
-        !l.storages.lookup(input).isMatrix())
+        !l.storageOf(input).isMatrix())
       return op.emitError("input #")
              << i << " is a system matrix of unknown sparsity";
   }
@@ -677,15 +219,16 @@ LogicalResult IndexExprLowering::lower() {
   // the entry. Sums and scalings of the blocks are right; products and
   // quotients of two matrices' blocks are not.
   for (Value input : op.getInputs()) {
-    Storage s = l.storages.lookup(input);
+    Storage s = l.storageOf(input);
     if (s.kind == Storage::Kind::Incidence && multipliesMatrices(op))
       return op.emitError("element-wise products and quotients of matrices "
                           "stored as ")
              << s.describe() << " are not supported by the loop lowering yet";
   }
-  swappedLists.resize(op.getInputs().size());
+  // Inputs, then the result.
+  swappedLists.resize(op.getInputs().size() + 1);
   for (auto [i, input] : llvm::enumerate(op.getInputs())) {
-    Storage s = l.storages.lookup(input);
+    Storage s = l.storageOf(input);
     if (s.kind == Storage::Kind::Incidence && s.transposed)
       swappedLists[i] = {op.getInputIndexList(i)[1], op.getInputIndexList(i)[0]};
   }
@@ -710,55 +253,25 @@ LogicalResult IndexExprLowering::lower() {
   if (!type || !type.isSystem())
     return op.emitError("an index expression over sets must produce a "
                         "system tensor or a scalar");
-  // A matrix result takes the union of its inputs' sparsity; a vector
-  // result is dense.
+  // A matrix result is stored as its type says (simit-assign-storage reads
+  // the body as a path expression, so the storage holds every nonzero); a
+  // vector result is dense.
   if (type.getOrder() == 2 && isa<StringAttr>(type.getDims()[0]) &&
       isa<StringAttr>(type.getDims()[1])) {
     if (!summed.empty())
       return op.emitError("products of system matrices are not supported by "
                           "the loop lowering");
-    std::optional<Storage> storage;
-    for (auto [i, input] : llvm::enumerate(op.getInputs())) {
-      Storage s = l.storages.lookup(input);
-      if (!s.isMatrix())
-        continue;
-      ArrayRef<int64_t> list = op.getInputIndexList(i);
-      std::optional<Storage> read = s;
-      if (list != resultVars) {
-        read = transposedStorage(s);
-        if (list.size() != 2 || list[0] != resultVars[1] ||
-            list[1] != resultVars[0] || !read)
-          return op.emitError("input #")
-                 << i << " (" << s.describe()
-                 << ") is read in an orientation the loop lowering does not "
-                    "support";
-      }
-      s = *read;
-      std::optional<Storage> joined =
-          storage ? joinStorages(*storage, s) : std::optional<Storage>(s);
-      if (!joined)
-        return op.emitError("cannot combine matrices stored as ")
-               << storage->describe() << " and " << s.describe()
-               << "; neither sparsity contains the other and their sets "
-                  "differ";
-      storage = *joined;
-    }
-    if (!storage)
+    resultStorage = l.storageOf(op);
+    if (!resultStorage.isMatrix())
       return op.emitError("a system matrix result needs a sparse input");
-    if (!zeroOutsideMatrices(op))
-      return op.emitError("this matrix is nonzero outside the sparsity of "
-                          "its matrix operands (a term without a matrix "
-                          "factor, such as an outer product of vectors "
-                          "added to a sparse matrix): its result would be "
-                          "dense, which the loop lowering does not support");
-    if (storage->kind == Storage::Kind::Incidence && storage->transposed)
-      return op.emitError("a matrix result stored as ")
-             << storage->describe()
-             << " is not supported by the loop lowering yet";
-
-    resultStorage = *storage;
+    // A transposed incidence result is written edge by edge, as the
+    // incidence it transposes: the edge variable's loop comes first.
+    if (resultStorage.kind == Storage::Kind::Incidence &&
+        resultStorage.transposed)
+      swappedLists.back() = {resultVars[1], resultVars[0]};
   }
-  SmallVector<unsigned> free(resultVars.begin(), resultVars.end());
+  ArrayRef<int64_t> resultOrder = indexList(op.getInputs().size());
+  SmallVector<unsigned> free(resultOrder.begin(), resultOrder.end());
   bool sparseSum =
       !resultStorage.isMatrix() && llvm::any_of(summed, [&](unsigned v) {
         return isa<StringAttr>(level(v, 0));
@@ -773,7 +286,6 @@ LogicalResult IndexExprLowering::lower() {
     l.fill(loc, output, l.zeroOf(scalarType));
   if (!output)
     output = l.allocSystem(loc, type, resultStorage, sparseSum);
-  l.storages[op] = resultStorage;
   if (sparseSum) {
     SmallVector<unsigned> all(free);
     llvm::append_range(all, summed);

@@ -413,57 +413,13 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
       return op->emitError("map results that are neither system tensors "
                            "nor scalars are not supported by the loop "
                            "lowering");
-    Storage storage;
-    if (type.getOrder() == 2 && isa<StringAttr>(type.getDims()[0]) &&
-        isa<StringAttr>(type.getDims()[1])) {
-      auto rows = cast<StringAttr>(type.getDims()[0]);
-      auto cols = cast<StringAttr>(type.getDims()[1]);
-      if (set.getCardinality() == 0) {
-        if (rows != set.getName() || cols != set.getName())
-          return op->emitError("a matrix assembled from vertex set '")
-                 << set.getName().getValue()
-                 << "' must be over that set (its diagonal)";
-        if (grid) {
-          FailureOr<Storage> stencil =
-              stencilStorage(op, callee, cast<SetType>(grid.getType()),
-                             ctx.outputs.size(), ctx.sinks);
-          if (failed(stencil))
-            return failure();
-          storage = *stencil;
-        } else {
-          storage = Storage::diagonal(rows);
-        }
-      } else if (cols == set.getName() && rows != cols) {
-        // The transposed incidence matrix: a row per endpoint of each edge.
-        if (!llvm::all_of(set.getEndpoints(),
-                          [&](Attribute e) { return e == rows; }))
-          return op->emitError("a matrix over (endpoint set, edge set '")
-                 << set.getName().getValue()
-                 << "') assembled from the edges needs every endpoint in "
-                    "its row set";
-        storage = Storage::incidenceTransposed(cols, rows,
-                                               set.getCardinality());
-      } else if (rows == set.getName()) {
-        // The incidence matrix: a column per endpoint of each edge.
-        if (!llvm::all_of(set.getEndpoints(),
-                          [&](Attribute e) { return e == cols; }))
-          return op->emitError("a matrix over (edge set '")
-                 << set.getName().getValue()
-                 << "', endpoint set) assembled from the edges needs every "
-                    "endpoint in its column set";
-        storage = Storage::incidence(rows, cols, set.getCardinality());
-      } else {
-        if (!llvm::is_contained(set.getEndpoints(), rows) ||
-            !llvm::is_contained(set.getEndpoints(), cols))
-          return op->emitError("a matrix assembled from edge set '")
-                 << set.getName().getValue()
-                 << "' must be over its endpoint sets";
-        storage = Storage::pattern(set.getName(), rows, cols);
-      }
-    } else if (type.getOrder() != 1 || !isa<StringAttr>(type.getDims()[0])) {
+    // Stored as simit-assign-storage found from the set (and, through a
+    // grid, the offsets the element function writes).
+    Storage storage = storageOf(result);
+    if (!storage.isMatrix() &&
+        (type.getOrder() != 1 || !isa<StringAttr>(type.getDims()[0])))
       return op->emitError("map result ")
              << type << " is not supported by the loop lowering";
-    }
     Value output = allocSystem(loc, type, storage);
     ctx.outputs.push_back(output);
     ctx.outputStorages.push_back(storage);
@@ -493,8 +449,7 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
     return op->emitError("the mapped function takes too few parameters");
   for (auto [arg, extra] : llvm::zip(entry.getArguments(), extras)) {
     map(arg, lookup(extra));
-    if (storages.count(extra))
-      storages[arg] = storages[extra];
+    carryStorage(arg, extra);
   }
   Value elementArg = entry.getArgument(extras.size());
   map(elementArg, ctx.element);

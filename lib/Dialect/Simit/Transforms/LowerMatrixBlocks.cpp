@@ -29,10 +29,9 @@ static bool isVisible(OpBuilder &b, Value value) {
   return false;
 }
 
-/// The position of block (row, col) in a matrix stored as `storage`, or -1.
-static Value findBlock(FunctionLowering &l, Location loc,
-                       const Storage &storage, Value row, Value col) {
-  OpBuilder &b = l.b;
+Value FunctionLowering::findBlock(Location loc, const Storage &storage,
+                                  Value row, Value col) {
+  FunctionLowering &l = *this;
   // Patterns do not change while the function runs: a scan done earlier
   // (the read of `A(q,q) = 1 + A(q,q)`) serves the write too.
   for (auto &[s, r, c, position] : l.blockPositions)
@@ -43,6 +42,18 @@ static Value findBlock(FunctionLowering &l, Location loc,
     Value onDiagonal =
         arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq, row, col);
     return arith::SelectOp::create(b, loc, onDiagonal, row, none);
+  }
+  if (storage.kind == Storage::Kind::Stencil) {
+    // The first offset whose point is the column, as writes choose.
+    Value found = none;
+    for (int64_t k = storage.offsets.size(); k-- > 0;) {
+      Value kv = indexConstant(k);
+      Value match = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq,
+                                          stencilColumn(storage, row, kv), col);
+      found = arith::SelectOp::create(b, loc, match,
+                                      stencilBlock(storage, row, kv), found);
+    }
+    return found;
   }
   Value rowPtr = l.rowPointers(storage);
   Value colIdx = l.columnIndices(storage);
@@ -69,27 +80,68 @@ static Value findBlock(FunctionLowering &l, Location loc,
   return scan.getResult(0);
 }
 
+Value FunctionLowering::sumIncidenceBlocks(Location loc,
+                                           const Storage &storage, Value row,
+                                           Value col, Type scalar,
+                                           function_ref<Value(Value)> read) {
+  Value edge = storage.transposed ? col : row;
+  Value endpoint = storage.transposed ? row : col;
+  Value ends = getEndpoints(storage.edges, storage.cardinality);
+  Value sum = zeroOf(scalar);
+  for (int64_t k = 0; k < storage.cardinality; ++k) {
+    Value kv = indexConstant(k);
+    Value at = arith::IndexCastOp::create(
+        b, loc, b.getIndexType(),
+        memref::LoadOp::create(b, loc, ends, ValueRange{edge, kv}));
+    Value match =
+        arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq, at, endpoint);
+    Value position = arith::AddIOp::create(
+        b, loc,
+        arith::MulIOp::create(b, loc, edge,
+                              indexConstant(storage.cardinality)),
+        kv);
+    Value value = arith::SelectOp::create(b, loc, match, read(position),
+                                          zeroOf(scalar));
+    sum = isa<FloatType>(scalar)
+              ? arith::AddFOp::create(b, loc, sum, value).getResult()
+              : arith::AddIOp::create(b, loc, sum, value).getResult();
+  }
+  return sum;
+}
+
 LogicalResult FunctionLowering::lowerMatrixBlockAccess(Operation *op) {
   Location loc = op->getLoc();
   auto extract = dyn_cast<ExtractOp>(op);
   auto insert = dyn_cast<InsertOp>(op);
   Value matrix = extract ? extract.getTensor() : insert.getTensor();
   ValueRange indices = extract ? extract.getIndices() : insert.getIndices();
-  Storage storage = storages.lookup(matrix);
+  Storage storage = storageOf(matrix);
   if (!storage.isMatrix())
     return op->emitError("a block of a system matrix of unknown sparsity "
                          "cannot be ")
            << (extract ? "read" : "written") << " by the loop lowering";
-  if (storage.kind == Storage::Kind::Incidence)
+  if (storage.kind == Storage::Kind::Incidence && insert)
     return op->emitError("blocks of a matrix stored as ")
            << storage.describe()
-           << " cannot be accessed one at a time by the loop lowering";
+           << " cannot be written one at a time by the loop lowering";
   if (indices.size() != 2)
     return op->emitError("a block of a system matrix needs two indices");
   Value row = lookup(indices[0]), col = lookup(indices[1]);
   Value array = lookup(matrix);
   auto type = cast<MemRefType>(array.getType());
-  Value position = findBlock(*this, loc, storage, row, col);
+  if (storage.kind == Storage::Kind::Incidence) {
+    SmallVector<Value> components;
+    for (int64_t c = 0, n = numComponents(extract.getType()); c < n; ++c)
+      components.push_back(sumIncidenceBlocks(
+          loc, storage, row, col, type.getElementType(), [&](Value p) {
+            return memref::LoadOp::create(b, loc, array,
+                                          blockIndices(type, {p}, c))
+                .getResult();
+          }));
+    map(extract, fromComponents(convertType(extract.getType()), components));
+    return success();
+  }
+  Value position = findBlock(loc, storage, row, col);
   Value found = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::sge,
                                       position, indexConstant(0));
 
@@ -136,7 +188,6 @@ LogicalResult FunctionLowering::lowerMatrixBlockAccess(Operation *op) {
     memref::StoreOp::create(b, loc,
                             component(insert.getValue().getType(), value, c),
                             target, blockIndices(type, {position}, c));
-  storages[insert] = storage;
   map(insert, target);
   return success();
 }
@@ -148,20 +199,26 @@ LogicalResult FunctionLowering::lowerMatrixSlice(SliceOp op) {
   if (!type || type.getOrder() != 2 || kept.size() != 2 || kept[0] == kept[1])
     return op.emitError("slices of system tensors are supported as rows "
                         "A(p, :) and columns A(:, q) of matrices");
-  Storage storage = storages.lookup(op.getTensor());
+  Storage storage = storageOf(op.getTensor());
   Value matrix = lookup(op.getTensor());
   Value index = lookup(op.getIndices()[0]);
   bool row = kept[1];
   // The result: a zero-filled vector over the kept dimension's set.
   Value result = allocSystem(loc, op.getType(), Storage::dense());
   Type scalar = type.getComponentType();
+  auto matrixType = cast<MemRefType>(matrix.getType());
+  auto resultType = cast<MemRefType>(result.getType());
+  // Block `from` of the matrix to block `to` of the result, each component.
   auto copy = [&](Value from, Value to, bool add) {
-    Value value = memref::LoadOp::create(b, loc, matrix, ValueRange{from});
-    if (add)
-      value = arith::AddFOp::create(
-          b, loc, memref::LoadOp::create(b, loc, result, ValueRange{to}),
-          value);
-    memref::StoreOp::create(b, loc, value, result, ValueRange{to});
+    for (int64_t c = 0, n = numComponents(getBlockType(type)); c < n; ++c) {
+      SmallVector<Value> at = blockIndices(resultType, {to}, c);
+      Value value = memref::LoadOp::create(
+          b, loc, matrix, blockIndices(matrixType, {from}, c));
+      if (add)
+        value = arith::AddFOp::create(
+            b, loc, memref::LoadOp::create(b, loc, result, at), value);
+      memref::StoreOp::create(b, loc, value, result, at);
+    }
   };
   auto forEach = [&](Value lb, Value ub, function_ref<void(Value)> body) {
     scf::ForOp::create(b, loc, lb, ub, indexConstant(1), ValueRange{},
@@ -214,7 +271,7 @@ LogicalResult FunctionLowering::lowerMatrixSlice(SliceOp op) {
   } else {
     // Column q: row r's block (r, q), found in its row, or zero.
     forEach(indexConstant(0), getSetSize(storage.rows), [&](Value r) {
-      Value position = findBlock(*this, loc, storage, r, index);
+      Value position = findBlock(loc, storage, r, index);
       Value found = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::sge,
                                           position, indexConstant(0));
       auto branch = scf::IfOp::create(b, loc, TypeRange{}, found,
@@ -224,7 +281,6 @@ LogicalResult FunctionLowering::lowerMatrixSlice(SliceOp op) {
       copy(position, r, /*add=*/false);
     });
   }
-  storages[op] = Storage::dense();
   map(op, result);
   return success();
 }

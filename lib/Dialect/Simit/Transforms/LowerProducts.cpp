@@ -15,32 +15,10 @@ using namespace mlir;
 using namespace mlir::simit;
 using namespace mlir::simit::loops;
 
-/// The storage of A B, or failure with an error on `op`.
-static FailureOr<Storage> productStorage(MatMulOp op, const Storage &a,
-                                         const Storage &b) {
-  auto supported = [](const Storage &s) {
-    return s.kind == Storage::Kind::Diagonal ||
-           s.kind == Storage::Kind::Pattern || s.kind == Storage::Kind::Union;
-  };
-  if (!supported(a) || !supported(b))
-    return op.emitError("products are supported of matrices assembled from "
-                        "sets and their sums; these are stored as ")
-           << a.describe() << " and " << b.describe();
-  if (a.cols != b.rows)
-    return op.emitError("the factors' inner sets differ: ")
-           << a.describe() << " and " << b.describe();
-  if (a.kind == Storage::Kind::Diagonal)
-    return b;
-  if (b.kind == Storage::Kind::Diagonal)
-    return a;
-  Storage product;
-  product.kind = Storage::Kind::Product;
-  product.rows = a.rows;
-  product.cols = b.cols;
-  product.mid = a.cols;
-  product.members = a.patternSets();
-  product.rightMembers = b.patternSets();
-  return product;
+/// Whether the runtime's product takes a matrix stored as `s`: block
+/// diagonal or BCSR.
+static bool isProductOperand(const Storage &s) {
+  return s.kind == Storage::Kind::Diagonal || s.isBCSR();
 }
 
 LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
@@ -49,10 +27,13 @@ LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
   if (!type || type.getOrder() != 2)
     return op.emitError("products of system tensors are supported for "
                         "matrices");
-  Storage a = storages.lookup(op.getLhs()), b2 = storages.lookup(op.getRhs());
-  FailureOr<Storage> storage = productStorage(op, a, b2);
-  if (failed(storage))
-    return failure();
+  Storage a = storageOf(op.getLhs()), b2 = storageOf(op.getRhs());
+  Storage storage = storageOf(op);
+  if (!isProductOperand(a) || !isProductOperand(b2) ||
+      !isProductOperand(storage))
+    return op.emitError("products are supported of matrices assembled from "
+                        "sets and their sums; these are stored as ")
+           << a.describe() << " and " << b2.describe();
   Type component = type.getComponentType();
   if (!component.isF64() && !component.isF32())
     return op.emitError("products of system matrices take f64 or f32 "
@@ -88,13 +69,12 @@ LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
   };
   addMatrix(a, lookup(op.getLhs()));
   addMatrix(b2, lookup(op.getRhs()));
-  Value result = allocSystem(loc, type, *storage, /*zeroFill=*/false);
-  addMatrix(*storage, result);
+  Value result = allocSystem(loc, type, storage, /*zeroFill=*/false);
+  addMatrix(storage, result);
   args.push_back(arith::IndexCastOp::create(b, loc, b.getI64Type(),
-                                            getSetSize(storage->cols)));
+                                            getSetSize(storage.cols)));
   args.push_back(stringConstant(loc, "product" + sourcePositionSuffix(op)));
   func::CallOp::create(b, loc, callee, args);
-  storages[op] = *storage;
   map(op, result);
   return success();
 }

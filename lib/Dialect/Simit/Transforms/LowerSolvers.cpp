@@ -44,6 +44,41 @@ Value FunctionLowering::asRuntimeBlocks(Location loc, Value array,
   return memref::CastOp::create(b, loc, target, array);
 }
 
+/// The row pointers and column indices of a BCSR matrix, or of a diagonal
+/// one seen as BCSR (row r holds one block, at column r): the runtime's
+/// sparse factorisations take both.
+static std::pair<Value, Value> bcsrIndices(FunctionLowering &l, Location loc,
+                                           const Storage &storage) {
+  if (storage.isBCSR())
+    return {l.rowPointers(storage), l.columnIndices(storage)};
+  OpBuilder &b = l.b;
+  Value n = l.getSetSize(storage.rows);
+  Value one = l.indexConstant(1);
+  auto array = MemRefType::get({ShapedType::kDynamic}, b.getI32Type());
+  Value rowPtr = memref::AllocOp::create(
+      b, loc, array, ValueRange{arith::AddIOp::create(b, loc, n, one)});
+  Value colIdx = memref::AllocOp::create(b, loc, array, ValueRange{n});
+  scf::ForOp::create(
+      b, loc, l.indexConstant(0), arith::AddIOp::create(b, loc, n, one), one,
+      ValueRange{}, [&](OpBuilder &nb, Location, Value i, ValueRange) {
+        Value i32 = arith::IndexCastOp::create(nb, loc, nb.getI32Type(), i);
+        memref::StoreOp::create(nb, loc, i32, rowPtr, ValueRange{i});
+        Value inRange =
+            arith::CmpIOp::create(nb, loc, arith::CmpIPredicate::slt, i, n);
+        scf::IfOp::create(nb, loc, inRange, [&](OpBuilder &ib, Location) {
+          memref::StoreOp::create(ib, loc, i32, colIdx, ValueRange{i});
+          scf::YieldOp::create(ib, loc);
+        });
+        scf::YieldOp::create(nb, loc);
+      });
+  return {rowPtr, colIdx};
+}
+
+/// Whether the runtime's sparse solvers take a matrix stored as `s`.
+static bool isSparseSquare(const Storage &s) {
+  return (s.isBCSR() || s.kind == Storage::Kind::Diagonal) && s.rows == s.cols;
+}
+
 /// `\`: the runtime's SolveSession (lib/Engine/RuntimeFunctions).
 LogicalResult FunctionLowering::lowerSolve(SolveOp op) {
   // The solves of simit-sherman-morrison say which they are.
@@ -58,11 +93,11 @@ LogicalResult FunctionLowering::lowerSystemSolve(Operation *op, Value matrix,
                                                  StringRef method,
                                                  StringRef what) {
   Location loc = op->getLoc();
-  Storage storage = storages.lookup(matrix);
+  Storage storage = storageOf(matrix);
   auto matrixType = cast<SystemTensorType>(matrix.getType());
   // `\` also takes block diagonal matrices.
   bool diagonal = storage.kind == Storage::Kind::Diagonal && method == "solve";
-  if (!diagonal && (!storage.isBCSR() || storage.rows != storage.cols))
+  if (!isSparseSquare(storage))
     return op->emitError("solves are supported for square matrices "
                          "assembled from a set; this matrix is stored as ")
            << storage.describe();
@@ -104,15 +139,16 @@ LogicalResult FunctionLowering::lowerSystemSolve(Operation *op, Value matrix,
   Value x = allocSystem(loc, result.getType(), Storage::dense(),
                         /*zeroFill=*/false);
   SmallVector<Value> args;
-  if (!diagonal)
-    args.append({rowPointers(storage), columnIndices(storage)});
+  if (!diagonal) {
+    auto [rowPtr, colIdx] = bcsrIndices(*this, loc, storage);
+    args.append({rowPtr, colIdx});
+  }
   args.push_back(asRuntimeBlocks(loc, lookup(matrix), values));
   for (Value input : vectors)
     args.push_back(asRuntimeBlocks(loc, lookup(input), vector));
   args.append({asRuntimeBlocks(loc, x, vector),
                stringConstant(loc, what.str() + sourcePositionSuffix(op))});
   func::CallOp::create(b, loc, callee, args);
-  storages[result] = Storage::dense();
   map(result, x);
   return success();
 }
@@ -148,7 +184,7 @@ LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
   bool factorise = name == "simit_rt_lu" || name == "simit_rt_chol";
   bool solve = name == "simit_rt_lusolve" || name == "simit_rt_lltsolve";
   Value matrix = factorise ? call.getOperand(0) : Value();
-  Storage storage = matrix ? storages.lookup(matrix) : Storage();
+  Storage storage = matrix ? storageOf(matrix) : Storage();
   auto f64Blocks = [](Type t, unsigned order) {
     auto type = dyn_cast<SystemTensorType>(t);
     if (!type || !type.isSystem() || type.getOrder() != order ||
@@ -159,13 +195,12 @@ LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
                              block[0] == block[1]) ||
            (order == 1 && block.size() == 1);
   };
-  if (factorise && !(f64Blocks(matrix.getType(), 2) && storage.isBCSR() &&
-                     storage.rows == storage.cols))
+  if (factorise &&
+      !(f64Blocks(matrix.getType(), 2) && isSparseSquare(storage)))
     return call.emitError("'@")
            << name
            << "' on a system matrix needs a square f64 matrix of scalars or "
-              "square blocks assembled from an edge set; this one is stored "
-              "as "
+              "square blocks assembled from a set; this one is stored as "
            << storage.describe();
   if (solve && !(call.getNumOperands() == 2 &&
                  isa<OpaqueType>(call.getOperand(0).getType()) &&
@@ -199,9 +234,10 @@ LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
     if (!callee)
       return call.emitError("@") << runtimeName
                                  << " is declared with another type";
+    auto [rowPtr, colIdx] = bcsrIndices(*this, loc, storage);
     auto lowered = func::CallOp::create(
         b, loc, callee,
-        ValueRange{rowPointers(storage), columnIndices(storage),
+        ValueRange{rowPtr, colIdx,
                    asRuntimeBlocks(loc, lookup(matrix), values), where});
     map(call.getResult(0), lowered.getResult(0));
     return success();
@@ -218,7 +254,6 @@ LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
       ValueRange{lookup(call.getOperand(0)),
                  asRuntimeBlocks(loc, lookup(call.getOperand(1)), vector),
                  asRuntimeBlocks(loc, x, vector), where});
-  storages[call.getResult(0)] = Storage::dense();
   map(call.getResult(0), x);
   return success();
 }

@@ -43,7 +43,6 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
     auto set = cast<SetType>(read.getSet().getType());
     Type fieldType = set.getElement().getFieldType(read.getField());
     Value array = getField(set.getName(), read.getFieldAttr(), fieldType);
-    storages[read] = Storage::dense();
     if (canAlias(op, [&](Operation *w) {
           return writesField(w, set.getName(), read.getFieldAttr(), module);
         })) {
@@ -94,7 +93,6 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
                                /*zeroFill=*/isa<ZerosOp>(op));
     if (auto broadcast = dyn_cast<BroadcastOp>(op))
       fill(loc, array, lookup(broadcast.getValue()));
-    storages[op->getResult(0)] = Storage::dense();
     map(op->getResult(0), array);
     return success();
   }
@@ -105,7 +103,6 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
     if (cast<SystemTensorType>(type).getOrder() != 1)
       return success();
     map(alloc, allocSystem(loc, type, Storage::dense()));
-    storages[alloc] = Storage::dense();
     return success();
   }
   if (auto load = dyn_cast<LoadOp>(op)) {
@@ -113,7 +110,6 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
     if (!buffer)
       return op->emitError("a variable holding a system matrix is read "
                            "before a matrix is stored to it");
-    storages[load] = storages.lookup(load.getRef());
     if (canAlias(op, [&](Operation *w) {
           auto store = dyn_cast<StoreOp>(w);
           return (store && store.getRef() == load.getRef()) ||
@@ -132,7 +128,7 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
   }
   if (auto store = dyn_cast<StoreOp>(op)) {
     Value value = lookup(store.getValue()), buffer = lookup(store.getRef());
-    Storage storage = storages.lookup(store.getValue());
+    Storage storage = storageOf(store.getValue());
     if (!buffer) {
       // The first store to a matrix variable, which must be where the
       // variable is declared so that its array dominates every use.
@@ -143,10 +139,9 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
       if (!storage.isMatrix())
         return op->emitError("a variable holding a system matrix must be "
                              "first assigned an assembled matrix");
-      storages[store.getRef()] = storage;
       // A fresh matrix used only here becomes the variable's array.
       if (store.getValue().hasOneUse() &&
-          isa_and_present<MapOp, AssembleOp, IndexExprOp>(
+          isa_and_present<MapOp, AssembleOp, IndexExprOp, ConvertOp>(
               store.getValue().getDefiningOp())) {
         map(store.getRef(), value);
         return success();
@@ -154,9 +149,9 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
       buffer = allocSystem(loc, store.getValue().getType(), storage,
                            /*zeroFill=*/false);
       map(store.getRef(), buffer);
-    } else if (storage != storages.lookup(store.getRef())) {
+    } else if (storage != storageOf(store.getRef())) {
       return op->emitError("a variable stored as ")
-             << storages.lookup(store.getRef()).describe()
+             << storageOf(store.getRef()).describe()
              << " cannot be assigned a value stored as "
              << storage.describe();
     }
@@ -192,7 +187,6 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
       memref::StoreOp::create(b, loc,
                               component(insert.getValue().getType(), value, c),
                               target, blockIndices(memref, {position}, c));
-    storages[insert] = Storage::dense();
     map(insert, target);
     return success();
   }

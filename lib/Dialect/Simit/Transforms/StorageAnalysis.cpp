@@ -111,15 +111,15 @@ static StorageRule sumStorage(StorageAttr a, StorageAttr b) {
       storage::lowRank(storage::join(baseA, baseB), rankA + rankB));
 }
 
-/// `.*` keeps the smaller storage (the other operand is restricted to it).
+/// `.*` keeps the smaller storage (the other operand is restricted to
+/// it); of two storages neither of which contains the other, their join,
+/// which holds every nonzero (their intersection has no encoding).
 static StorageRule mulStorage(StorageAttr a, StorageAttr b) {
   if (storage::contains(a, b))
     return StorageRule::of(b);
   if (storage::contains(b, a))
     return StorageRule::of(a);
-  return StorageRule::error("cannot multiply element-wise '" + a.str() +
-                            "' and '" + b.str() +
-                            "': neither storage contains the other");
+  return StorageRule::of(storage::join(a, b));
 }
 
 /// `./` keeps the dividend's storage; the divisor must store those blocks.

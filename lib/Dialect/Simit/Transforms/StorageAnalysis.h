@@ -12,6 +12,7 @@
 #include "simit/Dialect/Simit/IR/SimitStorage.h"
 
 #include "mlir/Analysis/DataFlow/SparseAnalysis.h"
+#include "mlir/Dialect/Func/IR/FuncOps.h"
 
 namespace mlir {
 namespace simit {
@@ -19,6 +20,14 @@ namespace simit {
 /// Whether values of `type` get a storage encoding: matrices over two sets
 /// and slots holding them.
 bool holdsSetMatrix(Type type);
+
+/// simit-assign-storage on one function that is not an element function:
+/// gives every matrix value its storage, with `simit.convert` where a use
+/// needs another; reports, and fails on, matrices that have none.
+LogicalResult assignStorage(func::FuncOp function);
+
+/// Whether some matrix value of `function` has no storage encoding yet.
+bool needsStorageAssignment(func::FuncOp function);
 
 /// What a storage rule gives one result: an encoding, or the reason there
 /// is none (an empty reason means success).

@@ -50,15 +50,15 @@ struct PathValue {
 using Kind = PathValue::Kind;
 } // namespace
 
-/// The smaller of two storages, if one contains the other.
+/// The storage of an element-wise product: the smaller of two storages
+/// when one contains the other; otherwise their join, which holds every
+/// nonzero of the product (their intersection has no encoding).
 static PathValue meet(Kind kind, StorageAttr a, StorageAttr b) {
   if (storage::contains(a, b))
     return PathValue::of(kind, b);
   if (storage::contains(b, a))
     return PathValue::of(kind, a);
-  return PathValue::error("cannot multiply element-wise '" + a.str() +
-                          "' and '" + b.str() +
-                          "': neither storage contains the other");
+  return PathValue::of(kind, storage::join(a, b));
 }
 
 static PathValue sum(const PathValue &a, const PathValue &b) {
@@ -95,6 +95,22 @@ static PathValue product(const PathValue &a, const PathValue &b) {
                          storage::product({b.encoding, a.encoding}));
   return PathValue::error("cannot multiply a matrix read at (i, j) with one "
                           "read along the summed variable");
+}
+
+/// The storage of a quotient: the dividend's, where the divisor stores
+/// every block of it (elsewhere the quotient is no number).
+static PathValue quotient(const PathValue &a, const PathValue &b) {
+  if (a.kind == Kind::Unsupported || b.kind == Kind::Full ||
+      a.kind == Kind::Zero)
+    return a;
+  if (b.kind == Kind::Unsupported)
+    return b;
+  if (a.kind == Kind::AtResult && b.kind == Kind::AtResult &&
+      storage::contains(b.encoding, a.encoding))
+    return a;
+  return PathValue::error("a division by a matrix component that does not "
+                          "store every block of the dividend has no "
+                          "storage");
 }
 
 /// How input `i` is read: its storage oriented to the result's (i, j), or
@@ -170,11 +186,14 @@ StorageRule mlir::simit::getIndexExprStorage(IndexExprOp op,
                 [&](auto) { return sum(operands[0], operands[1]); })
             .Case<arith::MulFOp, arith::MulIOp, complex::MulOp>(
                 [&](auto) { return product(operands[0], operands[1]); })
-            .Case<arith::DivFOp, complex::DivOp>([&](auto) {
-              return operands[1].kind == Kind::Full
-                         ? operands[0]
-                         : PathValue::error("a division by a matrix "
-                                            "component has no storage");
+            .Case<arith::DivFOp, arith::DivSIOp, complex::DivOp>(
+                [&](auto) { return quotient(operands[0], operands[1]); })
+            // A comparison only chooses (select): its result is no
+            // component, and the choice is nonzero where a choice is.
+            .Case<arith::CmpFOp, arith::CmpIOp>(
+                [&](auto) { return PathValue::of(Kind::Full); })
+            .Case([&](arith::SelectOp) {
+              return sum(operands[1], operands[2]);
             })
             .Case<arith::NegFOp, complex::NegOp>(
                 [&](auto) { return operands[0]; })
@@ -200,8 +219,11 @@ StorageRule mlir::simit::getIndexExprStorage(IndexExprOp op,
   case Kind::Unsupported:
     return StorageRule::error(yielded.reason);
   case Kind::Full:
-    return StorageRule::error("this index expression does not map zero to "
-                              "zero: its matrix result would be dense");
+    return StorageRule::error(
+        "this matrix is nonzero outside the sparsity of its matrix operands "
+        "(a term without a matrix factor, such as an outer product of "
+        "vectors added to a sparse matrix): its result would be dense, "
+        "which the loop lowering does not support");
   case Kind::Left:
   case Kind::Right:
     return StorageRule::error("the summed variable of this index expression "

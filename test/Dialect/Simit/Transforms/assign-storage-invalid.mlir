@@ -17,13 +17,13 @@ func.func private @edge(%s : !Spring, %e : !Ends) -> !K {
 }
 
 // Reported once, where it arises, not again at the uses.
-func.func @unrelated_product(%springs : !Springs, %hinges : !Hinges) -> f64 {
+func.func @unrelated_quotient(%springs : !Springs, %hinges : !Hinges) -> f64 {
   // expected-note @+1 {{'pattern("springs", rows [0, 1], cols [0, 1])' comes from here}}
   %K = simit.assemble @edge() to %springs reduce <add> : (!Springs) -> !K
   // expected-note @+1 {{'pattern("hinges", rows [0, 1], cols [0, 1])' comes from here}}
   %H = simit.assemble @edge() to %hinges reduce <add> : (!Hinges) -> !K
-  // expected-error @+1 {{cannot multiply element-wise 'pattern("springs", rows [0, 1], cols [0, 1])' and 'pattern("hinges", rows [0, 1], cols [0, 1])': neither storage contains the other}}
-  %P = simit.mul %K, %H : !K
+  // expected-error @+1 {{cannot divide 'pattern("springs", rows [0, 1], cols [0, 1])' by 'pattern("hinges", rows [0, 1], cols [0, 1])': the divisor does not store every block of the dividend}}
+  %P = simit.div %K, %H : !K
   %Q = simit.add %P, %K : !K
   %zero = arith.constant 0.0 : f64
   return %zero : f64
@@ -168,7 +168,7 @@ func.func private @mass(%p : !Point) -> !K {
 func.func @dense_index_expr(%points : !Points, %x : !V) -> f64 {
   // expected-note @+1 {{'diag("points")' comes from here}}
   %M = simit.assemble @mass() to %points reduce <add> : (!Points) -> !K
-  // expected-error @+1 {{this index expression does not map zero to zero: its matrix result would be dense}}
+  // expected-error @+1 {{this matrix is nonzero outside the sparsity of its matrix operands (a term without a matrix factor, such as an outer product of vectors added to a sparse matrix): its result would be dense, which the loop lowering does not support}}
   %A = simit.index_expr [i : "points", j : "points"] (i, j) = (%M(i, j), %x(i))
        : (!K, !V) -> !K {
   ^bb0(%m: f64, %xi: f64):

@@ -80,10 +80,21 @@ func.func @mass(%p : !Point) -> !A {
   return %A1 : !A
 }
 
+// lu of a diagonal matrix: the sparse LU of the runtime, on the identity
+// pattern (row pointers 0, 1, ..., n; column r in row r) made for the call.
+// CHECK-LABEL: func.func @diagonal
+// CHECK: %[[N:.*]] = arith.addi %[[SIZE:.*]], %c1
+// CHECK: %[[ROWPTR:.*]] = memref.alloc(%[[N]]) : memref<?xi32>
+// CHECK: %[[COLIDX:.*]] = memref.alloc(%[[SIZE]]) : memref<?xi32>
+// CHECK: scf.for %[[I:.*]] =
+// CHECK:   %[[I32:.*]] = arith.index_cast %[[I]] : index to i32
+// CHECK:   memref.store %[[I32]], %[[ROWPTR]][%[[I]]]
+// CHECK:   scf.if
+// CHECK:     memref.store %[[I32]], %[[COLIDX]][%[[I]]]
+// CHECK: call @simit_rt_lu_bcsr(%[[ROWPTR]], %[[COLIDX]],
 func.func @diagonal() attributes {simit.export} {
   %points = simit.get_set @points : !Points
   %A = simit.assemble @mass() to %points reduce <add> : (!Points) -> !A
-  // expected-error @+1 {{'@simit_rt_lu' on a system matrix needs a square f64 matrix of scalars or square blocks assembled from an edge set; this one is stored as diagonal of 'points'}}
   %h = call @simit_rt_lu(%A) : (!A) -> !simit.opaque
   call @simit_rt_lufree(%h) : (!simit.opaque) -> ()
   return

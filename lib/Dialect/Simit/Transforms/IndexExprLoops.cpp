@@ -1,0 +1,364 @@
+//===- IndexExprLoops.cpp - The loops of an index expression --------------===//
+//
+// How IndexExprLowering (IndexExprLowering.h) binds one level at a time:
+// which variable's level comes next and which storage its loop follows,
+// the loop itself (over a set, a range, a pattern row, a stencil's offsets
+// or an edge's endpoints), reads of operands at the bound blocks, and sums.
+//
+//===----------------------------------------------------------------------===//
+
+#include "IndexExprLowering.h"
+
+using namespace mlir;
+using namespace mlir::simit;
+using namespace mlir::simit::loops;
+
+Value IndexExprLowering::extent(unsigned v, unsigned i) {
+  Attribute lvl = level(v, i);
+  if (auto set = dyn_cast<StringAttr>(lvl))
+    return l.getSetSize(set);
+  return l.indexConstant(cast<IntegerAttr>(lvl).getInt());
+}
+
+SmallVector<Value> IndexExprLowering::levelMajor(Type type,
+                                                 ArrayRef<int64_t> vars) {
+  SmallVector<Value> indices;
+  unsigned maxLevels = 0;
+  for (int64_t v : vars)
+    maxLevels = std::max(maxLevels, numLevels(v));
+  for (unsigned lvl = 0; lvl < maxLevels; ++lvl)
+    for (int64_t v : vars)
+      if (lvl < numLevels(v))
+        indices.push_back(bound[v][lvl]);
+  return indices;
+}
+
+FailureOr<Value> IndexExprLowering::access(unsigned i) {
+  Value input = op.getInputs()[i];
+  Value lowered = l.lookup(input);
+  Type type = input.getType();
+  ArrayRef<int64_t> vars = op.getInputIndexList(i);
+  if (vars.empty())
+    return lowered;
+  SmallVector<Value> indices = levelMajor(type, vars);
+  if (!hasSetDimension(type)) {
+    // A flat vector: row-major over the level-major extents.
+    SmallVector<int64_t> extents;
+    unsigned maxLevels = 0;
+    for (int64_t v : vars)
+      maxLevels = std::max(maxLevels, numLevels(v));
+    for (unsigned lvl = 0; lvl < maxLevels; ++lvl)
+      for (int64_t v : vars)
+        if (lvl < numLevels(v))
+          extents.push_back(cast<IntegerAttr>(level(v, lvl)).getInt());
+    Value flat = l.indexConstant(0);
+    for (auto [index, size] : llvm::zip(indices, extents)) {
+      flat = arith::MulIOp::create(b, loc, flat, l.indexConstant(size));
+      flat = arith::AddIOp::create(b, loc, flat, index);
+    }
+    return l.component(type, lowered, flat);
+  }
+  Storage storage = storageOf(i);
+  if (!storage.isMatrix())
+    return memref::LoadOp::create(b, loc, lowered, indices).getResult();
+  // Matrices: the outer pair of indices becomes a block position.
+  Value row = indices[0], col = indices[1];
+  SmallVector<Value> inner(indices.begin() + 2, indices.end());
+  if (Value position = positions.lookup(i)) {
+    if (!gathered.contains(i)) {
+      inner.insert(inner.begin(), position);
+      return memref::LoadOp::create(b, loc, lowered, inner).getResult();
+    }
+    // A union member without this block reads zero (at a valid position).
+    Value present = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::sge,
+                                          position, l.indexConstant(0));
+    inner.insert(inner.begin(),
+                 arith::SelectOp::create(b, loc, present, position,
+                                         l.indexConstant(0)));
+    Value value = memref::LoadOp::create(b, loc, lowered, inner);
+    return arith::SelectOp::create(b, loc, present, value,
+                                   l.zeroOf(scalarType))
+        .getResult();
+  }
+  if (storage.kind == Storage::Kind::Diagonal) {
+    // Off the diagonal the block is zero; rows are in range either way.
+    inner.insert(inner.begin(), row);
+    Value value = memref::LoadOp::create(b, loc, lowered, inner);
+    Value onDiagonal = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq,
+                                             row, col);
+    return arith::SelectOp::create(b, loc, onDiagonal, value,
+                                   l.zeroOf(scalarType))
+        .getResult();
+  }
+  // Row and column are the input's own: read it in its own orientation.
+  if (storage.kind == Storage::Kind::Incidence)
+    return l.sumIncidenceBlocks(loc, l.storageOf(input), row, col, scalarType,
+                                [&](Value position) {
+                                  SmallVector<Value> at(inner);
+                                  at.insert(at.begin(), position);
+                                  return memref::LoadOp::create(b, loc,
+                                                                lowered, at)
+                                      .getResult();
+                                });
+  // Elsewhere a search of the row (a diagonal result read from a
+  // pattern): zero where the matrix has no block.
+  Value position = l.findBlock(loc, storage, row, col);
+  Value present = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::sge,
+                                        position, l.indexConstant(0));
+  inner.insert(inner.begin(), arith::SelectOp::create(b, loc, present, position,
+                                                      l.indexConstant(0)));
+  Value value = memref::LoadOp::create(b, loc, lowered, inner);
+  return arith::SelectOp::create(b, loc, present, value, l.zeroOf(scalarType))
+      .getResult();
+}
+
+std::optional<IndexExprLowering::Choice>
+IndexExprLowering::choose(ArrayRef<unsigned> vars) {
+  // A set level that a bound variable's matrix row gives comes first. A
+  // matrix result leads: its storage holds every nonzero of the body.
+  // Otherwise, among the matrices pairing the same variables, the largest
+  // sparsity leads (an edge pattern holds a diagonal).
+  unsigned result = op.getInputs().size();
+  for (unsigned v : vars) {
+    if (isSetBound(v) || !isa<StringAttr>(level(v, 0)))
+      continue;
+    int best = -1;
+    unsigned partner = 0;
+    std::optional<Storage> joined;
+    for (unsigned n = 0; n < numMatrixOperands(); ++n) {
+      unsigned o = (result + n) % numMatrixOperands();
+      if (best == static_cast<int>(result))
+        break;
+      Storage storage = storageOf(o);
+      ArrayRef<int64_t> list = indexList(o);
+      if (!storage.isMatrix() || list.size() != 2 || list[0] == list[1])
+        continue;
+      // A(u, v) couples v along its rows; A(v, u), read transposed, along
+      // the rows of its transpose.
+      bool transposed = list[0] == v;
+      if ((!transposed && list[1] != v) ||
+          !isSetBound(transposed ? list[1] : list[0]))
+        continue;
+      unsigned u = transposed ? list[1] : list[0];
+      if (best >= 0 && u != partner)
+        continue;
+      std::optional<Storage> own =
+          transposed ? transposedStorage(storage) : storage;
+      if (!own)
+        continue;
+      if (best < 0) {
+        best = o;
+        partner = u;
+        joined = own;
+        continue;
+      }
+      // Operands that do not combine are read by search-free means only
+      // when the loop's storage holds them; access() says otherwise.
+      if (std::optional<Storage> both = joinStorages(*joined, *own))
+        joined = both;
+    }
+    if (best >= 0)
+      return Choice{v, 0, best, partner, *joined};
+  }
+  for (unsigned v : vars)
+    if (!isSetBound(v) && isa<StringAttr>(level(v, 0)))
+      return Choice{v, 0};
+  for (unsigned v : vars)
+    for (unsigned i = 0; i < numLevels(v); ++i)
+      if (!bound.count(v) || !bound[v][i])
+        return Choice{v, i};
+  return std::nullopt;
+}
+
+void IndexExprLowering::unbind(const Choice &choice) {
+  bound[choice.var][choice.levelIndex] = Value();
+  if (choice.coupledBy >= 0)
+    for (unsigned o = 0; o < numMatrixOperands(); ++o)
+      if (indexList(o).size() == 2 &&
+          llvm::is_contained(indexList(o), choice.var)) {
+        positions.erase(o);
+        gathered.erase(o);
+      }
+}
+
+SmallVector<Value>
+IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
+                            bool parallel,
+                            function_ref<SmallVector<Value>(ValueRange)> inner) {
+  unsigned v = choice.var;
+  if (!bound.count(v))
+    bound[v].assign(numLevels(v), Value());
+  Value lb = l.indexConstant(0), ub = extent(v, choice.levelIndex);
+  Value rowPtr, colIdx, row;
+  if (choice.coupledBy >= 0) {
+    const Storage &storage = choice.storage;
+    row = bound[choice.partner][0];
+    if (storage.kind == Storage::Kind::Diagonal) {
+      // v = u: no loop, the diagonal block is the row's.
+      bound[v][0] = row;
+      for (unsigned o = 0; o < numMatrixOperands(); ++o)
+        if (indexList(o).size() == 2 && indexList(o)[1] == v &&
+            indexList(o)[0] == choice.partner && storageOf(o) == storage)
+          positions[o] = row;
+      // Without a loop the results are the inner values themselves.
+      SmallVector<Value> results = inner(inits);
+      unbind(choice);
+      return results;
+    }
+    if (storage.kind == Storage::Kind::Stencil) {
+      // One block per stencil offset; the column follows from the row.
+      ub = l.indexConstant(storage.offsets.size());
+    } else if (storage.kind == Storage::Kind::Incidence) {
+      // Row u (an edge) has a block per endpoint k: column endpoints[u, k].
+      colIdx = l.getEndpoints(storage.edges, storage.cardinality);
+      ub = l.indexConstant(storage.cardinality);
+    } else {
+      rowPtr = l.rowPointers(storage);
+      colIdx = l.columnIndices(storage);
+      Value next = arith::AddIOp::create(b, loc, row, l.indexConstant(1));
+      lb = arith::IndexCastOp::create(
+          b, loc, b.getIndexType(),
+          memref::LoadOp::create(b, loc, rowPtr, ValueRange{row}));
+      ub = arith::IndexCastOp::create(
+          b, loc, b.getIndexType(),
+          memref::LoadOp::create(b, loc, rowPtr, ValueRange{next}));
+    }
+  }
+  auto bindAt = [&](OpBuilder &nb, Value iv) {
+    OpBuilder::InsertionGuard guard(b);
+    if (choice.coupledBy < 0) {
+      bound[v][choice.levelIndex] = iv;
+      return;
+    }
+    b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
+    const Storage &storage = choice.storage;
+    Value position = iv;
+    if (storage.kind == Storage::Kind::Stencil) {
+      bound[v][0] = l.stencilColumn(storage, row, iv);
+      position = l.stencilBlock(storage, row, iv);
+    } else if (storage.kind == Storage::Kind::Incidence) {
+      bound[v][0] = arith::IndexCastOp::create(
+          b, loc, b.getIndexType(),
+          memref::LoadOp::create(b, loc, colIdx, ValueRange{row, iv}));
+      position = arith::AddIOp::create(
+          b, loc,
+          arith::MulIOp::create(b, loc, row,
+                                l.indexConstant(storage.cardinality)),
+          iv);
+    } else {
+      bound[v][0] = arith::IndexCastOp::create(
+          b, loc, b.getIndexType(),
+          memref::LoadOp::create(b, loc, colIdx, ValueRange{iv}));
+    }
+    for (unsigned o = 0; o < numMatrixOperands(); ++o) {
+      ArrayRef<int64_t> list = indexList(o);
+      if (list.size() != 2 || list[0] == list[1] ||
+          !llvm::is_contained(list, v))
+        continue;
+      // Only a matrix that pairs v with the loop's row variable is read at
+      // this row's blocks.
+      bool transposed = list[0] == v;
+      if ((transposed ? list[1] : list[0]) != choice.partner)
+        continue;
+      Storage own = storageOf(o);
+      if (!transposed && own == storage) {
+        positions[o] = position;
+        continue;
+      }
+      // Another pattern or union over the same sets: its block at this
+      // position (for a transposed read, the block at the mirrored
+      // position), or -1, from a gather map built once per binding.
+      auto gatherable = [](const Storage &s) {
+        return s.kind == Storage::Kind::Pattern ||
+               s.kind == Storage::Kind::Union;
+      };
+      std::optional<Storage> read = transposed ? transposedStorage(own) : own;
+      if (!gatherable(storage) || !gatherable(own) || !read ||
+          read->rows != storage.rows || read->cols != storage.cols)
+        continue;
+      positions[o] = arith::IndexCastOp::create(
+          b, loc, b.getIndexType(),
+          memref::LoadOp::create(b, loc,
+                                 l.gatherMap(storage, own, transposed),
+                                 ValueRange{iv}));
+      gathered.insert(o);
+    }
+    nb.setInsertionPoint(b.getInsertionBlock(), b.getInsertionPoint());
+  };
+  Value step = l.indexConstant(1);
+  if (parallel) {
+    auto loop = scf::ParallelOp::create(
+        b, loc, ValueRange{lb}, ValueRange{ub}, ValueRange{step}, inits,
+        [&](OpBuilder &nb, Location, ValueRange ivs, ValueRange) {
+          bindAt(nb, ivs[0]);
+          OpBuilder::InsertionGuard guard(b);
+          b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
+          SmallVector<Value> results = inner({});
+          if (inits.empty()) {
+            scf::ReduceOp::create(b, loc);
+            return;
+          }
+          auto reduce = scf::ReduceOp::create(b, loc, results);
+          for (Region &region : reduce.getReductions()) {
+            Block &block = region.front();
+            OpBuilder rb = OpBuilder::atBlockEnd(&block);
+            Value s = arith::AddFOp::create(rb, loc, block.getArgument(0),
+                                            block.getArgument(1));
+            scf::ReduceReturnOp::create(rb, loc, s);
+          }
+        });
+    unbind(choice);
+    return SmallVector<Value>(loop.getResults());
+  }
+  auto loop = scf::ForOp::create(
+      b, loc, lb, ub, step, inits,
+      [&](OpBuilder &nb, Location, Value iv, ValueRange args) {
+        bindAt(nb, iv);
+        OpBuilder::InsertionGuard guard(b);
+        b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
+        SmallVector<Value> results = inner(args);
+        scf::YieldOp::create(b, loc, results);
+      });
+  unbind(choice);
+  return SmallVector<Value>(loop.getResults());
+}
+
+FailureOr<Value>
+IndexExprLowering::sum(SmallVector<unsigned> vars,
+                       function_ref<FailureOr<Value>()> body,
+                       bool parallelTop) {
+  std::optional<Choice> choice = choose(vars);
+  if (!choice)
+    return body();
+  Value zero = l.zeroOf(scalarType);
+  bool failedBody = false;
+  auto accumulate = [&](Value acc, Value term) -> Value {
+    if (isa<FloatType>(scalarType))
+      return arith::AddFOp::create(b, loc, acc, term);
+    return arith::AddIOp::create(b, loc, acc, term);
+  };
+  if (parallelTop && choice->coupledBy < 0 && isa<FloatType>(scalarType)) {
+    SmallVector<Value> results = emitLoop(*choice, {zero}, true, [&](ValueRange) {
+      FailureOr<Value> term = sum(vars, body, false);
+      if (failed(term)) {
+        failedBody = true;
+        return SmallVector<Value>{zero};
+      }
+      return SmallVector<Value>{*term};
+    });
+    if (failedBody)
+      return failure();
+    return results[0];
+  }
+  SmallVector<Value> results = emitLoop(*choice, {zero}, false, [&](ValueRange args) {
+    FailureOr<Value> term = sum(vars, body, false);
+    if (failed(term)) {
+      failedBody = true;
+      return SmallVector<Value>{args[0]};
+    }
+    return SmallVector<Value>{accumulate(args[0], *term)};
+  });
+  if (failedBody)
+    return failure();
+  return results[0];
+}

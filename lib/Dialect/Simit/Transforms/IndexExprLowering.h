@@ -1,0 +1,123 @@
+//===- IndexExprLowering.h - Index expressions as loop nests -----*- C++ -*-===//
+//
+// The state of lowering one simit.index_expr to a loop nest: which levels
+// of which variables are bound, at which block positions the matrix
+// operands are read, and the storage the loops follow. The loop machinery
+// (choosing the next level, emitting its loop, reading operands, sums) is
+// in IndexExprLoops.cpp; the driver in LowerIndexExpr.cpp.
+//
+//===----------------------------------------------------------------------===//
+
+#ifndef SIMIT_LIB_DIALECT_SIMIT_TRANSFORMS_INDEXEXPRLOWERING_H
+#define SIMIT_LIB_DIALECT_SIMIT_TRANSFORMS_INDEXEXPRLOWERING_H
+
+#include "LoopsLowering.h"
+
+namespace mlir {
+namespace simit {
+namespace loops {
+
+class IndexExprLowering {
+public:
+  IndexExprLowering(FunctionLowering &l, IndexExprOp op)
+      : l(l), b(l.b), op(op), loc(op.getLoc()),
+        scalarType(getComponentType(op.getType())) {}
+
+  LogicalResult lower();
+
+private:
+  unsigned numLevels(unsigned v) { return op.getDomain(v).size(); }
+  Attribute level(unsigned v, unsigned i) { return op.getDomain(v)[i]; }
+  bool isBound(unsigned v) {
+    auto it = bound.find(v);
+    return it != bound.end() && llvm::all_of(it->second, [](Value x) {
+             return bool(x);
+           });
+  }
+  bool isSetBound(unsigned v) {
+    auto it = bound.find(v);
+    return it != bound.end() && it->second[0];
+  }
+  /// The storage of input `i` (or of the result for i == number of inputs)
+  /// as the loops follow it: a transposed incidence H(v, e) is followed as
+  /// the incidence G(e, v) it is stored as (indexList swaps its variables;
+  /// access() still reads each block in H's orientation).
+  Storage storageOf(unsigned i) {
+    Storage storage = i == op.getInputs().size()
+                          ? resultStorage
+                          : l.storageOf(op.getInputs()[i]);
+    if (storage.kind == Storage::Kind::Incidence && storage.transposed)
+      return Storage::incidence(storage.edges, storage.rows,
+                                storage.cardinality);
+    return storage;
+  }
+  /// The variables of input `i` (or of the result) in storageOf's order.
+  ArrayRef<int64_t> indexList(unsigned i) {
+    if (i < swappedLists.size() && !swappedLists[i].empty())
+      return swappedLists[i];
+    if (i == op.getInputs().size())
+      return op.getResultIndices();
+    return op.getInputIndexList(i);
+  }
+  unsigned numMatrixOperands() { return op.getInputs().size() + 1; }
+
+  /// The level indices of a tensor's components in level-major order (all
+  /// dimensions' outer levels, then their first block levels, ...).
+  SmallVector<Value> levelMajor(Type type, ArrayRef<int64_t> vars);
+  Value extent(unsigned v, unsigned i);
+  /// Reads the component of input `i` at the bound variables.
+  FailureOr<Value> access(unsigned i);
+  /// Picks how to bind the next level of one of `vars`: returns the variable
+  /// and whether a matrix couples it (then the loop runs over its pattern).
+  struct Choice {
+    unsigned var;
+    unsigned levelIndex;
+    int coupledBy = -1; // an operand that couples the variable
+    unsigned partner = 0;
+    /// The sparsity the loop follows: the coupling operands' join (a
+    /// union of their patterns when none holds the others).
+    Storage storage;
+  };
+  std::optional<Choice> choose(ArrayRef<unsigned> vars);
+  /// Emits the loop for `choice`, calls `inner` inside it with the builder
+  /// in the body; returns the loop's results.
+  SmallVector<Value>
+  emitLoop(const Choice &choice, ValueRange inits, bool parallel,
+           function_ref<SmallVector<Value>(ValueRange)> inner);
+  void unbind(const Choice &choice);
+  /// The sum over `vars` of `body` (nested loops, loop-carried scalar).
+  FailureOr<Value> sum(SmallVector<unsigned> vars,
+                       function_ref<FailureOr<Value>()> body,
+                       bool parallelTop);
+  /// Evaluates the body with the bound variables: the scalar it yields.
+  FailureOr<Value> evaluate(Block &block);
+  LogicalResult lowerLocal();
+  /// The array the result may be computed into directly: that of the
+  /// variable or field the next operation stores the result to, when every
+  /// input reading that array reads it at the result's own position.
+  Value inPlaceTarget();
+
+  FunctionLowering &l;
+  OpBuilder &b;
+  IndexExprOp op;
+  Location loc;
+  Type scalarType;
+  Storage resultStorage;
+  DenseMap<unsigned, SmallVector<Value>> bound;
+  /// Block positions of matrix operands bound by a pattern loop.
+  DenseMap<unsigned, Value> positions;
+  /// The operands whose position comes from a union's gather map, so may
+  /// be -1 (no block there).
+  llvm::SmallDenseSet<unsigned> gathered;
+  /// The swapped variable lists of transposed incidences, by operand.
+  SmallVector<SmallVector<int64_t, 2>> swappedLists;
+  /// Variables summed by a simit.index_sum in the body.
+  llvm::SmallDenseSet<unsigned> nestedVars;
+  bool failedInside = false;
+};
+
+} // namespace loops
+} // namespace simit
+} // namespace mlir
+
+#endif // SIMIT_LIB_DIALECT_SIMIT_TRANSFORMS_INDEXEXPRLOWERING_H

@@ -8,7 +8,6 @@
 #include "mlir/IR/BuiltinTypes.h"
 
 #include "llvm/ADT/StringExtras.h"
-#include "llvm/ADT/StringSwitch.h"
 #include "llvm/Support/raw_ostream.h"
 
 #include <limits>
@@ -254,23 +253,7 @@ public:
     if (llvm::Error err = get("kind", kind))
       return err;
     using Kind = ArgumentBinding::Kind;
-    auto parsed = llvm::StringSwitch<std::optional<Kind>>(kind)
-                      .Case("set_size", Kind::SetSize)
-                      .Case("grid_dims", Kind::GridDims)
-                      .Case("field", Kind::Field)
-                      .Case("endpoints", Kind::Endpoints)
-                      .Case("pattern_rowptr", Kind::PatternRowPtr)
-                      .Case("pattern_colidx", Kind::PatternColIdx)
-                      .Case("pattern_locations", Kind::PatternLocations)
-                      .Case("union_rowptr", Kind::UnionRowPtr)
-                      .Case("union_colidx", Kind::UnionColIdx)
-                      .Case("union_gather", Kind::UnionGather)
-                      .Case("product_rowptr", Kind::ProductRowPtr)
-                      .Case("product_colidx", Kind::ProductColIdx)
-                      .Case("element_colours", Kind::ElementColours)
-                      .Case("extern", Kind::Extern)
-                      .Case("param", Kind::Parameter)
-                      .Default(std::nullopt);
+    std::optional<Kind> parsed = abi::parseBindingKind(kind);
     if (!parsed)
       return error("unknown kind '" + kind + "'");
     binding.kind = *parsed;

@@ -13,6 +13,7 @@
 #ifndef SIMIT_ENGINE_HOSTABI_H
 #define SIMIT_ENGINE_HOSTABI_H
 
+#include "simit/ABI/BindingKind.h"
 #include "simit/Runtime/Set.h"
 
 #include "llvm/Support/Error.h"
@@ -86,31 +87,8 @@ llvm::Expected<ValueType> toValueType(mlir::Type type);
 
 /// What one argument carries.
 struct ArgumentBinding {
-  enum class Kind {
-    SetSize,          // index: the number of elements of `set`
-    GridDims,         // memref<d x i32>: the extents of grid `set`
-    Field,            // memref<?x b...>: field `field` of `set`
-    Endpoints,        // memref<?xc x i32>: the endpoints of edge set `set`
-    PatternRowPtr,    // memref<?xi32>: BCSR row pointers of (set; rows, cols)
-    PatternColIdx,    // memref<?xi32>: BCSR block columns
-    PatternLocations, // memref<?x(c*c)xi32>: per-edge block locations
-    UnionRowPtr,      // memref<?xi32>: BCSR row pointers of the union of the
-                      // patterns of `edgeSets` over (rows, cols)
-    UnionColIdx,      // memref<?xi32>: its block columns
-    UnionGather,      // memref<?xi32>: per union block, its position in the
-                      // pattern (or union) of `partSets`, or -1; with
-                      // `partTransposed`, of the mirrored block in theirs
-                      // over (cols, rows)
-    ProductRowPtr,    // memref<?xi32>: BCSR row pointers of the pattern of
-                      // the product of the patterns (or unions) of
-                      // `edgeSets` over (rows, mid) and `rightSets` over
-                      // (mid, cols)
-    ProductColIdx,    // memref<?xi32>: its block columns
-    ElementColours,   // memref<?xi32>: the colouring of edge set `set` in
-                      // chunks of `chunk` elements (ElementColouring.h)
-    Extern,           // an extern tensor `name`
-    Parameter,        // the function's own parameter number `index`
-  };
+  /// The kinds are spelled once for the lowering and the engine.
+  using Kind = abi::BindingKind;
   Kind kind = Kind::Parameter;
   std::string set, field, rows, cols, name;
   /// Union bindings: the edge sets of the union and of the gathered part

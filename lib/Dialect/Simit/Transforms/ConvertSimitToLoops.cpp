@@ -563,8 +563,10 @@ LogicalResult FunctionLowering::run(func::FuncOp original) {
                  : vector::ShapeCastOp::create(b, arg.getLoc(), type, param)
                        .getResult());
     bindingAttrs.push_back(DictionaryAttr::get(
-        ctx, {NamedAttribute(StringAttr::get(ctx, "kind"),
-                             StringAttr::get(ctx, "param")),
+        ctx, {NamedAttribute(
+                  StringAttr::get(ctx, "kind"),
+                  StringAttr::get(ctx, ::simit::abi::spelling(
+                                           BindingKind::Parameter))),
               NamedAttribute(StringAttr::get(ctx, "index"),
                              b.getI64IntegerAttr(i))}));
   }
@@ -583,17 +585,23 @@ LogicalResult FunctionLowering::run(func::FuncOp original) {
   std::iota(order.begin(), order.end(), 0);
   auto sortKey = [&](unsigned i) {
     DictionaryAttr dict = bindings[i].first;
-    static const char *const kinds[] = {
-        "set_size",       "grid_dims",      "endpoints",
-        "field",          "pattern_rowptr", "pattern_colidx",
-        "pattern_locations", "extern"};
-    StringRef kind = dict.getAs<StringAttr>("kind").getValue();
-    unsigned rank = llvm::find(kinds, kind) - std::begin(kinds);
+    // The kinds ranked as listed; unions and products after them.
+    static const BindingKind ranked[] = {
+        BindingKind::SetSize,       BindingKind::GridDims,
+        BindingKind::Endpoints,     BindingKind::Field,
+        BindingKind::PatternRowPtr, BindingKind::PatternColIdx,
+        BindingKind::PatternLocations, BindingKind::Extern};
+    StringRef spelled = dict.getAs<StringAttr>("kind").getValue();
+    std::optional<BindingKind> kind = ::simit::abi::parseBindingKind(
+        std::string_view(spelled.data(), spelled.size()));
+    unsigned rank = llvm::find(ranked, *kind) - std::begin(ranked);
     auto text = [&](StringRef key) {
       auto value = dict.getAs<StringAttr>(key);
       return value ? value.getValue().str() : std::string();
     };
-    bool isPattern = kind.starts_with("pattern_");
+    bool isPattern = *kind == BindingKind::PatternRowPtr ||
+                     *kind == BindingKind::PatternColIdx ||
+                     *kind == BindingKind::PatternLocations;
     return std::make_tuple(isPattern ? 4u : rank,
                            text("set") + text("name"), text("field"),
                            text("rows"), text("cols"), rank);
@@ -618,7 +626,7 @@ LogicalResult FunctionLowering::run(func::FuncOp original) {
 
 namespace {
 struct ConvertSimitToLoops
-    : public simit::impl::ConvertSimitToLoopsBase<ConvertSimitToLoops> {
+    : public mlir::simit::impl::ConvertSimitToLoopsBase<ConvertSimitToLoops> {
   void runOnOperation() override {
     ModuleOp module = getOperation();
     // Element functions are those maps apply; they are inlined, not

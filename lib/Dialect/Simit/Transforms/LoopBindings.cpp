@@ -13,35 +13,8 @@ using namespace mlir::simit;
 using namespace mlir::simit::loops;
 
 static StringRef bindingKindName(BindingKind kind) {
-  switch (kind) {
-  case BindingKind::SetSize:
-    return "set_size";
-  case BindingKind::GridDims:
-    return "grid_dims";
-  case BindingKind::Field:
-    return "field";
-  case BindingKind::Endpoints:
-    return "endpoints";
-  case BindingKind::PatternRowPtr:
-    return "pattern_rowptr";
-  case BindingKind::PatternColIdx:
-    return "pattern_colidx";
-  case BindingKind::PatternLocations:
-    return "pattern_locations";
-  case BindingKind::UnionRowPtr:
-    return "union_rowptr";
-  case BindingKind::UnionColIdx:
-    return "union_colidx";
-  case BindingKind::UnionGather:
-    return "union_gather";
-  case BindingKind::ProductRowPtr:
-    return "product_rowptr";
-  case BindingKind::ProductColIdx:
-    return "product_colidx";
-  case BindingKind::Extern:
-    return "extern";
-  }
-  llvm_unreachable("binding kind");
+  std::string_view name = ::simit::abi::spelling(kind);
+  return StringRef(name.data(), name.size());
 }
 
 Value FunctionLowering::getBinding(BindingKind kind, ArrayRef<StringRef> names,

@@ -21,6 +21,7 @@
 #ifndef SIMIT_LIB_DIALECT_SIMIT_TRANSFORMS_LOOPSLOWERING_H
 #define SIMIT_LIB_DIALECT_SIMIT_TRANSFORMS_LOOPSLOWERING_H
 
+#include "simit/ABI/BindingKind.h"
 #include "simit/Dialect/Simit/IR/SimitStorage.h"
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
@@ -154,21 +155,7 @@ storageOfEncoding(StorageAttr encoding, StringAttr rows, StringAttr cols,
                   const DenseMap<StringAttr, SetType> &sets);
 
 /// The kinds of function arguments of a lowered exported function.
-enum class BindingKind {
-  SetSize,
-  GridDims,
-  Field,
-  Endpoints,
-  PatternRowPtr,
-  PatternColIdx,
-  PatternLocations,
-  UnionRowPtr,
-  UnionColIdx,
-  UnionGather,
-  ProductRowPtr,
-  ProductColIdx,
-  Extern
-};
+using BindingKind = ::simit::abi::BindingKind;
 
 /// What is known of the element function being inlined into a set loop.
 struct ElementContext {

@@ -25,6 +25,7 @@
 //
 //===----------------------------------------------------------------------===//
 
+#include "simit/ABI/BindingKind.h"
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
 #include "mlir/Interfaces/SideEffectInterfaces.h"
@@ -377,7 +378,7 @@ void restrictToIterations(OpBuilder &b, Location loc, scf::ParallelOp loop,
 }
 
 class ParallelLoops
-    : public simit::impl::SimitParallelLoopsBase<ParallelLoops> {
+    : public mlir::simit::impl::SimitParallelLoopsBase<ParallelLoops> {
 public:
   using Base::Base;
 
@@ -515,7 +516,9 @@ Value ParallelLoops::elementColours(func::FuncOp function, StringRef set) {
   OpBuilder b(ctx);
   NamedAttribute entries[] = {
       b.getNamedAttr("chunk", b.getI64IntegerAttr(scatterChunk)),
-      b.getNamedAttr("kind", b.getStringAttr("element_colours")),
+      b.getNamedAttr("kind",
+                     b.getStringAttr(::simit::abi::spelling(
+                         ::simit::abi::BindingKind::ElementColours))),
       b.getNamedAttr("set", b.getStringAttr(set))};
   auto binding = DictionaryAttr::get(ctx, entries);
   auto bindings = function->getAttrOfType<ArrayAttr>("simit.bindings");

@@ -74,3 +74,44 @@ func.func @paths(%points : !Points, %springs : !Springs, %x : !V, %h : f64) -> f
   %zero = arith.constant 0.0 : f64
   return %zero : f64
 }
+
+// The quotient A ./ B as simit-linalg-to-index-expr writes it (zero where
+// the dividend is zero): a comparison only chooses, a select joins its
+// choices, and a quotient keeps the dividend's storage where the divisor's
+// holds it.
+// CHECK-LABEL: func.func @quotient
+// CHECK: simit.index_expr {{.*}} -> !simit.tensor<["points", "points"] x f64, #diag_points>
+func.func @quotient(%points : !Points, %springs : !Springs) -> f64 {
+  %M = simit.assemble @mass() to %points reduce <add> : (!Points) -> !K
+  %K = simit.assemble @edge() to %springs reduce <add> : (!Springs) -> !K
+  %Q = simit.index_expr [i : "points", j : "points"] (i, j) = (%M(i, j), %K(i, j))
+       : (!K, !K) -> !K {
+  ^bb0(%m: f64, %k: f64):
+    %zero = arith.constant 0.0 : f64
+    %isZero = arith.cmpf oeq, %m, %zero : f64
+    %q = arith.divf %m, %k : f64
+    %r = arith.select %isZero, %zero, %q : f64
+    simit.yield %r : f64
+  }
+  %zero = arith.constant 0.0 : f64
+  return %zero : f64
+}
+
+// A product of two edge sets' components, neither storage holding the
+// other's: stored on their join (the intersection has no encoding).
+// CHECK-LABEL: func.func @unrelated_product
+// CHECK: simit.index_expr {{.*}} -> !simit.tensor<["points", "points"] x f64, #union>
+!Hinges = !simit.set<"hinges", !Spring, ["points", "points"]>
+func.func @unrelated_product(%springs : !Springs, %hinges : !Hinges) -> f64 {
+  %K = simit.assemble @edge() to %springs reduce <add> : (!Springs) -> !K
+  %H = simit.assemble @edge() to %hinges reduce <add> : (!Hinges) -> !K
+  %P = simit.index_expr [i : "points", j : "points"] (i, j) = (%K(i, j), %H(i, j))
+       : (!K, !K) -> !K {
+  ^bb0(%k: f64, %h: f64):
+    %p = arith.mulf %k, %h : f64
+    simit.yield %p : f64
+  }
+  %zero = arith.constant 0.0 : f64
+  return %zero : f64
+}
+

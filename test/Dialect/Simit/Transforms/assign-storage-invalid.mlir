@@ -178,3 +178,45 @@ func.func @dense_index_expr(%points : !Points, %x : !V) -> f64 {
   %zero = arith.constant 0.0 : f64
   return %zero : f64
 }
+
+// -----
+
+// A quotient by a matrix whose storage does not hold the dividend's.
+!Point = !simit.element<"Point", {x : f64}>
+!Spring = !simit.element<"Spring", {k : f64}>
+!Points = !simit.set<"points", !Point>
+!Springs = !simit.set<"springs", !Spring, ["points", "points"]>
+!Ends = !simit.tuple<!Point x 2>
+!K = !simit.tensor<["points", "points"] x f64>
+
+func.func private @mass(%p : !Point) -> !K {
+  %m = simit.elem_read %p["x"] : !Point -> f64
+  %z = simit.zeros : !K
+  %M = simit.insert %m into %z[%p, %p] : f64 into !K, (!Point, !Point)
+  return %M : !K
+}
+
+func.func private @edge(%s : !Spring, %e : !Ends) -> !K {
+  %k = simit.elem_read %s["k"] : !Spring -> f64
+  %a = simit.tuple_get %e[0] : !Ends -> !Point
+  %b = simit.tuple_get %e[1] : !Ends -> !Point
+  %z = simit.zeros : !K
+  %K = simit.insert %k into %z[%a, %b] : f64 into !K, (!Point, !Point)
+  return %K : !K
+}
+
+func.func @quotient_outside(%points : !Points, %springs : !Springs) -> f64 {
+  // expected-note @+1 {{'diag("points")' comes from here}}
+  %M = simit.assemble @mass() to %points reduce <add> : (!Points) -> !K
+  // expected-note @+1 {{'pattern("springs", rows [0, 1], cols [0, 1])' comes from here}}
+  %K = simit.assemble @edge() to %springs reduce <add> : (!Springs) -> !K
+  // expected-error @+1 {{a division by a matrix component that does not store every block of the dividend has no storage}}
+  %Q = simit.index_expr [i : "points", j : "points"] (i, j) = (%K(i, j), %M(i, j))
+       : (!K, !K) -> !K {
+  ^bb0(%k: f64, %m: f64):
+    %q = arith.divf %k, %m : f64
+    simit.yield %q : f64
+  }
+  %zero = arith.constant 0.0 : f64
+  return %zero : f64
+}

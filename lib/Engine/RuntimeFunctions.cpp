@@ -141,28 +141,37 @@ void solveBCSR(StridedMemRefType<int32_t, 1> *rowptr,
     abandonRun();
 }
 
-/// The last step of the Sherman–Morrison rewrite into x, or false with
-/// runFailure set.
-template <typename T>
-bool shermanMorrisonInto(StridedMemRefType<int32_t, 1> *rowptr,
-                         StridedMemRefType<int32_t, 1> *colidx,
-                         StridedMemRefType<T, 3> *values,
-                         StridedMemRefType<T, 2> *const (&vectors)[6],
-                         const char *where) {
+/// The last step of the Sherman–Morrison rewrite of rank K into x, or false
+/// with runFailure set. `vectors` are u_1..u_K, v_1..v_K, b, w_1..w_K, c,
+/// x.
+template <typename T, size_t K>
+bool lowRankInto(StridedMemRefType<int32_t, 1> *rowptr,
+                 StridedMemRefType<int32_t, 1> *colidx,
+                 StridedMemRefType<T, 3> *values,
+                 StridedMemRefType<T, 2> *const (&vectors)[3 * K + 3],
+                 const char *where) {
   simit::SquareBCSRView<T> view;
   if (!bcsrView(rowptr, colidx, values, where, view))
     return false;
-  // u, v, b, w, c, x.
-  T *data[6];
-  for (int i = 0; i < 6; ++i) {
+  T *data[3 * K + 3];
+  for (size_t i = 0; i < 3 * K + 3; ++i) {
     if (!isContiguous(*vectors[i]) ||
         vectors[i]->sizes[0] * vectors[i]->sizes[1] != view.size())
       return fail(where, "vector size does not match the matrix");
     data[i] = vectors[i]->data + vectors[i]->offset;
   }
-  auto report = solver().shermanMorrison(
-      view, data[0], data[1], data[2], data[3], data[4], data[5],
-      where ? where : "Sherman-Morrison");
+  llvm::ArrayRef<T *> all(data);
+  const T *b = data[2 * K], *c = data[3 * K + 1];
+  T *x = data[3 * K + 2];
+  const char *statement = where ? where : "Sherman-Morrison";
+  auto report =
+      K == 1 ? solver().shermanMorrison(view, data[0], data[1], b, data[3],
+                                        c, x, statement)
+             : solver().woodbury<T>(
+                   view, llvm::ArrayRef<const T *>(all.slice(0, K)),
+                   llvm::ArrayRef<const T *>(all.slice(K, K)), b,
+                   llvm::ArrayRef<const T *>(all.slice(2 * K + 1, K)), c, x,
+                   statement);
   return report ? true : fail(where, llvm::toString(report.takeError()));
 }
 
@@ -319,7 +328,7 @@ extern "C" void _mlir_ciface_simit_rt_sherman_morrison_bcsr(
     StridedMemRefType<double, 2> *w, StridedMemRefType<double, 2> *c,
     StridedMemRefType<double, 2> *x, const char *where) {
   StridedMemRefType<double, 2> *const vectors[6] = {u, v, b, w, c, x};
-  if (!shermanMorrisonInto(rowptr, colidx, values, vectors, where))
+  if (!lowRankInto<double, 1>(rowptr, colidx, values, vectors, where))
     abandonRun();
 }
 
@@ -330,9 +339,46 @@ extern "C" void _mlir_ciface_simit_rt_sherman_morrison_bcsr_f32(
     StridedMemRefType<float, 2> *w, StridedMemRefType<float, 2> *c,
     StridedMemRefType<float, 2> *x, const char *where) {
   StridedMemRefType<float, 2> *const vectors[6] = {u, v, b, w, c, x};
-  if (!shermanMorrisonInto(rowptr, colidx, values, vectors, where))
+  if (!lowRankInto<float, 1>(rowptr, colidx, values, vectors, where))
     abandonRun();
 }
+
+// Ranks 2 to 4 (simit-sherman-morrison's Woodbury form): the same with
+// u_1..u_k, v_1..v_k, b, w_1..w_k, c, x.
+#define SIMIT_RT_WOODBURY(NAME, T, K, ...)                                     \
+  extern "C" void NAME(StridedMemRefType<int32_t, 1> *rowptr,                  \
+                       StridedMemRefType<int32_t, 1> *colidx,                  \
+                       StridedMemRefType<T, 3> *values, __VA_ARGS__,           \
+                       const char *where) {                                    \
+    StridedMemRefType<T, 2> *const vectors[] = SIMIT_RT_WOODBURY_ARGS_##K;     \
+    if (!lowRankInto<T, K>(rowptr, colidx, values, vectors, where))            \
+      abandonRun();                                                            \
+  }
+#define SIMIT_RT_WOODBURY_ARGS_2 {u1, u2, v1, v2, b, w1, w2, c, x}
+#define SIMIT_RT_WOODBURY_ARGS_3 {u1, u2, u3, v1, v2, v3, b, w1, w2, w3, c, x}
+#define SIMIT_RT_WOODBURY_ARGS_4                                               \
+  {u1, u2, u3, u4, v1, v2, v3, v4, b, w1, w2, w3, w4, c, x}
+#define SIMIT_RT_WOODBURY_PARAMS_2(V)                                          \
+  V u1, V u2, V v1, V v2, V b, V w1, V w2, V c, V x
+#define SIMIT_RT_WOODBURY_PARAMS_3(V)                                          \
+  V u1, V u2, V u3, V v1, V v2, V v3, V b, V w1, V w2, V w3, V c, V x
+#define SIMIT_RT_WOODBURY_PARAMS_4(V)                                          \
+  V u1, V u2, V u3, V u4, V v1, V v2, V v3, V v4, V b, V w1, V w2, V w3,    \
+      V w4, V c, V x
+using F64Vector = StridedMemRefType<double, 2> *;
+using F32Vector = StridedMemRefType<float, 2> *;
+SIMIT_RT_WOODBURY(_mlir_ciface_simit_rt_woodbury2_bcsr, double, 2,
+                  SIMIT_RT_WOODBURY_PARAMS_2(F64Vector))
+SIMIT_RT_WOODBURY(_mlir_ciface_simit_rt_woodbury3_bcsr, double, 3,
+                  SIMIT_RT_WOODBURY_PARAMS_3(F64Vector))
+SIMIT_RT_WOODBURY(_mlir_ciface_simit_rt_woodbury4_bcsr, double, 4,
+                  SIMIT_RT_WOODBURY_PARAMS_4(F64Vector))
+SIMIT_RT_WOODBURY(_mlir_ciface_simit_rt_woodbury2_bcsr_f32, float, 2,
+                  SIMIT_RT_WOODBURY_PARAMS_2(F32Vector))
+SIMIT_RT_WOODBURY(_mlir_ciface_simit_rt_woodbury3_bcsr_f32, float, 3,
+                  SIMIT_RT_WOODBURY_PARAMS_3(F32Vector))
+SIMIT_RT_WOODBURY(_mlir_ciface_simit_rt_woodbury4_bcsr_f32, float, 4,
+                  SIMIT_RT_WOODBURY_PARAMS_4(F32Vector))
 
 extern "C" void _mlir_ciface_simit_rt_matmul_bcsr(
     int32_t layoutA, StridedMemRefType<int32_t, 1> *rowptrA,
@@ -865,6 +911,26 @@ simit::runtimeSymbolMap(llvm::orc::MangleAndInterner interner) {
   add("_mlir_ciface_simit_rt_sherman_morrison_bcsr_f32",
       reinterpret_cast<void *>(
           &_mlir_ciface_simit_rt_sherman_morrison_bcsr_f32));
+  for (auto [name, entry] :
+       {std::pair("_mlir_ciface_simit_rt_woodbury2_bcsr",
+                  reinterpret_cast<void *>(
+                      &_mlir_ciface_simit_rt_woodbury2_bcsr)),
+        std::pair("_mlir_ciface_simit_rt_woodbury3_bcsr",
+                  reinterpret_cast<void *>(
+                      &_mlir_ciface_simit_rt_woodbury3_bcsr)),
+        std::pair("_mlir_ciface_simit_rt_woodbury4_bcsr",
+                  reinterpret_cast<void *>(
+                      &_mlir_ciface_simit_rt_woodbury4_bcsr)),
+        std::pair("_mlir_ciface_simit_rt_woodbury2_bcsr_f32",
+                  reinterpret_cast<void *>(
+                      &_mlir_ciface_simit_rt_woodbury2_bcsr_f32)),
+        std::pair("_mlir_ciface_simit_rt_woodbury3_bcsr_f32",
+                  reinterpret_cast<void *>(
+                      &_mlir_ciface_simit_rt_woodbury3_bcsr_f32)),
+        std::pair("_mlir_ciface_simit_rt_woodbury4_bcsr_f32",
+                  reinterpret_cast<void *>(
+                      &_mlir_ciface_simit_rt_woodbury4_bcsr_f32))})
+    add(name, entry);
   add("_mlir_ciface_simit_rt_matmul_bcsr",
       reinterpret_cast<void *>(&_mlir_ciface_simit_rt_matmul_bcsr));
   add("_mlir_ciface_simit_rt_matmul_bcsr_f32",

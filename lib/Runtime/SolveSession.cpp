@@ -354,36 +354,73 @@ SolveSession::solve(const SquareBCSRView<float> &, const float *, float *,
                     llvm::StringRef);
 
 /// The scalar matrix [A u; v^T -1] in BCSR arrays of 1x1 blocks.
+/// The bordered matrix [A U; V^T -I] of a rank-k update A + U V^T, k
+/// border rows and columns, as scalar CSR.
 template <typename T> struct BorderedMatrix {
   std::vector<int32_t> rowptr{0}, colidx;
   std::vector<T> values;
   SquareBCSRView<T> view;
 
-  BorderedMatrix(const SquareBCSRView<T> &a, const T *u, const T *v) {
-    int64_t bs = a.blockSize, n = a.size();
+  BorderedMatrix(const SquareBCSRView<T> &a, llvm::ArrayRef<const T *> u,
+                 llvm::ArrayRef<const T *> v) {
+    int64_t bs = a.blockSize, n = a.size(), k = u.size();
     for (int64_t r = 0; r < a.rows; ++r)
       for (int64_t i = 0; i < bs; ++i) {
-        for (int32_t k = a.rowptr[r]; k < a.rowptr[r + 1]; ++k)
+        for (int32_t p = a.rowptr[r]; p < a.rowptr[r + 1]; ++p)
           for (int64_t j = 0; j < bs; ++j) {
-            colidx.push_back(static_cast<int32_t>(a.colidx[k] * bs + j));
-            values.push_back(a.values[(static_cast<int64_t>(k) * bs + i) * bs +
+            colidx.push_back(static_cast<int32_t>(a.colidx[p] * bs + j));
+            values.push_back(a.values[(static_cast<int64_t>(p) * bs + i) * bs +
                                       j]);
           }
-        colidx.push_back(static_cast<int32_t>(n));
-        values.push_back(u[r * bs + i]);
+        for (int64_t t = 0; t < k; ++t) {
+          colidx.push_back(static_cast<int32_t>(n + t));
+          values.push_back(u[t][r * bs + i]);
+        }
         rowptr.push_back(static_cast<int32_t>(colidx.size()));
       }
-    for (int64_t j = 0; j <= n; ++j) {
-      colidx.push_back(static_cast<int32_t>(j));
-      values.push_back(j < n ? v[j] : T(-1));
+    for (int64_t t = 0; t < k; ++t) {
+      for (int64_t j = 0; j < n + k; ++j) {
+        colidx.push_back(static_cast<int32_t>(j));
+        values.push_back(j < n ? v[t][j] : (j - n == t ? T(-1) : T(0)));
+      }
+      rowptr.push_back(static_cast<int32_t>(colidx.size()));
     }
-    rowptr.push_back(static_cast<int32_t>(colidx.size()));
-    view.rows = n + 1;
+    view.rows = n + k;
     view.rowptr = rowptr.data();
     view.colidx = colidx.data();
     view.values = values.data();
   }
 };
+
+/// Solves the k x k system `m` y = `rhs` (row major, overwritten) by LU
+/// with partial pivoting; false when a pivot is at most `tiny`.
+bool solveSmall(std::vector<double> &m, std::vector<double> &rhs,
+                double tiny) {
+  int64_t k = rhs.size();
+  for (int64_t col = 0; col < k; ++col) {
+    int64_t pivot = col;
+    for (int64_t r = col + 1; r < k; ++r)
+      if (std::abs(m[r * k + col]) > std::abs(m[pivot * k + col]))
+        pivot = r;
+    if (!(std::abs(m[pivot * k + col]) > tiny))
+      return false;
+    for (int64_t j = 0; j < k; ++j)
+      std::swap(m[col * k + j], m[pivot * k + j]);
+    std::swap(rhs[col], rhs[pivot]);
+    for (int64_t r = col + 1; r < k; ++r) {
+      double f = m[r * k + col] / m[col * k + col];
+      for (int64_t j = col; j < k; ++j)
+        m[r * k + j] -= f * m[col * k + j];
+      rhs[r] -= f * rhs[col];
+    }
+  }
+  for (int64_t r = k; r-- > 0;) {
+    for (int64_t j = r + 1; j < k; ++j)
+      rhs[r] -= m[r * k + j] * rhs[j];
+    rhs[r] /= m[r * k + r];
+  }
+  return true;
+}
 
 template <typename T>
 llvm::Expected<SolveReport>
@@ -393,25 +430,47 @@ SolveSession::shermanMorrison(const SquareBCSRView<T> &a, const T *u,
   if constexpr (std::is_same_v<T, double>)
     if (rankOneObserver)
       rankOneObserver(RankOneSystem{statement, a, u, v, b});
+  return woodbury<T>(a, {u}, {v}, b, {w}, c, x, statement);
+}
+
+template <typename T>
+llvm::Expected<SolveReport>
+SolveSession::woodbury(const SquareBCSRView<T> &a, llvm::ArrayRef<const T *> u,
+                       llvm::ArrayRef<const T *> v, const T *b,
+                       llvm::ArrayRef<const T *> w, const T *c, T *x,
+                       llvm::StringRef statement) {
   SolveStatementStats &stats = statsOf(statement);
-  int64_t n = a.size();
+  int64_t n = a.size(), k = u.size();
   Clock::time_point start = Clock::now();
-  double denominator = 1 + dot(v, w, n);
-  double scale = norm(v, n) * norm(w, n);
+  // The capacitance matrix I + V^T W and V^T c; a pivot of it small
+  // against |v_i| |w_j| would amplify rounding as 1 + v.w does for rank 1.
+  std::vector<double> capacitance(k * k), y(k);
+  double scale = 0;
+  for (int64_t i = 0; i < k; ++i) {
+    for (int64_t j = 0; j < k; ++j) {
+      capacitance[i * k + j] = (i == j) + dot(v[i], w[j], n);
+      scale = std::max(scale, norm(v[i], n) * norm(w[j], n));
+    }
+    y[i] = dot(v[i], c, n);
+  }
+  bool finite = llvm::all_of(capacitance, [](double e) {
+    return std::isfinite(e);
+  });
   SolveReport report;
-  if (std::abs(denominator) > Tolerances<T>::accept * scale &&
-      std::isfinite(denominator)) {
+  if (finite && solveSmall(capacitance, y, Tolerances<T>::accept * scale)) {
     report.method = SolveMethod::ShermanMorrison;
-    T factor = static_cast<T>(dot(v, c, n) / denominator);
-    for (int64_t i = 0; i < n; ++i)
-      x[i] = c[i] - factor * w[i];
+    for (int64_t i = 0; i < n; ++i) {
+      double xi = c[i];
+      for (int64_t j = 0; j < k; ++j)
+        xi -= w[j][i] * y[j];
+      x[i] = static_cast<T>(xi);
+    }
     report.solveMs = millisecondsSince(start);
   } else {
-    // Dividing by 1 + v.w would amplify its rounding error by |v||w| / |1 +
-    // v.w|: solve the bordered system, whose LU pivots around it.
+    // Solve the bordered system instead, whose LU pivots around it.
     BorderedMatrix<T> bordered(a, u, v);
-    std::vector<T> rhs(b, b + n), solution(static_cast<size_t>(n + 1));
-    rhs.push_back(T(0));
+    std::vector<T> rhs(b, b + n), solution(static_cast<size_t>(n + k));
+    rhs.resize(n + k, T(0));
     auto solved = direct(FactorKind::LU, bordered.view, rhs.data(),
                          solution.data());
     if (!solved)
@@ -420,12 +479,17 @@ SolveSession::shermanMorrison(const SquareBCSRView<T> &a, const T *u,
     report.method = SolveMethod::BorderedLU;
     std::copy(solution.begin(), solution.begin() + n, x);
   }
-  // ||b - A x - u (v.x)|| / ||b||.
+  // ||b - A x - U (V^T x)|| / ||b||.
   std::vector<T> ax(static_cast<size_t>(n));
   multiply(a, x, ax.data());
-  double vx = dot(v, x, n), rr = 0, bNorm = norm(b, n);
+  std::vector<double> vx(k);
+  for (int64_t j = 0; j < k; ++j)
+    vx[j] = dot(v[j], x, n);
+  double rr = 0, bNorm = norm(b, n);
   for (int64_t i = 0; i < n; ++i) {
-    double r = static_cast<double>(b[i]) - ax[i] - u[i] * vx;
+    double r = static_cast<double>(b[i]) - ax[i];
+    for (int64_t j = 0; j < k; ++j)
+      r -= u[j][i] * vx[j];
     rr += r * r;
   }
   report.relativeResidual = bNorm == 0 ? std::sqrt(rr) : std::sqrt(rr) / bNorm;
@@ -445,6 +509,15 @@ template llvm::Expected<SolveReport> SolveSession::shermanMorrison(
 template llvm::Expected<SolveReport> SolveSession::shermanMorrison(
     const SquareBCSRView<float> &, const float *, const float *,
     const float *, const float *, const float *, float *, llvm::StringRef);
+template llvm::Expected<SolveReport> SolveSession::woodbury(
+    const SquareBCSRView<double> &, llvm::ArrayRef<const double *>,
+    llvm::ArrayRef<const double *>, const double *,
+    llvm::ArrayRef<const double *>, const double *, double *,
+    llvm::StringRef);
+template llvm::Expected<SolveReport> SolveSession::woodbury(
+    const SquareBCSRView<float> &, llvm::ArrayRef<const float *>,
+    llvm::ArrayRef<const float *>, const float *,
+    llvm::ArrayRef<const float *>, const float *, float *, llvm::StringRef);
 
 llvm::Expected<std::shared_ptr<const SparseFactorisation>>
 SolveSession::factorise(FactorKind kind, const SquareBCSRView<double> &a,

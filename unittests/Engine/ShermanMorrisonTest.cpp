@@ -1,9 +1,10 @@
 //===--- ShermanMorrisonTest.cpp - (A + u*v') \ b against Eigen -----------===//
 //
 // A program that solves a sparse 3x3-block matrix plus an outer product of
-// two system vectors, run under several solvers; every answer is checked
-// against a dense Eigen solve of the same matrix, and the statistics say
-// what was done. Without simit-sherman-morrison the program is refused.
+// two system vectors (minus one, and minus a second: rank 2, the Woodbury
+// form), run under several solvers; every answer is checked against a dense
+// Eigen solve of the same matrix, and the statistics say what was done.
+// Without simit-sherman-morrison the program is refused.
 //
 //===----------------------------------------------------------------------===//
 
@@ -61,8 +62,24 @@ end
 
 constexpr int kPoints = 8;
 
+/// Which low-rank update of A the program solves with.
+enum class Update { Sum, Difference, RankTwo };
+
+/// The solve of kSource for `update`.
+std::string sourceOf(Update update) {
+  std::string source = kSource;
+  llvm::StringRef sum = "(A + points.u * points.v')";
+  const char *replacement =
+      update == Update::Difference ? "(A - points.u * points.v')"
+      : update == Update::RankTwo
+          ? "(A + points.u * points.v' - points.v * points.b')"
+          : "(A + points.u * points.v')";
+  source.replace(source.find(sum.str()), sum.size(), replacement);
+  return source;
+}
+
 /// A chain of springs with a mass per point and random u, v, b; `dense`
-/// is A + u v^T.
+/// is the updated A.
 struct Scene {
   Set points{"points"};
   Set springs{"springs", {&points, &points}};
@@ -75,8 +92,7 @@ struct Scene {
   Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(3 * kPoints, 3 * kPoints);
   Eigen::VectorXd uv, vv, bv;
 
-  /// `sign` 1: A + u v^T; -1: A - u v^T.
-  explicit Scene(double sign) {
+  explicit Scene(Update update) {
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> value(-1, 1);
     uv.resize(3 * kPoints);
@@ -106,24 +122,18 @@ struct Scene {
         dense(3 * (p + 1) + i, 3 * p + i) -= stiffness;
       }
     }
-    dense += sign * uv * vv.transpose();
+    dense += (update == Update::Difference ? -1.0 : 1.0) * uv * vv.transpose();
+    if (update == Update::RankTwo)
+      dense -= vv * bv.transpose();
   }
 };
 
-/// kSource solving (A - u v^T) \ b instead.
-std::string differenceSource() {
-  std::string source = kSource;
-  llvm::StringRef sum = "(A + points.u";
-  source.replace(source.find(sum.str()), sum.size(), "(A - points.u");
-  return source;
-}
-
 /// Runs main with the given options and checks x against Eigen; returns
-/// the program's statistics. `sign` -1 runs differenceSource().
-std::vector<SolveStatementStats> expectDenseAnswer(ProgramOptions options,
-                                                   double sign = 1) {
+/// the program's statistics.
+std::vector<SolveStatementStats>
+expectDenseAnswer(ProgramOptions options, Update update = Update::Sum) {
   Program program(options);
-  std::string source = sign > 0 ? std::string(kSource) : differenceSource();
+  std::string source = sourceOf(update);
   if (llvm::Error err = program.loadString(source, "rank-one.sim")) {
     ADD_FAILURE() << message(std::move(err));
     return {};
@@ -133,7 +143,7 @@ std::vector<SolveStatementStats> expectDenseAnswer(ProgramOptions options,
     ADD_FAILURE() << message(main.takeError());
     return {};
   }
-  Scene scene(sign);
+  Scene scene(update);
   EXPECT_EQ(message(main->bind("points", scene.points)), "success");
   EXPECT_EQ(message(main->bind("springs", scene.springs)), "success");
   EXPECT_EQ(message(main->run()), "success");
@@ -167,10 +177,29 @@ TEST(ShermanMorrison, RewriteMatchesADenseSolve) {
 TEST(ShermanMorrison, DifferenceMatchesADenseSolve) {
   ProgramOptions options;
   options.solver.method = SolveMethod::Cholesky;
-  std::vector<SolveStatementStats> stats = expectDenseAnswer(options, -1);
+  std::vector<SolveStatementStats> stats =
+      expectDenseAnswer(options, Update::Difference);
   ASSERT_EQ(stats.size(), 3u);
   EXPECT_EQ(stats[2].methods,
             std::vector<SolveMethod>{SolveMethod::ShermanMorrison});
+}
+
+// Rank 2: three solves with A's one factorisation, then the 2 x 2 system.
+TEST(ShermanMorrison, RankTwoMatchesADenseSolve) {
+  ProgramOptions options;
+  options.solver.method = SolveMethod::Cholesky;
+  std::vector<SolveStatementStats> stats =
+      expectDenseAnswer(options, Update::RankTwo);
+  ASSERT_EQ(stats.size(), 4u);
+  EXPECT_EQ(stats[0].statement, "solve [Woodbury A^-1 u1] (rank-one.sim:33:64)");
+  EXPECT_EQ(stats[0].factorisations, 1);
+  EXPECT_EQ(stats[1].statement, "solve [Woodbury A^-1 u2] (rank-one.sim:33:64)");
+  EXPECT_EQ(stats[1].reuses, 1);
+  EXPECT_EQ(stats[2].reuses, 1);
+  EXPECT_EQ(stats[3].statement, "Woodbury (rank-one.sim:33:64)");
+  EXPECT_EQ(stats[3].methods,
+            std::vector<SolveMethod>{SolveMethod::ShermanMorrison});
+  EXPECT_LE(stats[3].maxRelativeResidual, 1e-12);
 }
 
 TEST(ShermanMorrison, AutoSolvesWithConjugateGradients) {

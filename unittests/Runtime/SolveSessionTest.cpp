@@ -6,6 +6,7 @@
 
 #include "gmock/gmock.h"
 
+#include <array>
 #include <Eigen/Dense>
 
 #include <random>
@@ -513,6 +514,75 @@ TEST(SolveSession, ShermanMorrisonFallsBackToTheBorderedSystem) {
   EXPECT_EQ(stats[1].statement, "rank one");
   EXPECT_EQ(stats[1].methods,
             std::vector<SolveMethod>{SolveMethod::BorderedLU});
+}
+
+/// (A + u1 v1^T + u2 v2^T) x = b through woodbury against `exact`; returns
+/// the method of the last step.
+SolveMethod expectWoodbury(SolveSession &session,
+                           const BandSystem<double> &system,
+                           const std::array<Eigen::VectorXd, 2> &u,
+                           const std::array<Eigen::VectorXd, 2> &v,
+                           const Eigen::VectorXd &b,
+                           const Eigen::VectorXd &exact, double tolerance) {
+  int64_t n = system.view.size();
+  std::array<std::vector<double>, 2> w{std::vector<double>(n),
+                                       std::vector<double>(n)};
+  std::vector<double> c(n), x(n);
+  for (int t = 0; t < 2; ++t)
+    EXPECT_TRUE(bool(session.solve(system.view, u[t].data(), w[t].data(),
+                                   "A")));
+  EXPECT_TRUE(bool(session.solve(system.view, b.data(), c.data(), "A")));
+  const double *us[] = {u[0].data(), u[1].data()};
+  const double *vs[] = {v[0].data(), v[1].data()};
+  const double *ws[] = {w[0].data(), w[1].data()};
+  auto report = session.woodbury<double>(system.view, us, vs, b.data(), ws,
+                                         c.data(), x.data(), "rank two");
+  if (!report) {
+    ADD_FAILURE() << llvm::toString(report.takeError());
+    return SolveMethod::Auto;
+  }
+  for (int64_t i = 0; i < n; ++i)
+    EXPECT_NEAR(x[i], exact[i], tolerance * exact.norm()) << i;
+  Eigen::VectorXd xv = Eigen::Map<Eigen::VectorXd>(x.data(), n);
+  Eigen::VectorXd r = b - system.dense * xv - u[0] * v[0].dot(xv) -
+                      u[1] * v[1].dot(xv);
+  EXPECT_NEAR(report->relativeResidual, r.norm() / b.norm(), 1e-14);
+  EXPECT_LE(r.norm() / b.norm(), 1e-12);
+  return report->method;
+}
+
+TEST(SolveSession, WoodburyMatchesADenseSolveAndFallsBack) {
+  SolveSession session(settingsOf(SolveMethod::LU));
+  BandSystem<double> system(kBlocks, 3, nonSymmetric(3, 32));
+  int64_t n = kBlocks * 3;
+  std::array<Eigen::VectorXd, 2> u{randomVector(n, 33), randomVector(n, 34)};
+  std::array<Eigen::VectorXd, 2> v{randomVector(n, 35), randomVector(n, 36)};
+  Eigen::VectorXd b = randomVector(n, 37);
+  Eigen::MatrixXd full = system.dense + u[0] * v[0].transpose() +
+                         u[1] * v[1].transpose();
+  EXPECT_EQ(expectWoodbury(session, system, u, v, b,
+                           full.fullPivLu().solve(b), 1e-9),
+            SolveMethod::ShermanMorrison);
+
+  // v1 with 1 + v1.w1 = 1e-10 and v1.w2 = 0 (w = A^-1 u): the 2 x 2
+  // system's first pivot is tiny next to |v1||w1|, so the bordered
+  // system [A U; V^T -I] is solved instead; with b from a known x, LU keeps
+  // the residual at rounding level and x to 1e-4.
+  Eigen::VectorXd w1 = system.dense.fullPivLu().solve(u[0]);
+  Eigen::VectorXd w2 = system.dense.fullPivLu().solve(u[1]);
+  // q: w1 without its part along w2, so q.w1 = |q|^2 and q.w2 = 0.
+  Eigen::VectorXd q = w1 - w1.dot(w2) / w2.squaredNorm() * w2;
+  Eigen::VectorXd other = randomVector(n, 38);
+  other -= other.dot(q) / q.squaredNorm() * q;
+  other -= other.dot(w2) / w2.squaredNorm() * w2;
+  Eigen::VectorXd v1 = -(1 - 1e-10) / q.squaredNorm() * q +
+                       0.5 * other / (other.norm() * w1.norm());
+  std::array<Eigen::VectorXd, 2> nearlySingular{v1, v[1]};
+  Eigen::VectorXd x = randomVector(n, 39);
+  Eigen::VectorXd bx = system.dense * x + u[0] * v1.dot(x) +
+                       u[1] * v[1].dot(x);
+  EXPECT_EQ(expectWoodbury(session, system, u, nearlySingular, bx, x, 1e-4),
+            SolveMethod::BorderedLU);
 }
 
 TEST(SolveSession, ZeroRightHandSideGivesZero) {

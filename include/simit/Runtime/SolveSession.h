@@ -20,6 +20,7 @@
 
 #include "simit/Runtime/Solvers.h"
 
+#include "llvm/ADT/ArrayRef.h"
 #include "llvm/ADT/StringRef.h"
 #include "llvm/Support/Error.h"
 
@@ -172,6 +173,18 @@ public:
   shermanMorrison(const SquareBCSRView<T> &a, const T *u, const T *v,
                   const T *b, const T *w, const T *c, T *x,
                   llvm::StringRef statement);
+  /// The rank-k form (Woodbury): `(A + U V^T) \ b` given W = A^-1 U and
+  /// c = A^-1 b, x = c - W (I + V^T W)^-1 V^T c, the k x k system solved by
+  /// LU with partial pivoting. A pivot at most 1e-8 (f32: 1e-3) times the
+  /// largest |v_i| |w_j| means that solve would lose the answer: x comes
+  /// from the bordered system [A U; V^T -I] [x; y] = [b; 0] by LU instead.
+  /// The residual is checked as for shermanMorrison, which is its k = 1.
+  template <typename T>
+  llvm::Expected<SolveReport>
+  woodbury(const SquareBCSRView<T> &a, llvm::ArrayRef<const T *> u,
+           llvm::ArrayRef<const T *> v, const T *b,
+           llvm::ArrayRef<const T *> w, const T *c, T *x,
+           llvm::StringRef statement);
 
   /// Calls `observer` (empty: none) with every double-precision system that
   /// shermanMorrison solves, before solving it: a host keeps the systems a

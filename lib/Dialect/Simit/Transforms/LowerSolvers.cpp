@@ -156,8 +156,10 @@ LogicalResult FunctionLowering::lowerSystemSolve(Operation *op, Value matrix,
 /// The dense solver runtime functions, with the i64 size arguments their
 /// lowered form appends (see lowerSolverCall).
 bool mlir::simit::loops::isSolverFunction(StringRef name) {
-  // simit-sherman-morrison declares one per type of its operands.
-  if (name.starts_with("simit_rt_sherman_morrison"))
+  // simit-sherman-morrison declares one per type of its operands (and
+  // rank: simit_rt_woodbury<k>).
+  if (name.starts_with("simit_rt_sherman_morrison") ||
+      name.starts_with("simit_rt_woodbury"))
     return true;
   return llvm::is_contained(
       {StringRef("simit_rt_lu"), StringRef("simit_rt_chol"),
@@ -175,6 +177,16 @@ LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
       call.getNumResults() == 1)
     return lowerSystemSolve(call, call.getOperand(0), call.getOperand(1),
                             "triangular_solve", "triangularSolve");
+  // (A, u_1..u_k, v_1..v_k, b, w_1..w_k, c) -> x of simit-sherman-morrison
+  // for rank k > 1: the runtime's simit_rt_woodbury<k>_bcsr.
+  if (name.starts_with("simit_rt_woodbury") && call.getNumResults() == 1 &&
+      call.getNumOperands() >= 9 && call.getNumOperands() % 3 == 0) {
+    std::string method =
+        "woodbury" + std::to_string((call.getNumOperands() - 3) / 3);
+    return lowerSystemSolve(call, call.getOperand(0),
+                            call.getOperands().drop_front(), method,
+                            "Woodbury");
+  }
   // (A, u, v, b, w, c) -> x of simit-sherman-morrison.
   if (name.starts_with("simit_rt_sherman_morrison") &&
       call.getNumOperands() == 6 && call.getNumResults() == 1)

@@ -4,7 +4,9 @@
 // dense matrix: assembling and factorising it costs O(n^2) memory and more.
 // Sherman–Morrison solves it with two solves of the sparse A, which share
 // one factorisation, and a few dot products (the seed
-// shared/seeds/003_0af6eb45af1efb0d.txt; docs/solvers.md).
+// shared/seeds/003_0af6eb45af1efb0d.txt; docs/solvers.md). A sum of k
+// outer products (k <= 4) takes k + 1 solves and a k x k system (the
+// Woodbury identity).
 //
 //===----------------------------------------------------------------------===//
 
@@ -28,7 +30,11 @@ using namespace mlir::simit;
 
 namespace {
 
-constexpr StringLiteral kRuntimeName = "simit_rt_sherman_morrison";
+constexpr StringLiteral kRankOneName = "simit_rt_sherman_morrison";
+/// simit_rt_woodbury<k> for rank k.
+constexpr StringLiteral kRankKName = "simit_rt_woodbury";
+/// The largest rank rewritten (the runtime's entry points).
+constexpr unsigned kMaxRank = 4;
 
 /// `matrix` as A + u v^T or A - u v^T: the outer product, A, and whether
 /// the product is subtracted.
@@ -53,6 +59,25 @@ std::optional<RankOneSum> splitOuter(Value matrix) {
   return std::nullopt;
 }
 
+/// `matrix` as A plus or minus outer products, peeled from the outermost
+/// add or sub: the products with their signs, and A.
+struct LowRankSum {
+  SmallVector<RankOneSum> terms;
+  Value a;
+};
+
+std::optional<LowRankSum> splitOuters(Value matrix) {
+  LowRankSum sum;
+  sum.a = matrix;
+  while (std::optional<RankOneSum> term = splitOuter(sum.a)) {
+    sum.a = term->a;
+    sum.terms.push_back(*term);
+  }
+  if (sum.terms.empty())
+    return std::nullopt;
+  return sum;
+}
+
 /// A sum with an outer product among its terms (through nested adds and
 /// subs).
 bool holdsOuterProduct(Value value) {
@@ -68,12 +93,13 @@ bool isSystemVector(Type type) {
   return tensor && tensor.isSystem() && tensor.getOrder() == 1;
 }
 
-/// The declaration of the last step for these operand types: one per type,
-/// @simit_rt_sherman_morrison, @simit_rt_sherman_morrison_1, ...
-func::FuncOp declareLastStep(ModuleOp module, FunctionType type,
+/// The declaration of the last step named `base` for these operand types:
+/// one per type, @<base>, @<base>_1, ...
+func::FuncOp declareLastStep(ModuleOp module, StringRef base,
+                             StringRef runtimeFunction, FunctionType type,
                              PatternRewriter &rewriter) {
   for (int i = 0;; ++i) {
-    std::string name = kRuntimeName.str();
+    std::string name = base.str();
     if (i)
       name += "_" + std::to_string(i);
     auto existing = module.lookupSymbol<func::FuncOp>(name);
@@ -87,55 +113,79 @@ func::FuncOp declareLastStep(ModuleOp module, FunctionType type,
         func::FuncOp::create(rewriter, module.getLoc(), name, type);
     function.setPrivate();
     function->setAttr("simit.runtime_function",
-                      rewriter.getStringAttr("sherman_morrison"));
+                      rewriter.getStringAttr(runtimeFunction));
     return function;
   }
 }
 
-struct RewriteRankOneSolve : OpRewritePattern<SolveOp> {
+struct RewriteLowRankSolve : OpRewritePattern<SolveOp> {
   using OpRewritePattern::OpRewritePattern;
 
   LogicalResult matchAndRewrite(SolveOp solve,
                                 PatternRewriter &rewriter) const override {
-    std::optional<RankOneSum> split = splitOuter(solve.getMatrix());
+    std::optional<LowRankSum> split = splitOuters(solve.getMatrix());
     if (!split)
       return rewriter.notifyMatchFailure(
-          solve, "the matrix is not A + u v^T or A - u v^T");
-    auto [outer, a, subtracted] = *split;
+          solve, "the matrix is not A plus or minus outer products");
+    Value a = split->a, b = solve.getRhs();
     auto matrixType = dyn_cast<SystemTensorType>(a.getType());
     if (!matrixType || !matrixType.isSetMatrix() ||
         a.getType() != solve.getMatrix().getType())
       return rewriter.notifyMatchFailure(solve, "A is not a system matrix");
     if (holdsOuterProduct(a))
       return rewriter.notifyMatchFailure(
-          solve, "A holds an outer product itself (rank k > 1)");
-    Value u = outer.getLhs(), v = outer.getRhs(), b = solve.getRhs();
-    if (!isSystemVector(b.getType()) || u.getType() != b.getType() ||
-        v.getType() != b.getType() ||
-        solve.getResult().getType() != b.getType())
+          solve, "A holds an outer product that is not a term of the sum");
+    unsigned rank = split->terms.size();
+    if (rank > kMaxRank)
+      return rewriter.notifyMatchFailure(solve, "more than 4 outer products");
+    auto isVectorLikeB = [&](Value v) { return v.getType() == b.getType(); };
+    if (!isSystemVector(b.getType()) ||
+        solve.getResult().getType() != b.getType() ||
+        !llvm::all_of(split->terms, [&](RankOneSum t) {
+          return isVectorLikeB(t.outer.getLhs()) &&
+                 isVectorLikeB(t.outer.getRhs());
+        }))
       return rewriter.notifyMatchFailure(
-          solve, "u, v and b are not system vectors of one type");
+          solve, "the u, v and b are not system vectors of one type");
     Type component = matrixType.getComponentType();
     if (!component.isF64() && !component.isF32())
       return rewriter.notifyMatchFailure(solve, "not a float matrix");
 
     Location loc = solve.getLoc();
-    // A - u v^T = A + (-u) v^T.
-    if (subtracted)
-      u = NegOp::create(rewriter, loc, u.getType(), u);
-    auto solveWithA = [&](Value rhs, StringRef note) {
+    std::string form = rank == 1 ? "Sherman-Morrison" : "Woodbury";
+    auto solveWithA = [&](Value rhs, const Twine &what) {
       auto op = SolveOp::create(rewriter, loc, b.getType(), a, rhs);
-      op->setAttr("simit.solve_note", rewriter.getStringAttr(note));
+      op->setAttr("simit.solve_note",
+                  rewriter.getStringAttr(form + " A^-1 " + what));
       return op.getResult();
     };
-    Value w = solveWithA(u, "Sherman-Morrison A^-1 u");
-    Value c = solveWithA(b, "Sherman-Morrison A^-1 b");
-    SmallVector<Value> operands{a, u, v, b, w, c};
+    SmallVector<Value> us, vs, ws;
+    for (auto [i, term] : llvm::enumerate(split->terms)) {
+      // A - u v^T = A + (-u) v^T.
+      Value u = term.outer.getLhs();
+      if (term.subtracted)
+        u = NegOp::create(rewriter, loc, u.getType(), u);
+      us.push_back(u);
+      vs.push_back(term.outer.getRhs());
+      ws.push_back(solveWithA(
+          u, rank == 1 ? Twine("u") : "u" + Twine(i + 1)));
+    }
+    Value c = solveWithA(b, "b");
+    // (A, u..., v..., b, w..., c) -> x.
+    SmallVector<Value> operands{a};
+    llvm::append_range(operands, us);
+    llvm::append_range(operands, vs);
+    operands.push_back(b);
+    llvm::append_range(operands, ws);
+    operands.push_back(c);
     auto type = FunctionType::get(rewriter.getContext(),
                                   ValueRange(operands).getTypes(),
                                   {b.getType()});
+    std::string name = rank == 1 ? kRankOneName.str()
+                                 : (kRankKName + Twine(rank)).str();
     func::FuncOp lastStep = declareLastStep(
-        solve->getParentOfType<ModuleOp>(), type, rewriter);
+        solve->getParentOfType<ModuleOp>(), name,
+        rank == 1 ? "sherman_morrison" : "woodbury", type, rewriter);
     rewriter.replaceOpWithNewOp<func::CallOp>(solve, lastStep, operands);
     return success();
   }
@@ -145,7 +195,7 @@ struct ShermanMorrison
     : public simit::impl::SimitShermanMorrisonBase<ShermanMorrison> {
   void runOnOperation() override {
     RewritePatternSet patterns(&getContext());
-    patterns.add<RewriteRankOneSolve>(&getContext());
+    patterns.add<RewriteLowRankSolve>(&getContext());
     if (failed(applyPatternsGreedily(getOperation(), std::move(patterns))))
       signalPassFailure();
   }

@@ -1,7 +1,8 @@
 // RUN: simit-opt %s --simit-sherman-morrison | FileCheck %s
 
-// A + u1 v1^T + u2 v2^T (rank 2) is not rewritten: the rewrite would have
-// to solve with A + u1 v1^T, which is dense (docs/solvers.md).
+// A + u1 v1^T + u2 v2^T (rank 2): the Woodbury form, k + 1 = 3 solves with
+// A (one factorisation) and the runtime's last step, which solves the 2 x 2
+// system I + V^T W (docs/solvers.md). More than 4 terms are left as written.
 
 !Point = !simit.element<"Point", {u : tensor<3xf64>, v : tensor<3xf64>, b : tensor<3xf64>}>
 !Spring = !simit.element<"Spring", {k : f64}>
@@ -14,11 +15,16 @@ simit.extern @springs : !Springs
 func.func private @stiffness(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> !A
 
 // CHECK-LABEL: func.func @rank_two(
-// CHECK-NOT: simit_rt_sherman_morrison
-// CHECK: %[[A1:.*]] = simit.add %{{.*}}, %{{.*}} : !simit.tensor<["points", "points"] x tensor<3x3xf64>>
-// CHECK: %[[M:.*]] = simit.add %[[A1]], %{{.*}} : !simit.tensor<["points", "points"] x tensor<3x3xf64>>
-// CHECK: simit.solve %[[M]], %{{.*}} : !simit.tensor
-// CHECK-NOT: simit_rt_sherman_morrison
+// CHECK: %[[A:.*]] = simit.assemble @stiffness()
+// CHECK-DAG: %[[U:.*]] = simit.field_read %{{.*}}["u"]
+// CHECK-DAG: %[[V:.*]] = simit.field_read %{{.*}}["v"]
+// CHECK-DAG: %[[B:.*]] = simit.field_read %{{.*}}["b"]
+// CHECK: %[[W1:.*]] = simit.solve %[[A]], %[[V]] {simit.solve_note = "Woodbury A^-1 u1"}
+// CHECK: %[[W2:.*]] = simit.solve %[[A]], %[[U]] {simit.solve_note = "Woodbury A^-1 u2"}
+// CHECK: %[[C:.*]] = simit.solve %[[A]], %[[B]] {simit.solve_note = "Woodbury A^-1 b"}
+// CHECK: %[[X:.*]] = call @simit_rt_woodbury2(%[[A]], %[[V]], %[[U]], %[[B]], %[[V]], %[[B]], %[[W1]], %[[W2]], %[[C]])
+// CHECK-NOT: simit.add
+// CHECK: return %[[X]]
 func.func @rank_two() -> !V attributes {simit.export} {
   %springs = simit.get_set @springs : !Springs
   %points = simit.get_set @points : !Points
@@ -30,6 +36,27 @@ func.func @rank_two() -> !V attributes {simit.export} {
   %vb = simit.outer %v, %b : !V, !V -> !A
   %A1 = simit.add %A, %uv : !A
   %M = simit.add %A1, %vb : !A
+  %x = simit.solve %M, %b : !A, !V -> !V
+  return %x : !V
+}
+
+// CHECK-LABEL: func.func @rank_five(
+// CHECK-NOT: simit_rt_woodbury
+// CHECK: simit.solve %{{.*}}, %{{.*}} : !simit.tensor
+// CHECK-NOT: simit_rt_woodbury
+// CHECK: return
+func.func @rank_five() -> !V attributes {simit.export} {
+  %springs = simit.get_set @springs : !Springs
+  %points = simit.get_set @points : !Points
+  %A = simit.assemble @stiffness() to %springs reduce <add> : (!Springs) -> !A
+  %u = simit.field_read %points["u"] : !Points -> !V
+  %b = simit.field_read %points["b"] : !Points -> !V
+  %uu = simit.outer %u, %u : !V, !V -> !A
+  %A1 = simit.add %A, %uu : !A
+  %A2 = simit.add %A1, %uu : !A
+  %A3 = simit.add %A2, %uu : !A
+  %A4 = simit.add %A3, %uu : !A
+  %M = simit.add %A4, %uu : !A
   %x = simit.solve %M, %b : !A, !V -> !V
   return %x : !V
 }

@@ -44,8 +44,6 @@ constexpr NotYetRun kNotYetRun[] = {
     {"transposedProduct", "incidenceT"},
     {"productTransposed", "incidence"},
     {"productTransposed", "incidenceT"},
-    // Row slices of a matrix over (V, E), stored as a transposed incidence.
-    {"rowSlices", "incidenceT"},
     // Products and quotients of incidences (an edge may name one endpoint
     // twice): rejected rather than computed per endpoint position.
     {"elementwiseProduct", "incidence"},

@@ -233,18 +233,42 @@ LogicalResult FunctionLowering::lowerMatrixSlice(SliceOp op) {
   auto asIndex = [&](Value v) -> Value {
     return arith::IndexCastOp::create(b, loc, b.getIndexType(), v);
   };
+  bool incidence = storage.kind == Storage::Kind::Incidence;
   if (!isa<FloatType>(scalar) ||
       !(storage.kind == Storage::Kind::Diagonal || storage.isBCSR() ||
-        (row && storage.kind == Storage::Kind::Incidence &&
-         !storage.transposed)))
+        incidence))
     return op.emitError("this slice of a matrix stored as ")
            << storage.describe() << " is not supported by the loop lowering";
 
   if (storage.kind == Storage::Kind::Diagonal) {
     copy(index, index, /*add=*/false);
-  } else if (storage.kind == Storage::Kind::Incidence) {
-    // Row e: a block per endpoint k, at column endpoints[e, k]; an edge
-    // may name one endpoint twice.
+  } else if (incidence && row == storage.transposed) {
+    // A row of a transposed incidence (a vertex's) or a column of an
+    // incidence: the blocks of every edge naming the vertex, at the edge.
+    Value ends = getEndpoints(storage.edges, storage.cardinality);
+    forEach(indexConstant(0), getSetSize(storage.edges), [&](Value e) {
+      forEach(indexConstant(0), indexConstant(storage.cardinality),
+              [&](Value k) {
+                Value at = asIndex(
+                    memref::LoadOp::create(b, loc, ends, ValueRange{e, k}));
+                Value match = arith::CmpIOp::create(
+                    b, loc, arith::CmpIPredicate::eq, at, index);
+                auto branch = scf::IfOp::create(b, loc, TypeRange{}, match,
+                                                /*withElseRegion=*/false);
+                OpBuilder::InsertionGuard guard(b);
+                b.setInsertionPointToStart(branch.thenBlock());
+                Value block = arith::AddIOp::create(
+                    b, loc,
+                    arith::MulIOp::create(b, loc, e,
+                                          indexConstant(storage.cardinality)),
+                    k);
+                copy(block, e, /*add=*/true);
+              });
+    });
+  } else if (incidence) {
+    // A row of an incidence or a column of a transposed one: edge `index`'s
+    // block per endpoint k, at endpoints[index, k]; an edge may name one
+    // endpoint twice.
     Value ends = getEndpoints(storage.edges, storage.cardinality);
     forEach(indexConstant(0), indexConstant(storage.cardinality),
             [&](Value k) {

@@ -43,6 +43,28 @@ Value FunctionLowering::findBlock(Location loc, const Storage &storage,
         arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq, row, col);
     return arith::SelectOp::create(b, loc, onDiagonal, row, none);
   }
+  if (storage.kind == Storage::Kind::Incidence) {
+    // The edge's first block at the endpoint (an edge may name it twice).
+    Value edge = storage.transposed ? col : row;
+    Value endpoint = storage.transposed ? row : col;
+    Value ends = getEndpoints(storage.edges, storage.cardinality);
+    Value found = none;
+    for (int64_t k = storage.cardinality; k-- > 0;) {
+      Value at = arith::IndexCastOp::create(
+          b, loc, b.getIndexType(),
+          memref::LoadOp::create(b, loc, ends,
+                                 ValueRange{edge, indexConstant(k)}));
+      Value match =
+          arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq, at, endpoint);
+      Value block = arith::AddIOp::create(
+          b, loc,
+          arith::MulIOp::create(b, loc, edge,
+                                indexConstant(storage.cardinality)),
+          indexConstant(k));
+      found = arith::SelectOp::create(b, loc, match, block, found);
+    }
+    return found;
+  }
   if (storage.kind == Storage::Kind::Stencil) {
     // The first offset whose point is the column, as writes choose.
     Value found = none;
@@ -120,16 +142,12 @@ LogicalResult FunctionLowering::lowerMatrixBlockAccess(Operation *op) {
     return op->emitError("a block of a system matrix of unknown sparsity "
                          "cannot be ")
            << (extract ? "read" : "written") << " by the loop lowering";
-  if (storage.kind == Storage::Kind::Incidence && insert)
-    return op->emitError("blocks of a matrix stored as ")
-           << storage.describe()
-           << " cannot be written one at a time by the loop lowering";
   if (indices.size() != 2)
     return op->emitError("a block of a system matrix needs two indices");
   Value row = lookup(indices[0]), col = lookup(indices[1]);
   Value array = lookup(matrix);
   auto type = cast<MemRefType>(array.getType());
-  if (storage.kind == Storage::Kind::Incidence) {
+  if (storage.kind == Storage::Kind::Incidence && extract) {
     SmallVector<Value> components;
     for (int64_t c = 0, n = numComponents(extract.getType()); c < n; ++c)
       components.push_back(sumIncidenceBlocks(
@@ -188,6 +206,35 @@ LogicalResult FunctionLowering::lowerMatrixBlockAccess(Operation *op) {
     memref::StoreOp::create(b, loc,
                             component(insert.getValue().getType(), value, c),
                             target, blockIndices(type, {position}, c));
+  // An incidence entry is the sum of the edge's blocks at the endpoint:
+  // the other blocks there (an edge naming it twice) become zero.
+  if (storage.kind == Storage::Kind::Incidence) {
+    Value edge = storage.transposed ? col : row;
+    Value ends = getEndpoints(storage.edges, storage.cardinality);
+    Value first = arith::MulIOp::create(b, loc, edge,
+                                        indexConstant(storage.cardinality));
+    for (int64_t k = 0; k < storage.cardinality; ++k) {
+      Value block = arith::AddIOp::create(b, loc, first, indexConstant(k));
+      Value other = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::ne,
+                                          block, position);
+      Value at = arith::IndexCastOp::create(
+          b, loc, b.getIndexType(),
+          memref::LoadOp::create(b, loc, ends,
+                                 ValueRange{edge, indexConstant(k)}));
+      Value there =
+          arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq, at,
+                                storage.transposed ? row : col);
+      Value zeroIt = arith::AndIOp::create(b, loc, other, there);
+      auto branch = scf::IfOp::create(b, loc, TypeRange{}, zeroIt,
+                                      /*withElseRegion=*/false);
+      OpBuilder::InsertionGuard guard(b);
+      b.setInsertionPointToStart(branch.thenBlock());
+      for (int64_t c = 0, n = numComponents(insert.getValue().getType());
+           c < n; ++c)
+        memref::StoreOp::create(b, loc, zeroOf(type.getElementType()), target,
+                                blockIndices(type, {block}, c));
+    }
+  }
   map(insert, target);
   return success();
 }

@@ -181,37 +181,6 @@ func.func @late(%c : i1) attributes {simit.export} {
 
 // -----
 
-// Blocks of an incidence matrix are not written one at a time (an edge
-// naming one endpoint twice holds two blocks at one place).
-!Point = !simit.element<"Point", {x : f64}>
-!Spring = !simit.element<"Spring", {g : f64}>
-!D = !simit.tensor<["springs", "points"] x f64>
-!Points = !simit.set<"points", !Point>
-!Springs = !simit.set<"springs", !Spring, ["points", "points"]>
-simit.extern @points : !Points
-simit.extern @springs : !Springs
-func.func @difference(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> !D {
-  %a = simit.tuple_get %ends[0] : !simit.tuple<!Point x 2> -> !Point
-  %one = arith.constant 1.0 : f64
-  %D0 = simit.zeros : !D
-  %D1 = simit.insert %one into %D0[%s, %a] : f64 into !D, (!Spring, !Point)
-  return %D1 : !D
-}
-func.func @entry(%i : index) -> f64 attributes {simit.export} {
-  %springs = simit.get_set @springs : !Springs
-  %points = simit.get_set @points : !Points
-  %D = simit.assemble @difference() to %springs reduce <add> : (!Springs) -> !D
-  %s = simit.set_element %springs[%i] : !Springs -> !Spring
-  %p = simit.set_element %points[%i] : !Points -> !Point
-  %one = arith.constant 1.0 : f64
-  // expected-error @below {{blocks of a matrix stored as incidence of 'springs' over ('springs', 'points') cannot be written one at a time by the loop lowering}}
-  %E = simit.insert %one into %D[%s, %p] : f64 into !D, (!Spring, !Point)
-  %v = simit.extract %E[%s, %p] : !D, (!Spring, !Point) -> f64
-  return %v : f64
-}
-
-// -----
-
 // An incidence matrix needs every endpoint in its column set.
 !Particle = !simit.element<"Particle", {q : f64}>
 !Node = !simit.element<"Node", {x : f64}>

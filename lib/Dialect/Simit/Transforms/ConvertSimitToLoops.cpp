@@ -145,11 +145,7 @@ static SystemTensorType matrixTypeOf(Type type) {
   if (auto ref = dyn_cast<RefType>(type))
     type = ref.getValueType();
   auto tensor = dyn_cast<SystemTensorType>(type);
-  if (!tensor || tensor.getOrder() != 2 ||
-      !isa<StringAttr>(tensor.getDims()[0]) ||
-      !isa<StringAttr>(tensor.getDims()[1]))
-    return nullptr;
-  return tensor;
+  return tensor && tensor.isSetMatrix() ? tensor : nullptr;
 }
 
 Storage FunctionLowering::storageOf(Value original) {

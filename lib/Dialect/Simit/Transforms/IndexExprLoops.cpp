@@ -20,17 +20,30 @@ Value IndexExprLowering::extent(unsigned v, unsigned i) {
   return l.indexConstant(cast<IntegerAttr>(lvl).getInt());
 }
 
-SmallVector<Value> IndexExprLowering::levelMajor(Type type,
-                                                 ArrayRef<int64_t> vars) {
-  SmallVector<Value> indices;
+SmallVector<std::pair<int64_t, unsigned>>
+IndexExprLowering::levelMajorOrder(ArrayRef<int64_t> vars) {
+  SmallVector<std::pair<int64_t, unsigned>> order;
   unsigned maxLevels = 0;
   for (int64_t v : vars)
     maxLevels = std::max(maxLevels, numLevels(v));
   for (unsigned lvl = 0; lvl < maxLevels; ++lvl)
     for (int64_t v : vars)
       if (lvl < numLevels(v))
-        indices.push_back(bound[v][lvl]);
-  return indices;
+        order.push_back({v, lvl});
+  return order;
+}
+
+SmallVector<Value> IndexExprLowering::levelMajor(ArrayRef<int64_t> vars) {
+  return llvm::map_to_vector(levelMajorOrder(vars), [&](auto vl) {
+    return bound[vl.first][vl.second];
+  });
+}
+
+SmallVector<int64_t>
+IndexExprLowering::levelMajorExtents(ArrayRef<int64_t> vars) {
+  return llvm::map_to_vector(levelMajorOrder(vars), [&](auto vl) {
+    return cast<IntegerAttr>(level(vl.first, vl.second)).getInt();
+  });
 }
 
 FailureOr<Value> IndexExprLowering::access(unsigned i) {
@@ -40,19 +53,11 @@ FailureOr<Value> IndexExprLowering::access(unsigned i) {
   ArrayRef<int64_t> vars = op.getInputIndexList(i);
   if (vars.empty())
     return lowered;
-  SmallVector<Value> indices = levelMajor(type, vars);
+  SmallVector<Value> indices = levelMajor(vars);
   if (!hasSetDimension(type)) {
     // A flat vector: row-major over the level-major extents.
-    SmallVector<int64_t> extents;
-    unsigned maxLevels = 0;
-    for (int64_t v : vars)
-      maxLevels = std::max(maxLevels, numLevels(v));
-    for (unsigned lvl = 0; lvl < maxLevels; ++lvl)
-      for (int64_t v : vars)
-        if (lvl < numLevels(v))
-          extents.push_back(cast<IntegerAttr>(level(v, lvl)).getInt());
     Value flat = l.indexConstant(0);
-    for (auto [index, size] : llvm::zip(indices, extents)) {
+    for (auto [index, size] : llvm::zip(indices, levelMajorExtents(vars))) {
       flat = arith::MulIOp::create(b, loc, flat, l.indexConstant(size));
       flat = arith::AddIOp::create(b, loc, flat, index);
     }
@@ -268,12 +273,8 @@ IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
       // Another pattern or union over the same sets: its block at this
       // position (for a transposed read, the block at the mirrored
       // position), or -1, from a gather map built once per binding.
-      auto gatherable = [](const Storage &s) {
-        return s.kind == Storage::Kind::Pattern ||
-               s.kind == Storage::Kind::Union;
-      };
       std::optional<Storage> read = transposed ? transposedStorage(own) : own;
-      if (!gatherable(storage) || !gatherable(own) || !read ||
+      if (!storage.hasGatherMaps() || !own.hasGatherMaps() || !read ||
           read->rows != storage.rows || read->cols != storage.cols)
         continue;
       positions[o] = arith::IndexCastOp::create(

@@ -61,9 +61,15 @@ private:
   }
   unsigned numMatrixOperands() { return op.getInputs().size() + 1; }
 
-  /// The level indices of a tensor's components in level-major order (all
-  /// dimensions' outer levels, then their first block levels, ...).
-  SmallVector<Value> levelMajor(Type type, ArrayRef<int64_t> vars);
+  /// The (variable, level) pairs of `vars` in level-major order (all
+  /// variables' outer levels, then their first block levels, ...): the
+  /// order of a tensor's component indices.
+  SmallVector<std::pair<int64_t, unsigned>>
+  levelMajorOrder(ArrayRef<int64_t> vars);
+  /// The bound level indices of `vars` in level-major order.
+  SmallVector<Value> levelMajor(ArrayRef<int64_t> vars);
+  /// The extents of `vars`' levels (static ranges) in level-major order.
+  SmallVector<int64_t> levelMajorExtents(ArrayRef<int64_t> vars);
   Value extent(unsigned v, unsigned i);
   /// Reads the component of input `i` at the bound variables.
   FailureOr<Value> access(unsigned i);

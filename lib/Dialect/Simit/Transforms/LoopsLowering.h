@@ -119,6 +119,12 @@ struct Storage {
     return kind == Kind::Pattern || kind == Kind::Union ||
            kind == Kind::Product;
   }
+  /// Whether the storage is a pattern or union of edge sets' patterns:
+  /// gather maps between two such over the same sets are built once per
+  /// binding (union_gather, keyed by their edge sets).
+  bool hasGatherMaps() const {
+    return kind == Kind::Pattern || kind == Kind::Union;
+  }
   /// The edge sets whose patterns this storage is the union of (pattern or
   /// union).
   SmallVector<StringAttr, 2> patternSets() const;
@@ -303,6 +309,12 @@ public:
   /// The position of block (row, col) in a matrix stored as `storage`
   /// (diagonal, stencil or BCSR), or -1 where it stores none.
   Value findBlock(Location loc, const Storage &storage, Value row, Value col);
+  /// Calls `body(endpoint, position)` for each block of edge `edge` in a
+  /// matrix stored as incidence `storage` (or its transpose): the edge's
+  /// k-th endpoint and block e * c + k, unrolled over the cardinality c.
+  void forEachEdgeBlock(Location loc, const Storage &storage, Value edge,
+                        function_ref<void(Value endpoint, Value position)>
+                            body);
   /// The sum over the blocks of an incidence (or transposed incidence)
   /// matrix at (row, col) of `read(position)`: an edge naming one endpoint
   /// twice has two blocks there, and none is zero.

@@ -48,12 +48,9 @@ LogicalResult FunctionLowering::lowerConvert(ConvertOp op) {
     return op.emitError("converting a matrix stored as ")
            << from.describe() << " to " << to.describe()
            << " is not supported by the loop lowering";
-  auto gatherable = [](const Storage &s) {
-    return s.kind == Storage::Kind::Pattern || s.kind == Storage::Kind::Union;
-  };
-  Value gather = gatherable(from) && gatherable(to)
-                     ? gatherMap(to, from)
-                     : Value();
+  Value gather =
+      from.hasGatherMaps() && to.hasGatherMaps() ? gatherMap(to, from)
+                                                 : Value();
   Value target = allocSystem(loc, op.getType(), to);
   auto targetType = cast<MemRefType>(target.getType());
   Type scalar = targetType.getElementType();

@@ -127,17 +127,9 @@ LogicalResult IndexExprLowering::lowerLocal() {
   int64_t n = numComponents(op.getType());
   SmallVector<Value> components(n);
   auto resultPosition = [&]() {
-    SmallVector<int64_t> extentsLM;
-    SmallVector<Value> indices = levelMajor(op.getType(), resultVars);
-    unsigned maxLevels = 0;
-    for (int64_t v : resultVars)
-      maxLevels = std::max(maxLevels, numLevels(v));
-    for (unsigned lvl = 0; lvl < maxLevels; ++lvl)
-      for (int64_t v : resultVars)
-        if (lvl < numLevels(v))
-          extentsLM.push_back(cast<IntegerAttr>(level(v, lvl)).getInt());
     int64_t flat = 0;
-    for (auto [index, size] : llvm::zip(indices, extentsLM))
+    for (auto [index, size] :
+         llvm::zip(levelMajor(resultVars), levelMajorExtents(resultVars)))
       flat = flat * size +
              cast<arith::ConstantIndexOp>(index.getDefiningOp()).value();
     return flat;
@@ -317,7 +309,7 @@ LogicalResult IndexExprLowering::lower() {
         FailureOr<Value> value = evaluate(op.getBody().front());
         if (failed(value))
           return failure();
-        SmallVector<Value> indices = levelMajor(type, resultVars);
+        SmallVector<Value> indices = levelMajor(resultVars);
         Value old = memref::LoadOp::create(b, loc, output, indices);
         Value sum = isa<FloatType>(scalarType)
                         ? arith::AddFOp::create(b, loc, old, *value).getResult()
@@ -350,7 +342,7 @@ LogicalResult IndexExprLowering::lower() {
       FailureOr<Value> value = sum(summed, body, false);
       if (failed(value))
         return failure();
-      SmallVector<Value> indices = levelMajor(type, resultVars);
+      SmallVector<Value> indices = levelMajor(resultVars);
       if (resultStorage.isMatrix()) {
         indices.erase(indices.begin(), indices.begin() + 2);
         indices.insert(indices.begin(), positions.lookup(resultOperand));

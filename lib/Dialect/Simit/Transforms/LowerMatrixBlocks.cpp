@@ -45,24 +45,19 @@ Value FunctionLowering::findBlock(Location loc, const Storage &storage,
   }
   if (storage.kind == Storage::Kind::Incidence) {
     // The edge's first block at the endpoint (an edge may name it twice).
-    Value edge = storage.transposed ? col : row;
     Value endpoint = storage.transposed ? row : col;
-    Value ends = getEndpoints(storage.edges, storage.cardinality);
+    SmallVector<std::pair<Value, Value>> blocks;
+    forEachEdgeBlock(loc, storage, storage.transposed ? col : row,
+                     [&](Value at, Value position) {
+                       blocks.push_back({at, position});
+                     });
     Value found = none;
-    for (int64_t k = storage.cardinality; k-- > 0;) {
-      Value at = arith::IndexCastOp::create(
-          b, loc, b.getIndexType(),
-          memref::LoadOp::create(b, loc, ends,
-                                 ValueRange{edge, indexConstant(k)}));
-      Value match =
-          arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq, at, endpoint);
-      Value block = arith::AddIOp::create(
+    for (auto [at, position] : llvm::reverse(blocks))
+      found = arith::SelectOp::create(
           b, loc,
-          arith::MulIOp::create(b, loc, edge,
-                                indexConstant(storage.cardinality)),
-          indexConstant(k));
-      found = arith::SelectOp::create(b, loc, match, block, found);
-    }
+          arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq, at,
+                                endpoint),
+          position, found);
     return found;
   }
   if (storage.kind == Storage::Kind::Stencil) {
@@ -102,32 +97,38 @@ Value FunctionLowering::findBlock(Location loc, const Storage &storage,
   return scan.getResult(0);
 }
 
+void FunctionLowering::forEachEdgeBlock(
+    Location loc, const Storage &storage, Value edge,
+    function_ref<void(Value endpoint, Value position)> body) {
+  Value ends = getEndpoints(storage.edges, storage.cardinality);
+  Value first =
+      arith::MulIOp::create(b, loc, edge, indexConstant(storage.cardinality));
+  for (int64_t k = 0; k < storage.cardinality; ++k) {
+    Value kv = indexConstant(k);
+    body(arith::IndexCastOp::create(
+             b, loc, b.getIndexType(),
+             memref::LoadOp::create(b, loc, ends, ValueRange{edge, kv})),
+         arith::AddIOp::create(b, loc, first, kv));
+  }
+}
+
 Value FunctionLowering::sumIncidenceBlocks(Location loc,
                                            const Storage &storage, Value row,
                                            Value col, Type scalar,
                                            function_ref<Value(Value)> read) {
-  Value edge = storage.transposed ? col : row;
   Value endpoint = storage.transposed ? row : col;
-  Value ends = getEndpoints(storage.edges, storage.cardinality);
   Value sum = zeroOf(scalar);
-  for (int64_t k = 0; k < storage.cardinality; ++k) {
-    Value kv = indexConstant(k);
-    Value at = arith::IndexCastOp::create(
-        b, loc, b.getIndexType(),
-        memref::LoadOp::create(b, loc, ends, ValueRange{edge, kv}));
-    Value match =
-        arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq, at, endpoint);
-    Value position = arith::AddIOp::create(
-        b, loc,
-        arith::MulIOp::create(b, loc, edge,
-                              indexConstant(storage.cardinality)),
-        kv);
-    Value value = arith::SelectOp::create(b, loc, match, read(position),
-                                          zeroOf(scalar));
-    sum = isa<FloatType>(scalar)
-              ? arith::AddFOp::create(b, loc, sum, value).getResult()
-              : arith::AddIOp::create(b, loc, sum, value).getResult();
-  }
+  forEachEdgeBlock(
+      loc, storage, storage.transposed ? col : row,
+      [&](Value at, Value position) {
+        Value match = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq,
+                                            at, endpoint);
+        Value value = arith::SelectOp::create(b, loc, match, read(position),
+                                              zeroOf(scalar));
+        sum = isa<FloatType>(scalar)
+                  ? arith::AddFOp::create(b, loc, sum, value).getResult()
+                  : arith::AddIOp::create(b, loc, sum, value).getResult();
+      });
   return sum;
 }
 
@@ -208,33 +209,25 @@ LogicalResult FunctionLowering::lowerMatrixBlockAccess(Operation *op) {
                             target, blockIndices(type, {position}, c));
   // An incidence entry is the sum of the edge's blocks at the endpoint:
   // the other blocks there (an edge naming it twice) become zero.
-  if (storage.kind == Storage::Kind::Incidence) {
-    Value edge = storage.transposed ? col : row;
-    Value ends = getEndpoints(storage.edges, storage.cardinality);
-    Value first = arith::MulIOp::create(b, loc, edge,
-                                        indexConstant(storage.cardinality));
-    for (int64_t k = 0; k < storage.cardinality; ++k) {
-      Value block = arith::AddIOp::create(b, loc, first, indexConstant(k));
-      Value other = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::ne,
-                                          block, position);
-      Value at = arith::IndexCastOp::create(
-          b, loc, b.getIndexType(),
-          memref::LoadOp::create(b, loc, ends,
-                                 ValueRange{edge, indexConstant(k)}));
-      Value there =
-          arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq, at,
-                                storage.transposed ? row : col);
-      Value zeroIt = arith::AndIOp::create(b, loc, other, there);
-      auto branch = scf::IfOp::create(b, loc, TypeRange{}, zeroIt,
-                                      /*withElseRegion=*/false);
-      OpBuilder::InsertionGuard guard(b);
-      b.setInsertionPointToStart(branch.thenBlock());
-      for (int64_t c = 0, n = numComponents(insert.getValue().getType());
-           c < n; ++c)
-        memref::StoreOp::create(b, loc, zeroOf(type.getElementType()), target,
-                                blockIndices(type, {block}, c));
-    }
-  }
+  if (storage.kind == Storage::Kind::Incidence)
+    forEachEdgeBlock(
+        loc, storage, storage.transposed ? col : row,
+        [&](Value at, Value block) {
+          Value other = arith::CmpIOp::create(
+              b, loc, arith::CmpIPredicate::ne, block, position);
+          Value there =
+              arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq, at,
+                                    storage.transposed ? row : col);
+          auto branch = scf::IfOp::create(
+              b, loc, TypeRange{}, arith::AndIOp::create(b, loc, other, there),
+              /*withElseRegion=*/false);
+          OpBuilder::InsertionGuard guard(b);
+          b.setInsertionPointToStart(branch.thenBlock());
+          for (int64_t c = 0, n = numComponents(insert.getValue().getType());
+               c < n; ++c)
+            memref::StoreOp::create(b, loc, zeroOf(type.getElementType()),
+                                    target, blockIndices(type, {block}, c));
+        });
   map(insert, target);
   return success();
 }
@@ -292,42 +285,24 @@ LogicalResult FunctionLowering::lowerMatrixSlice(SliceOp op) {
   } else if (incidence && row == storage.transposed) {
     // A row of a transposed incidence (a vertex's) or a column of an
     // incidence: the blocks of every edge naming the vertex, at the edge.
-    Value ends = getEndpoints(storage.edges, storage.cardinality);
     forEach(indexConstant(0), getSetSize(storage.edges), [&](Value e) {
-      forEach(indexConstant(0), indexConstant(storage.cardinality),
-              [&](Value k) {
-                Value at = asIndex(
-                    memref::LoadOp::create(b, loc, ends, ValueRange{e, k}));
-                Value match = arith::CmpIOp::create(
-                    b, loc, arith::CmpIPredicate::eq, at, index);
-                auto branch = scf::IfOp::create(b, loc, TypeRange{}, match,
-                                                /*withElseRegion=*/false);
-                OpBuilder::InsertionGuard guard(b);
-                b.setInsertionPointToStart(branch.thenBlock());
-                Value block = arith::AddIOp::create(
-                    b, loc,
-                    arith::MulIOp::create(b, loc, e,
-                                          indexConstant(storage.cardinality)),
-                    k);
-                copy(block, e, /*add=*/true);
-              });
+      forEachEdgeBlock(loc, storage, e, [&](Value at, Value block) {
+        Value match = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq,
+                                            at, index);
+        auto branch = scf::IfOp::create(b, loc, TypeRange{}, match,
+                                        /*withElseRegion=*/false);
+        OpBuilder::InsertionGuard guard(b);
+        b.setInsertionPointToStart(branch.thenBlock());
+        copy(block, e, /*add=*/true);
+      });
     });
   } else if (incidence) {
     // A row of an incidence or a column of a transposed one: edge `index`'s
     // block per endpoint k, at endpoints[index, k]; an edge may name one
     // endpoint twice.
-    Value ends = getEndpoints(storage.edges, storage.cardinality);
-    forEach(indexConstant(0), indexConstant(storage.cardinality),
-            [&](Value k) {
-              Value col = asIndex(
-                  memref::LoadOp::create(b, loc, ends, ValueRange{index, k}));
-              Value block = arith::AddIOp::create(
-                  b, loc,
-                  arith::MulIOp::create(b, loc, index,
-                                        indexConstant(storage.cardinality)),
-                  k);
-              copy(block, col, /*add=*/true);
-            });
+    forEachEdgeBlock(loc, storage, index, [&](Value at, Value block) {
+      copy(block, at, /*add=*/true);
+    });
   } else if (row) {
     Value rowPtr = rowPointers(storage), colIdx = columnIndices(storage);
     Value next = arith::AddIOp::create(b, loc, index, indexConstant(1));

@@ -2,17 +2,17 @@
 //
 // The module: externs become `simit.extern`, functions `func.func` (exported
 // ones carry `simit.export`; generic functions are emitted once per instance
-// under sema's instance name), and everything the runtime implements is a
-// call to a private declaration:
+// under sema's instance name). Factorisations and solves are simit ops
+// (simit.factorize, simit.factor_solve, ...); the other functions the
+// runtime or the host implement are calls of private declarations:
 //
-//   lu chol lusolve lltsolve lumatsolve lltmatsolve lufree cholfree
-//   triangularSolve clock storeTime  ->  @simit_rt_<name>
-//   extern func f                    ->  @f (implemented by the host)
+//   clock storeTime   ->  @simit_rt_<name>
+//   extern func f     ->  @f (implemented by the host)
 //
-// A runtime function used with two signatures (e.g. `lu` of two matrix
-// types) gets one declaration per signature, `@simit_rt_lu`, then
-// `@simit_rt_lu_1`, ...; every declaration carries `simit.runtime_function`
-// naming the intrinsic (or `simit.extern_function` for host functions).
+// A function used with two signatures (e.g. a generic extern func of two
+// matrix types) gets one declaration per signature, `@f`, then `@f_1`, ...;
+// every declaration carries `simit.runtime_function` naming the intrinsic
+// (or `simit.extern_function` for host functions).
 //
 //===----------------------------------------------------------------------===//
 

@@ -3,7 +3,8 @@
 // User functions are func.call; an `inout` tensor argument passes its
 // variable's slot, or a temporary slot copied back into the argument (a
 // component, block or field) after the call. Intrinsics become math,
-// arith, complex and simit ops, or calls of the runtime (see IRGen.cpp).
+// arith, complex and simit ops (factorisations and solves included), or
+// calls of the runtime (see IRGen.cpp).
 // `map` is simit.assemble with `reduce +` and simit.map otherwise.
 //
 //===----------------------------------------------------------------------===//
@@ -31,15 +32,16 @@ SmallVector<Value> IRGenerator::genCall(const CallExpr &e) {
   switch (e.intrinsic) {
   case Intrinsic::None:
     return genUserCall(e);
-  case Intrinsic::Lu: return genRuntimeCall(e, "lu");
-  case Intrinsic::Chol: return genRuntimeCall(e, "chol");
-  case Intrinsic::LuSolve: return genRuntimeCall(e, "lusolve");
-  case Intrinsic::LltSolve: return genRuntimeCall(e, "lltsolve");
-  case Intrinsic::LuMatSolve: return genRuntimeCall(e, "lumatsolve");
-  case Intrinsic::LltMatSolve: return genRuntimeCall(e, "lltmatsolve");
-  case Intrinsic::LuFree: return genRuntimeCall(e, "lufree");
-  case Intrinsic::CholFree: return genRuntimeCall(e, "cholfree");
-  case Intrinsic::TriangularSolve: return genRuntimeCall(e, "triangularSolve");
+  case Intrinsic::Lu:
+  case Intrinsic::Chol:
+  case Intrinsic::LuSolve:
+  case Intrinsic::LltSolve:
+  case Intrinsic::LuMatSolve:
+  case Intrinsic::LltMatSolve:
+  case Intrinsic::LuFree:
+  case Intrinsic::CholFree:
+  case Intrinsic::TriangularSolve:
+    return genSolverIntrinsic(e);
   case Intrinsic::Clock: return genRuntimeCall(e, "clock");
   case Intrinsic::StoreTime: return genRuntimeCall(e, "storeTime");
   default:
@@ -56,6 +58,34 @@ SmallVector<mlir::Type> IRGenerator::convertResultTypes(const Expr &e) {
     types.push_back(convertType(e.type, e.loc));
   }
   return types;
+}
+
+SmallVector<Value> IRGenerator::genSolverIntrinsic(const CallExpr &e) {
+  SmallVector<Value> args;
+  for (const ExprPtr &arg : e.args)
+    args.push_back(genExpr(*arg));
+  SmallVector<mlir::Type> results = convertResultTypes(e);
+  mlir::Location l = loc(e.loc);
+  bool lu = llvm::is_contained({Intrinsic::Lu, Intrinsic::LuSolve,
+                                Intrinsic::LuMatSolve, Intrinsic::LuFree},
+                               e.intrinsic);
+  auto kind = lu ? dialect::FactorizationKind::LU
+                 : dialect::FactorizationKind::Cholesky;
+  switch (e.intrinsic) {
+  case Intrinsic::Lu:
+  case Intrinsic::Chol:
+    return {dialect::FactorizeOp::create(builder, l, results[0], kind, args[0])};
+  case Intrinsic::LuFree:
+  case Intrinsic::CholFree:
+    dialect::FactorFreeOp::create(builder, l, kind, args[0]);
+    return {};
+  case Intrinsic::TriangularSolve:
+    return {dialect::TriangularSolveOp::create(builder, l, results[0], args[0],
+                                               args[1])};
+  default:
+    return {dialect::FactorSolveOp::create(builder, l, results[0], kind,
+                                           args[0], args[1])};
+  }
 }
 
 SmallVector<Value> IRGenerator::genRuntimeCall(const CallExpr &e,

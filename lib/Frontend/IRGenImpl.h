@@ -143,6 +143,8 @@ private:
   llvm::SmallVector<mlir::Type> convertResultTypes(const Expr &e);
   llvm::SmallVector<mlir::Value> genUserCall(const CallExpr &e);
   mlir::Value genIntrinsic(const CallExpr &e);
+  /// lu, chol, their solves and frees, and triangularSolve as simit ops.
+  llvm::SmallVector<mlir::Value> genSolverIntrinsic(const CallExpr &e);
   llvm::SmallVector<mlir::Value> genRuntimeCall(const CallExpr &e,
                                                 llvm::StringRef name);
   llvm::SmallVector<mlir::Value> genMap(const MapExpr &e);

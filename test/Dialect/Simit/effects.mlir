@@ -48,3 +48,15 @@ func.func @slots_and_maps() {
   simit.map @touch() to %s : (!S) -> ()
   return
 }
+
+// Each factorisation is a handle of its own, never merged; frees stay.
+// CHECK-LABEL: func.func @factorisations
+// CHECK-COUNT-2: simit.factorize
+// CHECK-COUNT-2: simit.factor_free
+func.func @factorisations(%m : tensor<2x2xf64>) {
+  %h = simit.factorize lu %m : tensor<2x2xf64>
+  %g = simit.factorize lu %m : tensor<2x2xf64>
+  simit.factor_free lu %h
+  simit.factor_free lu %g
+  return
+}

@@ -167,20 +167,87 @@ LogicalResult NormOp::verify() {
   return success();
 }
 
+/// Checks `a x = b`: a matrix, and vectors over its rows (`b`) and columns
+/// (`x`), of one float or numeric component.
+static LogicalResult verifyLinearSystem(Operation *op, Type a, Type b, Type x) {
+  if (failed(verifyOrder(op, a, 2, "matrix")) ||
+      failed(verifyOrder(op, b, 1, "right-hand side")) ||
+      failed(verifyOrder(op, x, 1, "result")) ||
+      failed(verifySameComponent(op, a, b)) ||
+      failed(verifySameComponent(op, a, x)) || failed(verifyNumeric(op, a)))
+    return failure();
+  return failure(
+      failed(verifySameDimension(op, "matrix rows and right-hand side", a, 0,
+                                 b, 0)) ||
+      failed(verifySameDimension(op, "matrix columns and result", a, 1, x, 0)));
+}
+
 LogicalResult SolveOp::verify() {
-  Type a = getMatrix().getType(), b = getRhs().getType(), x = getType();
+  return verifyLinearSystem(*this, getMatrix().getType(), getRhs().getType(),
+                            getType());
+}
+
+LogicalResult TriangularSolveOp::verify() {
+  return verifyLinearSystem(*this, getMatrix().getType(), getRhs().getType(),
+                            getType());
+}
+
+static LogicalResult verifyFloat(Operation *op, Type type) {
+  if (isa<FloatType>(getComponentType(type)))
+    return success();
+  return op->emitOpError() << "operand must have float components, got "
+                           << type;
+}
+
+LogicalResult FactorizeOp::verify() {
+  Type a = getMatrix().getType();
   if (failed(verifyOrder(*this, a, 2, "matrix")) ||
-      failed(verifyOrder(*this, b, 1, "right-hand side")) ||
-      failed(verifyOrder(*this, x, 1, "result")) ||
-      failed(verifySameComponent(*this, a, b)) ||
-      failed(verifySameComponent(*this, a, x)) ||
-      failed(verifyNumeric(*this, a)))
+      failed(verifyFloat(*this, a)))
     return failure();
-  if (failed(verifySameDimension(*this, "matrix rows and right-hand side", a,
-                                 0, b, 0)) ||
-      failed(verifySameDimension(*this, "matrix columns and result", a, 1, x,
-                                 0)))
+  return verifySameDimension(*this, "a factorised matrix is square: rows and "
+                                    "columns",
+                             a, 0, a, 1);
+}
+
+StringRef FactorSolveOp::getIntrinsicName() {
+  bool matrix = getTensorOrder(getRhs().getType()) == 2;
+  if (getKind() == FactorizationKind::LU)
+    return matrix ? "lumatsolve" : "lusolve";
+  return matrix ? "lltmatsolve" : "lltsolve";
+}
+
+LogicalResult FactorSolveOp::verify() {
+  Type b = getRhs().getType(), x = getType();
+  unsigned order = getTensorOrder(b);
+  if (order != 1 && order != 2)
+    return emitOpError() << "right-hand side must be a vector or a matrix, got "
+                         << b;
+  if (failed(verifyOrder(*this, x, order, "result")) ||
+      failed(verifyFloat(*this, b)) || failed(verifySameComponent(*this, b, x)))
     return failure();
+  // A matrix right-hand side is solved column by column.
+  if (order == 2)
+    return verifySameDimension(*this, "right-hand side and result columns", b,
+                               1, x, 1);
+  return success();
+}
+
+LogicalResult WoodburyOp::verify() {
+  Type b = getRhs().getType();
+  if (failed(verifyLinearSystem(*this, getMatrix().getType(), b, b)) ||
+      failed(verifyFloat(*this, b)))
+    return failure();
+  if (getUs().empty() || getVs().size() != getUs().size() ||
+      getWs().size() != getUs().size())
+    return emitOpError() << "needs k >= 1 vectors each of u, v and w, got "
+                         << getUs().size() << ", " << getVs().size() << " and "
+                         << getWs().size();
+  auto differs = [&](Value v) { return v.getType() != b; };
+  if (differs(getSolution()) || getType() != b ||
+      llvm::any_of(getUs(), differs) || llvm::any_of(getVs(), differs) ||
+      llvm::any_of(getWs(), differs))
+    return emitOpError() << "every vector must have the right-hand side's type "
+                         << b;
   return success();
 }
 

@@ -52,6 +52,29 @@ static void printSliceIndices(OpAsmPrinter &printer, SliceOp,
   });
 }
 
+/// Parses the one type of simit.woodbury's vectors: b, c, the k u's, v's
+/// and w's (k from the parsed u operands) and the result.
+static ParseResult
+parseVectorTypes(OpAsmParser &parser, Type &rhs, Type &solution,
+                 SmallVectorImpl<Type> &us, SmallVectorImpl<Type> &vs,
+                 SmallVectorImpl<Type> &ws, Type &result,
+                 ArrayRef<OpAsmParser::UnresolvedOperand> uOperands) {
+  Type type;
+  if (parser.parseType(type))
+    return failure();
+  rhs = solution = result = type;
+  us.assign(uOperands.size(), type);
+  vs.assign(uOperands.size(), type);
+  ws.assign(uOperands.size(), type);
+  return success();
+}
+
+static void printVectorTypes(OpAsmPrinter &printer, WoodburyOp, Type rhs,
+                             Type, TypeRange, TypeRange, TypeRange, Type,
+                             OperandRange) {
+  printer << rhs;
+}
+
 #define GET_OP_CLASSES
 #include "simit/Dialect/Simit/IR/SimitOps.cpp.inc"
 

@@ -92,23 +92,23 @@ std::optional<Description> describe(Operation *op, ModuleOp module) {
   }
   if (!scansResults)
     return std::nullopt;
-  if (isa<SolveOp>(op)) {
+  // A Woodbury step stands for the `\` it rewrote.
+  if (isa<SolveOp, WoodburyOp>(op)) {
     description.op = "solve" + sourcePositionSuffix(op);
     description.results = {"solution"};
     return description;
   }
-  auto call = dyn_cast<func::CallOp>(op);
-  if (!call)
-    return std::nullopt;
-  auto callee = module.lookupSymbol<func::FuncOp>(call.getCalleeAttr());
-  auto simitName =
-      callee ? callee->getAttrOfType<StringAttr>("simit.runtime_function")
-             : StringAttr();
-  if (!simitName || !simitName.getValue().contains_insensitive("solve"))
-    return std::nullopt;
-  description.op = (simitName.getValue() + sourcePositionSuffix(op)).str();
-  description.results.assign(call.getNumResults(), "solution");
-  return description;
+  if (auto solve = dyn_cast<FactorSolveOp>(op)) {
+    description.op = (solve.getIntrinsicName() + sourcePositionSuffix(op)).str();
+    description.results = {"solution"};
+    return description;
+  }
+  if (isa<TriangularSolveOp>(op)) {
+    description.op = "triangularSolve" + sourcePositionSuffix(op);
+    description.results = {"solution"};
+    return description;
+  }
+  return std::nullopt;
 }
 
 struct CheckNumerics

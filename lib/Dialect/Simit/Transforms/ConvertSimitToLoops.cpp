@@ -412,10 +412,6 @@ LogicalResult FunctionLowering::lowerOp(Operation *op) {
       return success();
     }
     if (callee && callee.isExternal() &&
-        callee->hasAttr("simit.runtime_function") &&
-        isSolverFunction(call.getCallee()))
-      return lowerSolverCall(call, callee);
-    if (callee && callee.isExternal() &&
         callee->hasAttr("simit.extern_function"))
       return lowerHostCall(call, callee);
     if (callee && callee.isExternal())
@@ -497,6 +493,10 @@ LogicalResult FunctionLowering::lowerOp(Operation *op) {
     return lowerGridAccess(op);
   if (isa<PrintOp, StringConstantOp, StringConcatOp, StringCmpOp>(op))
     return lowerPrintOrString(op);
+  if (isa<FactorizeOp, FactorSolveOp, FactorFreeOp, TriangularSolveOp>(op))
+    return lowerFactorisation(op);
+  if (auto woodbury = dyn_cast<WoodburyOp>(op))
+    return lowerWoodbury(woodbury);
 
   if (failed(lowerSystemOp(op, handled)))
     return failure();

@@ -366,8 +366,8 @@ private:
   /// Solves call the runtime's SolveSession (docs/solvers.md).
   LogicalResult lowerSolve(SolveOp op);
   /// `op`'s result = the solve `method` ("solve": A \ b; "triangular_solve":
-  /// with A's lower triangle; "sherman_morrison": the last step of the
-  /// Sherman–Morrison rewrite) of system matrix `matrix` and system vectors
+  /// with A's lower triangle; "sherman_morrison", "woodbury<k>": the last
+  /// step of simit.woodbury) of system matrix `matrix` and system vectors
   /// `vectors`, by the runtime function @simit_rt_<method>_{bcsr,diag}[_f32]
   /// with `where` = `what` and the source position.
   LogicalResult lowerSystemSolve(Operation *op, Value matrix,
@@ -376,9 +376,13 @@ private:
   /// Products of system matrices (LowerProducts.cpp): the runtime's
   /// numeric SpGEMM on the bind-time product pattern.
   LogicalResult lowerMatMul(MatMulOp op);
-  /// Calls of the dense solver runtime functions (lu, chol, lusolve, ...):
-  /// local tensors go through memref<?xf64>, handles are !llvm.ptr.
-  LogicalResult lowerSolverCall(func::CallOp call, func::FuncOp callee);
+  /// simit.factorize, simit.factor_solve, simit.factor_free and
+  /// simit.triangular_solve: the runtime's dense solvers for local tensors
+  /// (through memref<?xf64>; handles are !llvm.ptr), else
+  /// lowerSystemFactorisation.
+  LogicalResult lowerFactorisation(Operation *op);
+  /// simit.woodbury: the runtime's Sherman–Morrison or Woodbury last step.
+  LogicalResult lowerWoodbury(WoodburyOp op);
   /// Calls of host functions (`extern func`, LowerHostCalls.cpp) with the
   /// original Simit runtime's C conventions.
   LogicalResult lowerHostCall(func::CallOp call, func::FuncOp callee);
@@ -396,9 +400,10 @@ private:
   /// runtime's BCSR functions: arrays of scalars gain unit block
   /// dimensions (memref<?xf64> as memref<?x1x1xf64>).
   Value asRuntimeBlocks(Location loc, Value array, MemRefType target);
-  /// lu, chol, lusolve and lltsolve on square system matrices assembled
-  /// from an edge set and on system vectors: Eigen's sparse solvers.
-  LogicalResult lowerSystemSolverCall(func::CallOp call);
+  /// Factorisations of square system matrices assembled from a set, their
+  /// solves of system vectors, and triangular solves: the runtime's sparse
+  /// solvers.
+  LogicalResult lowerSystemFactorisation(Operation *op);
   /// A call to the runtime function `name`, declared on first use.
   Value callRuntime(Location loc, StringRef name, TypeRange results,
                     ValueRange args);
@@ -425,9 +430,6 @@ int64_t numComponents(Type type);
 SmallVector<int64_t> localShape(Type type);
 /// Whether a type is a tensor with a set dimension (a system tensor).
 bool isSystem(Type type);
-/// Whether `name` is a solver runtime function (lu, chol, their solves and
-/// frees, triangularSolve).
-bool isSolverFunction(StringRef name);
 
 } // namespace loops
 } // namespace simit

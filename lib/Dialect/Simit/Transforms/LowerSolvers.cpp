@@ -1,7 +1,8 @@
 //===- LowerSolvers.cpp - Solves and factorisations -----------------------===//
 //
-// `\`, lu/chol/lusolve/lltsolve/lumatsolve/lltmatsolve/triangularSolve as
-// calls of the runtime, on system tensors and on local matrices.
+// simit.solve, simit.factorize, simit.factor_solve, simit.factor_free,
+// simit.triangular_solve and simit.woodbury as calls of the runtime, on
+// system tensors and on local matrices.
 //
 //===----------------------------------------------------------------------===//
 
@@ -153,49 +154,50 @@ LogicalResult FunctionLowering::lowerSystemSolve(Operation *op, Value matrix,
   return success();
 }
 
-/// The dense solver runtime functions, with the i64 size arguments their
-/// lowered form appends (see lowerSolverCall).
-bool mlir::simit::loops::isSolverFunction(StringRef name) {
-  // simit-sherman-morrison declares one per type of its operands (and
-  // rank: simit_rt_woodbury<k>).
-  if (name.starts_with("simit_rt_sherman_morrison") ||
-      name.starts_with("simit_rt_woodbury"))
-    return true;
-  return llvm::is_contained(
-      {StringRef("simit_rt_lu"), StringRef("simit_rt_chol"),
-       StringRef("simit_rt_lusolve"), StringRef("simit_rt_lltsolve"),
-       StringRef("simit_rt_lumatsolve"), StringRef("simit_rt_lltmatsolve"),
-       StringRef("simit_rt_lufree"), StringRef("simit_rt_cholfree"),
-       StringRef("simit_rt_triangularSolve")},
-      name);
+/// The language's name of a factorisation or solve op (lu, lusolve,
+/// triangularSolve, ...): the runtime function @simit_rt_<name> and the
+/// statement the runtime's messages name.
+static std::string intrinsicName(Operation *op) {
+  auto lu = [](FactorizationKind kind) {
+    return kind == FactorizationKind::LU;
+  };
+  if (auto factorize = dyn_cast<FactorizeOp>(op))
+    return lu(factorize.getKind()) ? "lu" : "chol";
+  if (auto free = dyn_cast<FactorFreeOp>(op))
+    return lu(free.getKind()) ? "lufree" : "cholfree";
+  if (auto solve = dyn_cast<FactorSolveOp>(op))
+    return solve.getIntrinsicName().str();
+  return "triangularSolve";
 }
 
-LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
-  Location loc = call.getLoc();
-  StringRef name = call.getCallee();
-  if (name == "simit_rt_triangularSolve" && call.getNumOperands() == 2 &&
-      call.getNumResults() == 1)
-    return lowerSystemSolve(call, call.getOperand(0), call.getOperand(1),
+LogicalResult FunctionLowering::lowerWoodbury(WoodburyOp op) {
+  // (A, u_1..u_k, v_1..v_k, b, w_1..w_k, c) -> x: the runtime's
+  // simit_rt_sherman_morrison_bcsr for k = 1, simit_rt_woodbury<k>_bcsr.
+  unsigned k = op.getRank();
+  if (k > WoodburyOp::kMaxRank)
+    return op.emitError("the runtime's Woodbury solve takes at most ")
+           << WoodburyOp::kMaxRank << " outer products, not " << k;
+  SmallVector<Value> vectors(op.getUs());
+  llvm::append_range(vectors, op.getVs());
+  vectors.push_back(op.getRhs());
+  llvm::append_range(vectors, op.getWs());
+  vectors.push_back(op.getSolution());
+  if (k == 1)
+    return lowerSystemSolve(op, op.getMatrix(), vectors, "sherman_morrison",
+                            "Sherman-Morrison");
+  return lowerSystemSolve(op, op.getMatrix(), vectors,
+                          "woodbury" + std::to_string(k), "Woodbury");
+}
+
+LogicalResult FunctionLowering::lowerSystemFactorisation(Operation *op) {
+  Location loc = op->getLoc();
+  if (auto solve = dyn_cast<TriangularSolveOp>(op))
+    return lowerSystemSolve(op, solve.getMatrix(), solve.getRhs(),
                             "triangular_solve", "triangularSolve");
-  // (A, u_1..u_k, v_1..v_k, b, w_1..w_k, c) -> x of simit-sherman-morrison
-  // for rank k > 1: the runtime's simit_rt_woodbury<k>_bcsr.
-  if (name.starts_with("simit_rt_woodbury") && call.getNumResults() == 1 &&
-      call.getNumOperands() >= 9 && call.getNumOperands() % 3 == 0) {
-    std::string method =
-        "woodbury" + std::to_string((call.getNumOperands() - 3) / 3);
-    return lowerSystemSolve(call, call.getOperand(0),
-                            call.getOperands().drop_front(), method,
-                            "Woodbury");
-  }
-  // (A, u, v, b, w, c) -> x of simit-sherman-morrison.
-  if (name.starts_with("simit_rt_sherman_morrison") &&
-      call.getNumOperands() == 6 && call.getNumResults() == 1)
-    return lowerSystemSolve(call, call.getOperand(0),
-                            call.getOperands().drop_front(),
-                            "sherman_morrison", "Sherman-Morrison");
-  bool factorise = name == "simit_rt_lu" || name == "simit_rt_chol";
-  bool solve = name == "simit_rt_lusolve" || name == "simit_rt_lltsolve";
-  Value matrix = factorise ? call.getOperand(0) : Value();
+  std::string name = intrinsicName(op);
+  auto factorize = dyn_cast<FactorizeOp>(op);
+  auto solve = dyn_cast<FactorSolveOp>(op);
+  Value matrix = factorize ? factorize.getMatrix() : Value();
   Storage storage = matrix ? storageOf(matrix) : Storage();
   auto f64Blocks = [](Type t, unsigned order) {
     auto type = dyn_cast<SystemTensorType>(t);
@@ -207,25 +209,22 @@ LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
                              block[0] == block[1]) ||
            (order == 1 && block.size() == 1);
   };
-  if (factorise &&
+  if (factorize &&
       !(f64Blocks(matrix.getType(), 2) && isSparseSquare(storage)))
-    return call.emitError("'@")
+    return op->emitError("'")
            << name
            << "' on a system matrix needs a square f64 matrix of scalars or "
               "square blocks assembled from a set; this one is stored as "
            << storage.describe();
-  if (solve && !(call.getNumOperands() == 2 &&
-                 isa<OpaqueType>(call.getOperand(0).getType()) &&
-                 f64Blocks(call.getOperand(1).getType(), 1) &&
-                 call.getNumResults() == 1 &&
-                 call.getResult(0).getType() == call.getOperand(1).getType()))
-    return call.emitError("'@") << name
-                                << "' on system vectors needs an f64 vector "
-                                   "and a factorisation handle";
-  if (!factorise && !solve)
-    return call.emitError("'@") << name
-                                << "' is not supported on system tensors by "
-                                   "the loop lowering";
+  if (solve && !(f64Blocks(solve.getRhs().getType(), 1) &&
+                 solve.getType() == solve.getRhs().getType()))
+    return op->emitError("'") << name
+                              << "' on system tensors needs an f64 vector "
+                                 "right-hand side, solved to its own type";
+  if (!factorize && !solve)
+    return op->emitError("'") << name
+                              << "' is not supported on system tensors by "
+                                 "the loop lowering";
 
   MLIRContext *ctx = b.getContext();
   Type ptr = LLVM::LLVMPointerType::get(ctx);
@@ -233,93 +232,71 @@ LogicalResult FunctionLowering::lowerSystemSolverCall(func::CallOp call) {
   auto indexArray = MemRefType::get({dyn}, b.getI32Type());
   auto values = MemRefType::get({dyn, dyn, dyn}, b.getF64Type());
   auto vector = MemRefType::get({dyn, dyn}, b.getF64Type());
-  std::string runtimeName = (name + "_bcsr").str();
+  std::string runtimeName = "simit_rt_" + name + "_bcsr";
   // The runtime ends the run with `where` ("chol (file:line:col)") when the
   // factorisation or solve fails, and names the statement in statistics.
-  Value where = stringConstant(
-      loc, name.drop_front(StringRef("simit_rt_").size()).str() +
-               sourcePositionSuffix(call));
-  if (factorise) {
+  Value where = stringConstant(loc, name + sourcePositionSuffix(op));
+  if (factorize) {
     auto type =
         FunctionType::get(ctx, {indexArray, indexArray, values, ptr}, {ptr});
     func::FuncOp callee = declareRuntime(loc, runtimeName, type);
     if (!callee)
-      return call.emitError("@") << runtimeName
-                                 << " is declared with another type";
+      return op->emitError("@") << runtimeName
+                                << " is declared with another type";
     auto [rowPtr, colIdx] = bcsrIndices(*this, loc, storage);
     auto lowered = func::CallOp::create(
         b, loc, callee,
         ValueRange{rowPtr, colIdx,
                    asRuntimeBlocks(loc, lookup(matrix), values), where});
-    map(call.getResult(0), lowered.getResult(0));
+    map(factorize.getResult(), lowered.getResult(0));
     return success();
   }
   auto type = FunctionType::get(ctx, {ptr, vector, vector, ptr}, {});
   func::FuncOp callee = declareRuntime(loc, runtimeName, type);
   if (!callee)
-    return call.emitError("@") << runtimeName
-                               << " is declared with another type";
-  Value x = allocSystem(loc, call.getResult(0).getType(), Storage::dense(),
+    return op->emitError("@") << runtimeName
+                              << " is declared with another type";
+  Value x = allocSystem(loc, solve.getType(), Storage::dense(),
                         /*zeroFill=*/false);
   func::CallOp::create(
       b, loc, callee,
-      ValueRange{lookup(call.getOperand(0)),
-                 asRuntimeBlocks(loc, lookup(call.getOperand(1)), vector),
+      ValueRange{lookup(solve.getFactorization()),
+                 asRuntimeBlocks(loc, lookup(solve.getRhs()), vector),
                  asRuntimeBlocks(loc, x, vector), where});
-  map(call.getResult(0), x);
+  map(solve.getResult(), x);
   return success();
 }
 
-LogicalResult FunctionLowering::lowerSolverCall(func::CallOp call,
-                                                func::FuncOp callee) {
-  Location loc = call.getLoc();
-  if (llvm::any_of(call.getOperandTypes(), isSystem))
-    return lowerSystemSolverCall(call);
+LogicalResult FunctionLowering::lowerFactorisation(Operation *op) {
+  Location loc = op->getLoc();
+  if (llvm::any_of(op->getOperandTypes(), isSystem))
+    return lowerSystemFactorisation(op);
   MLIRContext *ctx = b.getContext();
-  StringRef name = call.getCallee();
+  std::string name = intrinsicName(op);
   Type f64 = b.getF64Type();
   Type ptr = LLVM::LLVMPointerType::get(ctx);
   Type flat = MemRefType::get({ShapedType::kDynamic}, f64);
-  bool factorise = name == "simit_rt_lu" || name == "simit_rt_chol";
-  bool free = name == "simit_rt_lufree" || name == "simit_rt_cholfree";
-  bool matSolve =
-      name == "simit_rt_lumatsolve" || name == "simit_rt_lltmatsolve";
-  bool triangular = name == "simit_rt_triangularSolve";
+  bool factorise = isa<FactorizeOp>(op);
+  bool free = isa<FactorFreeOp>(op);
+  bool triangular = isa<TriangularSolveOp>(op);
+  bool matSolve = !factorise && !free && !triangular &&
+                  getTensorOrder(op->getOperand(1).getType()) == 2;
 
-  // Expected shapes: (handle | matrix)..., tensors of f64.
-  auto tensorOf = [&](Type t, unsigned rank) -> RankedTensorType {
+  // The runtime takes f64 matrices and vectors of static shapes; the op's
+  // verifier has checked the rest.
+  auto isF64Tensor = [](Type t) {
     auto tensor = dyn_cast<RankedTensorType>(t);
-    if (!tensor || !tensor.getElementType().isF64() ||
-        tensor.getRank() != rank || !tensor.hasStaticShape())
-      return nullptr;
-    return tensor;
+    return !tensor ||
+           (tensor.getElementType().isF64() && tensor.hasStaticShape());
   };
-  auto isHandle = [](Type t) { return isa<OpaqueType>(t); };
-  auto isSquare = [&](Type t) {
-    auto m = tensorOf(t, 2);
-    return m && m.getDimSize(0) == m.getDimSize(1);
-  };
-  TypeRange in = call.getOperandTypes(), out = call.getResultTypes();
-  bool valid = false;
-  if (factorise)
-    valid = in.size() == 1 && isSquare(in[0]) && out.size() == 1 &&
-            isHandle(out[0]);
-  else if (free)
-    valid = in.size() == 1 && isHandle(in[0]) && out.empty();
-  else if (triangular)
-    valid = in.size() == 2 && isSquare(in[0]) && tensorOf(in[1], 1) &&
-            out.size() == 1 && out[0] == in[1] &&
-            tensorOf(in[1], 1).getDimSize(0) ==
-                cast<RankedTensorType>(in[0]).getDimSize(0);
-  else
-    valid = in.size() == 2 && isHandle(in[0]) &&
-            tensorOf(in[1], matSolve ? 2 : 1) && out.size() == 1 &&
-            out[0] == in[1];
-  if (!valid)
-    return call.emitError("'@")
+  if (!llvm::all_of(op->getOperandTypes(), isF64Tensor) ||
+      !llvm::all_of(op->getResultTypes(), isF64Tensor) ||
+      (!factorise && !free && !triangular &&
+       op->getResult(0).getType() != op->getOperand(1).getType()))
+    return op->emitError("'")
            << name
            << "' is supported by the loop lowering on dense local f64 "
-              "matrices and vectors (and opaque handles) only";
+              "matrices and vectors, solved to the right-hand side's shape";
 
   // Local tensors (vectors) are stored to a stack buffer passed as
   // memref<?xf64>; tensor results come back through one.
@@ -332,9 +309,9 @@ LogicalResult FunctionLowering::lowerSolverCall(func::CallOp call,
   Value zero = free ? Value() : indexConstant(0);
   SmallVector<Value> args;
   SmallVector<Type> argTypes;
-  for (Value operand : call.getOperands()) {
+  for (Value operand : op->getOperands()) {
     Value value = lookup(operand);
-    if (isHandle(operand.getType())) {
+    if (isa<OpaqueType>(operand.getType())) {
       args.push_back(value);
       argTypes.push_back(ptr);
       continue;
@@ -350,7 +327,7 @@ LogicalResult FunctionLowering::lowerSolverCall(func::CallOp call,
   if (factorise) {
     resultTypes.push_back(ptr);
   } else if (!free) {
-    auto resultType = cast<RankedTensorType>(out[0]);
+    auto resultType = cast<RankedTensorType>(op->getResult(0).getType());
     resultSlot = buffer(resultType.getNumElements());
     args.push_back(memref::CastOp::create(b, loc, flat, resultSlot));
     argTypes.push_back(flat);
@@ -361,29 +338,33 @@ LogicalResult FunctionLowering::lowerSolverCall(func::CallOp call,
     args.push_back(arith::ConstantOp::create(b, loc, b.getI64IntegerAttr(size)));
     argTypes.push_back(b.getI64Type());
   };
+  auto shape = [&](unsigned operand) {
+    return cast<RankedTensorType>(op->getOperand(operand).getType()).getShape();
+  };
   if (factorise || triangular)
-    sizeArg(cast<RankedTensorType>(in[0]).getDimSize(0));
+    sizeArg(shape(0)[0]);
   else if (matSolve)
-    sizeArg(cast<RankedTensorType>(in[1]).getDimSize(1));
+    sizeArg(shape(1)[1]);
 
-  // The declaration takes the lowered signature (the JIT binds the
-  // C interface, _mlir_ciface_<name>, of those with memrefs).
-  auto type = FunctionType::get(ctx, argTypes, resultTypes);
-  if (callee.getFunctionType() != type) {
-    if (llvm::any_of(callee.getFunctionType().getInputs(),
-                     [](Type t) { return isa<MemRefType, LLVM::LLVMPointerType>(t); }))
-      return call.emitError("'@") << name
-                                  << "' is called with different shapes";
-    callee.setFunctionType(type);
+  std::string runtimeName = "simit_rt_" + name;
+  if (free) {
+    callRuntime(loc, runtimeName, {}, args);
+    return success();
   }
-  if (!free)
-    callee->setAttr("llvm.emit_c_interface", UnitAttr::get(ctx));
-  auto lowered = func::CallOp::create(b, loc, name, resultTypes, args);
+  // The JIT binds the C interface, _mlir_ciface_<name>, of functions with
+  // memrefs.
+  func::FuncOp callee = declareRuntime(
+      loc, runtimeName, FunctionType::get(ctx, argTypes, resultTypes));
+  if (!callee)
+    return op->emitError("@") << runtimeName
+                              << " is declared with another type";
+  auto lowered = func::CallOp::create(b, loc, callee, args);
   if (factorise)
-    map(call.getResult(0), lowered.getResult(0));
-  else if (!free)
-    map(call.getResult(0),
-        vector::LoadOp::create(b, loc, cast<VectorType>(convertType(out[0])),
-                               resultSlot, ValueRange{zero}));
+    map(op->getResult(0), lowered.getResult(0));
+  else
+    map(op->getResult(0),
+        vector::LoadOp::create(
+            b, loc, cast<VectorType>(convertType(op->getResult(0).getType())),
+            resultSlot, ValueRange{zero}));
   return success();
 }

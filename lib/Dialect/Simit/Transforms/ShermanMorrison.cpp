@@ -13,9 +13,7 @@
 #include "simit/Dialect/Simit/IR/Simit.h"
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
-#include "mlir/Dialect/Func/IR/FuncOps.h"
 #include "mlir/IR/PatternMatch.h"
-#include "mlir/IR/SymbolTable.h"
 #include "mlir/Transforms/GreedyPatternRewriteDriver.h"
 
 namespace mlir {
@@ -29,12 +27,6 @@ using namespace mlir;
 using namespace mlir::simit;
 
 namespace {
-
-constexpr StringLiteral kRankOneName = "simit_rt_sherman_morrison";
-/// simit_rt_woodbury<k> for rank k.
-constexpr StringLiteral kRankKName = "simit_rt_woodbury";
-/// The largest rank rewritten (the runtime's entry points).
-constexpr unsigned kMaxRank = 4;
 
 /// `matrix` as A + u v^T or A - u v^T: the outer product, A, and whether
 /// the product is subtracted.
@@ -93,31 +85,6 @@ bool isSystemVector(Type type) {
   return tensor && tensor.isSystem() && tensor.getOrder() == 1;
 }
 
-/// The declaration of the last step named `base` for these operand types:
-/// one per type, @<base>, @<base>_1, ...
-func::FuncOp declareLastStep(ModuleOp module, StringRef base,
-                             StringRef runtimeFunction, FunctionType type,
-                             PatternRewriter &rewriter) {
-  for (int i = 0;; ++i) {
-    std::string name = base.str();
-    if (i)
-      name += "_" + std::to_string(i);
-    auto existing = module.lookupSymbol<func::FuncOp>(name);
-    if (existing && existing.getFunctionType() == type)
-      return existing;
-    if (existing)
-      continue;
-    OpBuilder::InsertionGuard guard(rewriter);
-    rewriter.setInsertionPointToEnd(module.getBody());
-    auto function =
-        func::FuncOp::create(rewriter, module.getLoc(), name, type);
-    function.setPrivate();
-    function->setAttr("simit.runtime_function",
-                      rewriter.getStringAttr(runtimeFunction));
-    return function;
-  }
-}
-
 struct RewriteLowRankSolve : OpRewritePattern<SolveOp> {
   using OpRewritePattern::OpRewritePattern;
 
@@ -136,7 +103,7 @@ struct RewriteLowRankSolve : OpRewritePattern<SolveOp> {
       return rewriter.notifyMatchFailure(
           solve, "A holds an outer product that is not a term of the sum");
     unsigned rank = split->terms.size();
-    if (rank > kMaxRank)
+    if (rank > WoodburyOp::kMaxRank)
       return rewriter.notifyMatchFailure(solve, "more than 4 outer products");
     auto isVectorLikeB = [&](Value v) { return v.getType() == b.getType(); };
     if (!isSystemVector(b.getType()) ||
@@ -171,22 +138,8 @@ struct RewriteLowRankSolve : OpRewritePattern<SolveOp> {
           u, rank == 1 ? Twine("u") : "u" + Twine(i + 1)));
     }
     Value c = solveWithA(b, "b");
-    // (A, u..., v..., b, w..., c) -> x.
-    SmallVector<Value> operands{a};
-    llvm::append_range(operands, us);
-    llvm::append_range(operands, vs);
-    operands.push_back(b);
-    llvm::append_range(operands, ws);
-    operands.push_back(c);
-    auto type = FunctionType::get(rewriter.getContext(),
-                                  ValueRange(operands).getTypes(),
-                                  {b.getType()});
-    std::string name = rank == 1 ? kRankOneName.str()
-                                 : (kRankKName + Twine(rank)).str();
-    func::FuncOp lastStep = declareLastStep(
-        solve->getParentOfType<ModuleOp>(), name,
-        rank == 1 ? "sherman_morrison" : "woodbury", type, rewriter);
-    rewriter.replaceOpWithNewOp<func::CallOp>(solve, lastStep, operands);
+    rewriter.replaceOpWithNewOp<WoodburyOp>(solve, b.getType(), a, b, c, us,
+                                            vs, ws);
     return success();
   }
 };

@@ -47,7 +47,8 @@ bool runsAtMostOnce(Operation *op, Block *body) {
 std::optional<Phase> phaseOf(Operation *op, Block *body) {
   if (isAssembly(op))
     return Assembly;
-  if (isa<SolveOp>(op))
+  if (isa<SolveOp, FactorizeOp, FactorSolveOp, TriangularSolveOp, WoodburyOp>(
+          op))
     return Solve;
   if (isa<scf::WhileOp>(op) && runsAtMostOnce(op, body)) {
     bool assembles = op->walk([](Operation *nested) {

@@ -23,7 +23,7 @@
 
 // CHECK-LABEL: func.func @direct()
 // CHECK: simit.assemble @spring() to %{{.*}} reduce <add> {simit.check_numerics = {op = "map spring to springs (check-numerics.sim:32:10)", results = ["K", "f"]}}
-// CHECK: call @simit_rt_lu(%{{[^)]*}}) : (
-// CHECK: call @simit_rt_lusolve(%{{.*}}) {simit.check_numerics = {op = "lusolve (check-numerics.sim:34:14)", results = ["solution"]}}
+// CHECK: simit.factorize lu %{{[^ ]*}} :
+// CHECK: simit.factor_solve lu %{{.*}} {simit.check_numerics = {op = "lusolve (check-numerics.sim:34:14)", results = ["solution"]}}
 // CHECK-NOT: simit.check_numerics
 // CHECK: return

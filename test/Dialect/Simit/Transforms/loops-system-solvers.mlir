@@ -3,9 +3,9 @@
 
 // Solvers on system matrices of scalars: the arrays gain unit block
 // dimensions (memref.expand_shape) before the cast to the dynamic BCSR
-// shapes of the runtime. chol/lltsolve on system tensors call the _bcsr
-// runtime functions; cholfree stays the (shared) free; the original
-// declarations on simit types are erased.
+// shapes of the runtime. simit.factorize and simit.factor_solve on system
+// tensors call the _bcsr runtime functions; simit.factor_free calls the
+// (shared) free.
 
 !Point = !simit.element<"Point", {b : f64}>
 !Spring = !simit.element<"Spring", {k : f64}>
@@ -24,7 +24,6 @@ func.func @link(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> !A {
   return %A1 : !A
 }
 
-// CHECK-NOT: func.func private @simit_rt_chol(
 // CHECK-LABEL: func.func @cholesky(
 // CHECK-SAME: %[[NP:[^:]*]]: index, %{{[^:]*}}: index, %{{[^:]*}}: memref<?x2xi32>, %[[B:[^:]*]]: memref<?xf64>, %{{[^:]*}}: memref<?xf64>, %[[ROWPTR:[^:]*]]: memref<?xi32>, %[[COLIDX:[^:]*]]: memref<?xi32>, %{{[^:]*}}: memref<?x4xi32>)
 // CHECK: %[[AV:.*]] = memref.alloc(%{{.*}}) : memref<?xf64>
@@ -41,15 +40,12 @@ func.func @cholesky() -> !V attributes {simit.export} {
   %springs = simit.get_set @springs : !Springs
   %points = simit.get_set @points : !Points
   %A = simit.assemble @link() to %springs reduce <add> : (!Springs) -> !A
-  %h = call @simit_rt_chol(%A) : (!A) -> !simit.opaque
+  %h = simit.factorize chol %A : !A
   %b = simit.field_read %points["b"] : !Points -> !V
-  %x = call @simit_rt_lltsolve(%h, %b) : (!simit.opaque, !V) -> !V
-  call @simit_rt_cholfree(%h) : (!simit.opaque) -> ()
+  %x = simit.factor_solve chol %h, %b : !V -> !V
+  simit.factor_free chol %h
   return %x : !V
 }
-func.func private @simit_rt_chol(!A) -> !simit.opaque attributes {simit.runtime_function = "chol"}
-func.func private @simit_rt_lltsolve(!simit.opaque, !V) -> !V attributes {simit.runtime_function = "lltsolve"}
-func.func private @simit_rt_cholfree(!simit.opaque) attributes {simit.runtime_function = "cholfree"}
 
 // CHECK-LABEL: func.func @backslash(
 // CHECK: %[[AE:.*]] = memref.expand_shape %{{.*}} {{\[\[}}0, 1, 2]]
@@ -95,12 +91,10 @@ func.func @mass(%p : !Point) -> !A {
 func.func @diagonal() attributes {simit.export} {
   %points = simit.get_set @points : !Points
   %A = simit.assemble @mass() to %points reduce <add> : (!Points) -> !A
-  %h = call @simit_rt_lu(%A) : (!A) -> !simit.opaque
-  call @simit_rt_lufree(%h) : (!simit.opaque) -> ()
+  %h = simit.factorize lu %A : !A
+  simit.factor_free lu %h
   return
 }
-func.func private @simit_rt_lu(!A) -> !simit.opaque attributes {simit.runtime_function = "lu"}
-func.func private @simit_rt_lufree(!simit.opaque) attributes {simit.runtime_function = "lufree"}
 
 // -----
 

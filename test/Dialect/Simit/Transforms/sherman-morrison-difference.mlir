@@ -21,7 +21,7 @@ func.func private @stiffness(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> 
 // CHECK: %[[NEG:.*]] = simit.neg %[[U]]
 // CHECK: %[[W:.*]] = simit.solve %[[A]], %[[NEG]] {simit.solve_note = "Sherman-Morrison A^-1 u"}
 // CHECK: %[[C:.*]] = simit.solve %[[A]], %[[B]] {simit.solve_note = "Sherman-Morrison A^-1 b"}
-// CHECK: %[[X:.*]] = call @simit_rt_sherman_morrison(%[[A]], %[[NEG]], %[[V]], %[[B]], %[[W]], %[[C]])
+// CHECK: %[[X:.*]] = simit.woodbury %[[A]], %[[B]], %[[C]], u[%[[NEG]]], v[%[[V]]], w[%[[W]]]
 // CHECK-NOT: simit.sub
 // CHECK: return %[[X]]
 func.func @difference() -> !V attributes {simit.export} {
@@ -40,7 +40,7 @@ func.func @difference() -> !V attributes {simit.export} {
 // CHECK-LABEL: func.func @outer_minus_matrix(
 // CHECK: %[[M:.*]] = simit.sub %{{.*}}, %{{.*}} : !simit.tensor
 // CHECK: simit.solve %[[M]], %{{.*}} : !simit.tensor
-// CHECK-NOT: simit_rt_sherman_morrison
+// CHECK-NOT: simit.woodbury
 // CHECK: return
 func.func @outer_minus_matrix() -> !V attributes {simit.export} {
   %springs = simit.get_set @springs : !Springs
@@ -67,7 +67,7 @@ func.func @outer_minus_matrix() -> !V attributes {simit.export} {
 // CHECK: %[[NU:.*]] = simit.neg %[[U]]
 // CHECK: %[[W2:.*]] = simit.solve %[[A]], %[[NU]] {simit.solve_note = "Woodbury A^-1 u2"}
 // CHECK: %[[C:.*]] = simit.solve %[[A]], %[[B]] {simit.solve_note = "Woodbury A^-1 b"}
-// CHECK: %[[X:.*]] = call @simit_rt_woodbury2(%[[A]], %[[NV]], %[[NU]], %[[B]], %[[V]], %[[B]], %[[W1]], %[[W2]], %[[C]])
+// CHECK: %[[X:.*]] = simit.woodbury %[[A]], %[[B]], %[[C]], u[%[[NV]], %[[NU]]], v[%[[B]], %[[V]]], w[%[[W1]], %[[W2]]]
 // CHECK-NOT: simit.sub
 // CHECK: return %[[X]]
 func.func @rank_two_difference() -> !V attributes {simit.export} {

@@ -15,7 +15,7 @@ func.func private @stiffness(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> 
 // CHECK-LABEL: func.func @sparse_sum(
 // CHECK: %[[M:.*]] = simit.add
 // CHECK: simit.solve %[[M]], %{{.*}} : !simit.tensor
-// CHECK-NOT: simit_rt_sherman_morrison
+// CHECK-NOT: simit.woodbury
 func.func @sparse_sum() -> !V attributes {simit.export} {
   %springs = simit.get_set @springs : !Springs
   %points = simit.get_set @points : !Points

@@ -22,7 +22,7 @@ func.func private @stiffness(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> 
 // CHECK: %[[W1:.*]] = simit.solve %[[A]], %[[V]] {simit.solve_note = "Woodbury A^-1 u1"}
 // CHECK: %[[W2:.*]] = simit.solve %[[A]], %[[U]] {simit.solve_note = "Woodbury A^-1 u2"}
 // CHECK: %[[C:.*]] = simit.solve %[[A]], %[[B]] {simit.solve_note = "Woodbury A^-1 b"}
-// CHECK: %[[X:.*]] = call @simit_rt_woodbury2(%[[A]], %[[V]], %[[U]], %[[B]], %[[V]], %[[B]], %[[W1]], %[[W2]], %[[C]])
+// CHECK: %[[X:.*]] = simit.woodbury %[[A]], %[[B]], %[[C]], u[%[[V]], %[[U]]], v[%[[B]], %[[V]]], w[%[[W1]], %[[W2]]]
 // CHECK-NOT: simit.add
 // CHECK: return %[[X]]
 func.func @rank_two() -> !V attributes {simit.export} {
@@ -41,9 +41,9 @@ func.func @rank_two() -> !V attributes {simit.export} {
 }
 
 // CHECK-LABEL: func.func @rank_five(
-// CHECK-NOT: simit_rt_woodbury
+// CHECK-NOT: simit.woodbury
 // CHECK: simit.solve %{{.*}}, %{{.*}} : !simit.tensor
-// CHECK-NOT: simit_rt_woodbury
+// CHECK-NOT: simit.woodbury
 // CHECK: return
 func.func @rank_five() -> !V attributes {simit.export} {
   %springs = simit.get_set @springs : !Springs

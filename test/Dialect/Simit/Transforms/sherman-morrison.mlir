@@ -21,10 +21,9 @@ func.func private @stiffness(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> 
 // CHECK-DAG: %[[B:.*]] = simit.field_read %{{.*}}["b"]
 // CHECK: %[[W:.*]] = simit.solve %[[A]], %[[U]] {simit.solve_note = "Sherman-Morrison A^-1 u"}
 // CHECK: %[[C:.*]] = simit.solve %[[A]], %[[B]] {simit.solve_note = "Sherman-Morrison A^-1 b"}
-// CHECK: %[[X:.*]] = call @simit_rt_sherman_morrison(%[[A]], %[[U]], %[[V]], %[[B]], %[[W]], %[[C]]) : (!simit.tensor<["points", "points"] x tensor<3x3xf64>>, !simit.tensor<["points"] x tensor<3xf64>>, !simit.tensor<["points"] x tensor<3xf64>>, !simit.tensor<["points"] x tensor<3xf64>>, !simit.tensor<["points"] x tensor<3xf64>>, !simit.tensor<["points"] x tensor<3xf64>>) -> !simit.tensor<["points"] x tensor<3xf64>>
+// CHECK: %[[X:.*]] = simit.woodbury %[[A]], %[[B]], %[[C]], u[%[[U]]], v[%[[V]]], w[%[[W]]] : !simit.tensor<["points", "points"] x tensor<3x3xf64>>, !simit.tensor<["points"] x tensor<3xf64>>
 // CHECK-NOT: simit.outer
 // CHECK: return %[[X]]
-// CHECK: func.func private @simit_rt_sherman_morrison({{.*}}) -> !simit.tensor<["points"] x tensor<3xf64>> attributes {simit.runtime_function = "sherman_morrison"}
 func.func @rank_one() -> !V attributes {simit.export} {
   %springs = simit.get_set @springs : !Springs
   %points = simit.get_set @points : !Points
@@ -56,7 +55,7 @@ func.func private @stiffness(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> 
 // CHECK: %[[A:.*]] = simit.assemble @stiffness()
 // CHECK: simit.solve %[[A]], %{{.*}} {simit.solve_note = "Sherman-Morrison A^-1 u"}
 // CHECK: simit.solve %[[A]], %{{.*}} {simit.solve_note = "Sherman-Morrison A^-1 b"}
-// CHECK: call @simit_rt_sherman_morrison(%[[A]],
+// CHECK: simit.woodbury %[[A]],
 func.func @outer_first() -> !V attributes {simit.export} {
   %springs = simit.get_set @springs : !Springs
   %points = simit.get_set @points : !Points

@@ -47,6 +47,13 @@ def Simit_StringPredicateAttr
   let assemblyFormat = "`<` $value `>`";
 }
 
+def Simit_FactorizationKind : I32EnumAttr<"FactorizationKind",
+    "a matrix factorisation", [
+      I32EnumAttrCase<"LU", 0, "lu">,
+      I32EnumAttrCase<"Cholesky", 1, "chol">]> {
+  let cppNamespace = "::mlir::simit";
+}
+
 //===----------------------------------------------------------------------===//
 // Storage of system matrices
 //===----------------------------------------------------------------------===//

@@ -702,26 +702,6 @@ def Simit_NormOp : Simit_Op<"norm", [Pure]> {
   let hasVerifier = 1;
 }
 
-def Simit_SolveOp : Simit_Op<"solve", [Pure]> {
-  let summary = "Solves a linear system (`A \\ b`)";
-  let description = [{
-    Returns `x` with `A x = b`: `b` is over `A`'s row hierarchy and `x` over
-    its column hierarchy. Works on system and local tensors.
-
-    ```mlir
-    %x = simit.solve %K, %f
-        : !simit.tensor<["points", "points"] x tensor<3x3xf64>>,
-          !simit.tensor<["points"] x tensor<3xf64>> -> !simit.tensor<["points"] x tensor<3xf64>>
-    ```
-  }];
-  let arguments = (ins Simit_TensorLike:$matrix, Simit_TensorLike:$rhs);
-  let results = (outs Simit_TensorLike:$result);
-  let assemblyFormat = [{
-    $matrix `,` $rhs attr-dict `:` qualified(type($matrix)) `,` qualified(type($rhs)) `->` qualified(type($result))
-  }];
-  let hasVerifier = 1;
-}
-
 def Simit_DetOp : Simit_Op<"det", [Pure]> {
   let summary = "Determinant of a dense 2x2, 3x3 or 4x4 float matrix";
   let description = [{
@@ -820,5 +800,6 @@ def Simit_StringCmpOp : Simit_Op<"string_cmp", [Pure]> {
 
 include "simit/Dialect/Simit/IR/SimitFusionOps.td"
 include "simit/Dialect/Simit/IR/SimitStorageOps.td"
+include "simit/Dialect/Simit/IR/SimitSolverOps.td"
 
 #endif // SIMIT_DIALECT_SIMIT_IR_SIMITOPS_TD

@@ -1,0 +1,31 @@
+// RUN: simit-opt %s | simit-opt | FileCheck %s
+// RUN: simit-opt %s --mlir-print-op-generic | simit-opt | FileCheck %s
+
+!K = !simit.tensor<["points", "points"] x tensor<3x3xf64>>
+!F = !simit.tensor<["points"] x tensor<3xf64>>
+
+// CHECK-LABEL: func.func @system
+func.func @system(%K : !K, %b : !F, %u : !F, %v : !F) -> !F {
+  // CHECK: %[[H:.*]] = simit.factorize chol %{{.*}} : !simit.tensor<["points", "points"] x tensor<3x3xf64>>
+  %h = simit.factorize chol %K : !K
+  // CHECK: simit.factor_solve chol %[[H]], %{{.*}} : !simit.tensor<["points"] x tensor<3xf64>> -> !simit.tensor<["points"] x tensor<3xf64>>
+  %x = simit.factor_solve chol %h, %b : !F -> !F
+  // CHECK: simit.factor_free chol %[[H]]
+  simit.factor_free chol %h
+  // CHECK: simit.triangular_solve %{{.*}}, %{{.*}} : !simit.tensor<["points", "points"] x tensor<3x3xf64>>, !simit.tensor<["points"] x tensor<3xf64>> -> !simit.tensor<["points"] x tensor<3xf64>>
+  %t = simit.triangular_solve %K, %b : !K, !F -> !F
+  // CHECK: simit.woodbury %{{.*}}, %{{.*}}, %{{.*}}, u[%{{.*}}, %{{.*}}], v[%{{.*}}, %{{.*}}], w[%{{.*}}, %{{.*}}] : !simit.tensor<["points", "points"] x tensor<3x3xf64>>, !simit.tensor<["points"] x tensor<3xf64>>
+  %w = simit.woodbury %K, %b, %x, u[%u, %v], v[%v, %u], w[%t, %x] : !K, !F
+  return %w : !F
+}
+
+// CHECK-LABEL: func.func @local
+func.func @local(%m : tensor<3x3xf64>, %b : tensor<3x2xf64>) -> tensor<3x2xf64> {
+  // CHECK: %[[H:.*]] = simit.factorize lu %{{.*}} : tensor<3x3xf64>
+  %h = simit.factorize lu %m : tensor<3x3xf64>
+  // CHECK: simit.factor_solve lu %[[H]], %{{.*}} : tensor<3x2xf64> -> tensor<3x2xf64>
+  %x = simit.factor_solve lu %h, %b : tensor<3x2xf64> -> tensor<3x2xf64>
+  // CHECK: simit.factor_free lu %[[H]]
+  simit.factor_free lu %h
+  return %x : tensor<3x2xf64>
+}

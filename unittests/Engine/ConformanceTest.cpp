@@ -44,12 +44,6 @@ constexpr NotYetRun kNotYetRun[] = {
     {"transposedProduct", "incidenceT"},
     {"productTransposed", "incidence"},
     {"productTransposed", "incidenceT"},
-    // Products and quotients of incidences (an edge may name one endpoint
-    // twice): rejected rather than computed per endpoint position.
-    {"elementwiseProduct", "incidence"},
-    {"elementwiseProduct", "incidenceT"},
-    {"elementwiseQuotient", "incidence"},
-    {"elementwiseQuotient", "incidenceT"},
     // Slices of blocked system matrices: the op verifier rejects them.
     {"rowSlices", nullptr, 3},
     {"luMatSolve", nullptr}, // lumatsolve and lltmatsolve on system matrices

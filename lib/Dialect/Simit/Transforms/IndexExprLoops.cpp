@@ -69,16 +69,19 @@ FailureOr<Value> IndexExprLowering::access(unsigned i) {
   // Matrices: the outer pair of indices becomes a block position.
   Value row = indices[0], col = indices[1];
   SmallVector<Value> inner(indices.begin() + 2, indices.end());
-  if (Value position = positions.lookup(i)) {
+  Value loopPosition = positions.lookup(i);
+  if (entrywiseIncidences && storage.kind == Storage::Kind::Incidence)
+    return incidenceEntry(i, row, col, inner, loopPosition);
+  if (loopPosition) {
     if (!gathered.contains(i)) {
-      inner.insert(inner.begin(), position);
+      inner.insert(inner.begin(), loopPosition);
       return memref::LoadOp::create(b, loc, lowered, inner).getResult();
     }
     // A union member without this block reads zero (at a valid position).
     Value present = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::sge,
-                                          position, l.indexConstant(0));
+                                          loopPosition, l.indexConstant(0));
     inner.insert(inner.begin(),
-                 arith::SelectOp::create(b, loc, present, position,
+                 arith::SelectOp::create(b, loc, present, loopPosition,
                                          l.indexConstant(0)));
     Value value = memref::LoadOp::create(b, loc, lowered, inner);
     return arith::SelectOp::create(b, loc, present, value,
@@ -95,16 +98,8 @@ FailureOr<Value> IndexExprLowering::access(unsigned i) {
                                    l.zeroOf(scalarType))
         .getResult();
   }
-  // Row and column are the input's own: read it in its own orientation.
   if (storage.kind == Storage::Kind::Incidence)
-    return l.sumIncidenceBlocks(loc, l.storageOf(input), row, col, scalarType,
-                                [&](Value position) {
-                                  SmallVector<Value> at(inner);
-                                  at.insert(at.begin(), position);
-                                  return memref::LoadOp::create(b, loc,
-                                                                lowered, at)
-                                      .getResult();
-                                });
+    return incidenceEntry(i, row, col, inner, Value());
   // Elsewhere a search of the row (a diagonal result read from a
   // pattern): zero where the matrix has no block.
   Value position = l.findBlock(loc, storage, row, col);
@@ -115,6 +110,29 @@ FailureOr<Value> IndexExprLowering::access(unsigned i) {
   Value value = memref::LoadOp::create(b, loc, lowered, inner);
   return arith::SelectOp::create(b, loc, present, value, l.zeroOf(scalarType))
       .getResult();
+}
+
+Value IndexExprLowering::incidenceEntry(unsigned i, Value row, Value col,
+                                        ArrayRef<Value> inner,
+                                        Value loopPosition) {
+  // Row and column are the input's own: read it in its own orientation.
+  Value input = op.getInputs()[i];
+  Value lowered = l.lookup(input);
+  const Storage storage = l.storageOf(input);
+  Value entry = l.sumIncidenceBlocks(
+      loc, storage, row, col, scalarType, [&](Value position) {
+        SmallVector<Value> at(inner);
+        at.insert(at.begin(), position);
+        return memref::LoadOp::create(b, loc, lowered, at).getResult();
+      });
+  if (!loopPosition)
+    return entry;
+  // A loop over the incidence's blocks visits an entry once per block of
+  // its edge at the endpoint: the entry counts at the first.
+  Value isFirst = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq,
+                                        l.findBlock(loc, storage, row, col),
+                                        loopPosition);
+  return arith::SelectOp::create(b, loc, isFirst, entry, l.zeroOf(scalarType));
 }
 
 std::optional<IndexExprLowering::Choice>

@@ -73,6 +73,13 @@ private:
   Value extent(unsigned v, unsigned i);
   /// Reads the component of input `i` at the bound variables.
   FailureOr<Value> access(unsigned i);
+  /// The entry (row, col) of incidence input `i` at block indices
+  /// `inner`: the sum of the edge's blocks at the endpoint. `loopPosition`,
+  /// when the loop runs over the incidence's blocks, is the block's
+  /// position: the entry is read at the edge's first block there, zero at
+  /// the others.
+  Value incidenceEntry(unsigned i, Value row, Value col, ArrayRef<Value> inner,
+                       Value loopPosition);
   /// Picks how to bind the next level of one of `vars`: returns the variable
   /// and whether a matrix couples it (then the loop runs over its pattern).
   struct Choice {
@@ -117,6 +124,11 @@ private:
   llvm::SmallDenseSet<unsigned> gathered;
   /// The swapped variable lists of transposed incidences, by operand.
   SmallVector<SmallVector<int64_t, 2>> swappedLists;
+  /// Whether the body multiplies or divides matrix entries and an input is
+  /// an incidence: incidences are then read as entries (the sum of an
+  /// edge's blocks at the endpoint), not block by block, and an incidence
+  /// result keeps each entry in the edge's first block there.
+  bool entrywiseIncidences = false;
   /// Variables summed by a simit.index_sum in the body.
   llvm::SmallDenseSet<unsigned> nestedVars;
   bool failedInside = false;

@@ -208,15 +208,13 @@ LogicalResult IndexExprLowering::lower() {
 
   // An incidence holds a block per (edge, endpoint position); an edge
   // naming one endpoint twice has two blocks in one column, which sum to
-  // the entry. Sums and scalings of the blocks are right; products and
-  // quotients of two matrices' blocks are not.
-  for (Value input : op.getInputs()) {
-    Storage s = l.storageOf(input);
-    if (s.kind == Storage::Kind::Incidence && multipliesMatrices(op))
-      return op.emitError("element-wise products and quotients of matrices "
-                          "stored as ")
-             << s.describe() << " are not supported by the loop lowering yet";
-  }
+  // the entry. Sums and scalings of the blocks are right position by
+  // position; products and quotients of two matrices' blocks are computed
+  // on the entries.
+  entrywiseIncidences =
+      multipliesMatrices(op) && llvm::any_of(op.getInputs(), [&](Value in) {
+        return l.storageOf(in).kind == Storage::Kind::Incidence;
+      });
   // Inputs, then the result.
   swappedLists.resize(op.getInputs().size() + 1);
   for (auto [i, input] : llvm::enumerate(op.getInputs())) {
@@ -343,11 +341,24 @@ LogicalResult IndexExprLowering::lower() {
       if (failed(value))
         return failure();
       SmallVector<Value> indices = levelMajor(resultVars);
+      Value stored = *value;
       if (resultStorage.isMatrix()) {
+        Value position = positions.lookup(resultOperand);
+        // An entry of an incidence is its edge's first block at the
+        // endpoint; the edge's other blocks there are zero.
+        if (entrywiseIncidences &&
+            resultStorage.kind == Storage::Kind::Incidence) {
+          Value first =
+              l.findBlock(loc, resultStorage, indices[0], indices[1]);
+          Value isFirst = arith::CmpIOp::create(
+              b, loc, arith::CmpIPredicate::eq, first, position);
+          stored = arith::SelectOp::create(b, loc, isFirst, stored,
+                                           l.zeroOf(scalarType));
+        }
         indices.erase(indices.begin(), indices.begin() + 2);
-        indices.insert(indices.begin(), positions.lookup(resultOperand));
+        indices.insert(indices.begin(), position);
       }
-      memref::StoreOp::create(b, loc, *value, output, indices);
+      memref::StoreOp::create(b, loc, stored, output, indices);
       return success();
     }
     LogicalResult inner = success();

@@ -376,6 +376,11 @@ private:
   /// Products of system matrices (LowerProducts.cpp): the runtime's
   /// numeric SpGEMM on the bind-time product pattern.
   LogicalResult lowerMatMul(MatMulOp op);
+  /// H G of the transposed incidence H and the incidence G (stored as `g`)
+  /// of one edge set, on the edge set's pattern `result`: a loop over the
+  /// edges adding the products of their blocks.
+  LogicalResult lowerIncidenceGram(MatMulOp op, const Storage &g,
+                                   const Storage &result);
   /// simit.factorize, simit.factor_solve, simit.factor_free and
   /// simit.triangular_solve: the runtime's dense solvers for local tensors
   /// (through memref<?xf64>; handles are !llvm.ptr), else

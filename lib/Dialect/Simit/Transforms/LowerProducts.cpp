@@ -4,7 +4,9 @@
 // expr keeps) is stored on the pattern of the product, built once per
 // binding by the runtime (symbolic SpGEMM, the product_rowptr/colidx
 // bindings); each call computes the values with the runtime's numeric
-// product. A block diagonal factor keeps the other factor's pattern.
+// product. A block diagonal factor keeps the other factor's pattern. The
+// transpose of an incidence times the incidence is summed edge by edge on
+// the edge set's pattern.
 //
 //===----------------------------------------------------------------------===//
 
@@ -21,6 +23,86 @@ static bool isProductOperand(const Storage &s) {
   return s.kind == Storage::Kind::Diagonal || s.isBCSR();
 }
 
+/// Whether `h` (over (V, E)) times `g` (over (E, V)) is an incidence's
+/// transpose times an incidence of one edge set, stored on its pattern
+/// (simit-assign-storage composes them so).
+static bool isIncidenceGram(const Storage &h, const Storage &g,
+                            const Storage &result) {
+  return h.kind == Storage::Kind::Incidence && h.transposed &&
+         g.kind == Storage::Kind::Incidence && !g.transposed &&
+         h.edges == g.edges && result.kind == Storage::Kind::Pattern &&
+         result.edges == g.edges && result.rows == h.rows &&
+         result.cols == g.cols;
+}
+
+LogicalResult FunctionLowering::lowerIncidenceGram(MatMulOp op,
+                                                   const Storage &g,
+                                                   const Storage &result) {
+  // Row e of g holds a block per endpoint position k (block e * c + k), and
+  // h = the transposed incidence holds (endpoint_k(e), e) there too; an
+  // edge adds h_i g_j at (endpoint_i(e), endpoint_j(e)) for every pair of
+  // positions, which is where an assembly over the edge set writes (the
+  // bind-time pattern_locations). Products of blocks are bilinear, so an
+  // edge naming a vertex twice adds each of its blocks there.
+  Location loc = op.getLoc();
+  auto type = cast<SystemTensorType>(op.getType());
+  auto blockShape = [](Value v) {
+    SmallVector<int64_t> shape =
+        cast<SystemTensorType>(v.getType()).getBlockShape();
+    return shape.empty() ? SmallVector<int64_t>{1, 1} : shape;
+  };
+  bool blocked = !type.getBlockShape().empty();
+  SmallVector<int64_t> hBlock = blockShape(op.getLhs()),
+                       gBlock = blockShape(op.getRhs());
+  int64_t rows = hBlock[0], mid = hBlock[1], cols = gBlock[1];
+  int64_t c = g.cardinality;
+  Value h = lookup(op.getLhs()), gArray = lookup(op.getRhs());
+  Value out = allocSystem(loc, type, result, /*zeroFill=*/true);
+  Value locations = getPatternArray(BindingKind::PatternLocations,
+                                    result.edges, result.rows, result.cols, c);
+  // Edges write shared blocks: the loop stays sequential.
+  scf::ForOp::create(
+      b, loc, indexConstant(0), getSetSize(g.edges), indexConstant(1),
+      ValueRange{}, [&](OpBuilder &nb, Location, Value e, ValueRange) {
+        OpBuilder::InsertionGuard guard(b);
+        b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
+        Value first = arith::MulIOp::create(b, loc, e, indexConstant(c));
+        auto at = [&](Value block, int64_t r, int64_t s) {
+          SmallVector<Value> indices{block};
+          if (blocked)
+            indices.append({indexConstant(r), indexConstant(s)});
+          return indices;
+        };
+        for (int64_t i = 0; i < c; ++i) {
+          Value hPos = arith::AddIOp::create(b, loc, first, indexConstant(i));
+          for (int64_t j = 0; j < c; ++j) {
+            Value gPos =
+                arith::AddIOp::create(b, loc, first, indexConstant(j));
+            Value pos = arith::IndexCastOp::create(
+                b, loc, b.getIndexType(),
+                memref::LoadOp::create(
+                    b, loc, locations,
+                    ValueRange{e, indexConstant(i * c + j)}));
+            for (int64_t r = 0; r < rows; ++r)
+              for (int64_t s = 0; s < cols; ++s) {
+                Value sum = memref::LoadOp::create(b, loc, out, at(pos, r, s));
+                for (int64_t m = 0; m < mid; ++m) {
+                  Value x = memref::LoadOp::create(b, loc, h, at(hPos, r, m));
+                  Value y =
+                      memref::LoadOp::create(b, loc, gArray, at(gPos, m, s));
+                  sum = arith::AddFOp::create(
+                      b, loc, sum, arith::MulFOp::create(b, loc, x, y));
+                }
+                memref::StoreOp::create(b, loc, sum, out, at(pos, r, s));
+              }
+          }
+        }
+        scf::YieldOp::create(b, loc);
+      });
+  map(op, out);
+  return success();
+}
+
 LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
   Location loc = op.getLoc();
   auto type = dyn_cast<SystemTensorType>(op.getType());
@@ -29,12 +111,14 @@ LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
                         "matrices");
   Storage a = storageOf(op.getLhs()), b2 = storageOf(op.getRhs());
   Storage storage = storageOf(op);
+  Type component = type.getComponentType();
+  if (isIncidenceGram(a, b2, storage) && isa<FloatType>(component))
+    return lowerIncidenceGram(op, b2, storage);
   if (!isProductOperand(a) || !isProductOperand(b2) ||
       !isProductOperand(storage))
     return op.emitError("products are supported of matrices assembled from "
                         "sets and their sums; these are stored as ")
            << a.describe() << " and " << b2.describe();
-  Type component = type.getComponentType();
   if (!component.isF64() && !component.isF32())
     return op.emitError("products of system matrices take f64 or f32 "
                         "components");

@@ -381,6 +381,11 @@ private:
   /// edges adding the products of their blocks.
   LogicalResult lowerIncidenceGram(MatMulOp op, const Storage &g,
                                    const Storage &result);
+  /// The incidence (stored as `incidence`) times a block diagonal matrix,
+  /// or the diagonal times the incidence: each block of the incidence
+  /// scaled by the diagonal's block at its column or row.
+  LogicalResult lowerScaledIncidence(MatMulOp op, const Storage &incidence,
+                                     bool diagonalOnRight);
   /// simit.factorize, simit.factor_solve, simit.factor_free and
   /// simit.triangular_solve: the runtime's dense solvers for local tensors
   /// (through memref<?xf64>; handles are !llvm.ptr), else

@@ -6,12 +6,14 @@
 // bindings); each call computes the values with the runtime's numeric
 // product. A block diagonal factor keeps the other factor's pattern. The
 // transpose of an incidence times the incidence is summed edge by edge on
-// the edge set's pattern.
+// the edge set's pattern; a diagonal factor scales an incidence's blocks.
 //
 //===----------------------------------------------------------------------===//
 
 #include "LoopsLowering.h"
 #include "SourcePosition.h"
+
+#include <array>
 
 using namespace mlir;
 using namespace mlir::simit;
@@ -35,6 +37,60 @@ static bool isIncidenceGram(const Storage &h, const Storage &g,
          result.cols == g.cols;
 }
 
+/// The (rows, cols) of the blocks of a system matrix; scalars are 1x1.
+static std::pair<int64_t, int64_t> blockShape(Value matrix) {
+  SmallVector<int64_t> shape =
+      cast<SystemTensorType>(matrix.getType()).getBlockShape();
+  if (shape.empty())
+    return {1, 1};
+  return {shape[0], shape[1]};
+}
+
+/// out[at] = x[xAt] y[yAt] of one block each, or out[at] += it with
+/// `accumulate`: a (rows x mid) block times a (mid x cols) one, unrolled
+/// (arrays of scalars have no block dimensions).
+static void emitBlockProduct(FunctionLowering &l, Location loc, bool blocked,
+                             std::array<int64_t, 3> shape, Value out, Value at,
+                             Value x, Value xAt, Value y, Value yAt,
+                             bool accumulate) {
+  OpBuilder &b = l.b;
+  auto index = [&](Value block, int64_t r, int64_t c) {
+    SmallVector<Value> indices{block};
+    if (blocked)
+      indices.append({l.indexConstant(r), l.indexConstant(c)});
+    return indices;
+  };
+  auto [rows, mid, cols] = shape;
+  for (int64_t r = 0; r < rows; ++r)
+    for (int64_t c = 0; c < cols; ++c) {
+      Value sum =
+          accumulate ? memref::LoadOp::create(b, loc, out, index(at, r, c))
+                     : Value();
+      for (int64_t m = 0; m < mid; ++m) {
+        Value xrm = memref::LoadOp::create(b, loc, x, index(xAt, r, m));
+        Value ymc = memref::LoadOp::create(b, loc, y, index(yAt, m, c));
+        Value term = arith::MulFOp::create(b, loc, xrm, ymc);
+        sum = sum ? arith::AddFOp::create(b, loc, sum, term).getResult()
+                  : term;
+      }
+      memref::StoreOp::create(b, loc, sum, out, index(at, r, c));
+    }
+}
+
+/// Emits `body(e)` in a sequential loop over the edges of `edges`.
+static void forEachEdge(FunctionLowering &l, Location loc, StringAttr edges,
+                        function_ref<void(Value)> body) {
+  OpBuilder &b = l.b;
+  scf::ForOp::create(
+      b, loc, l.indexConstant(0), l.getSetSize(edges), l.indexConstant(1),
+      ValueRange{}, [&](OpBuilder &nb, Location, Value e, ValueRange) {
+        OpBuilder::InsertionGuard guard(b);
+        b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
+        body(e);
+        scf::YieldOp::create(b, loc);
+      });
+}
+
 LogicalResult FunctionLowering::lowerIncidenceGram(MatMulOp op,
                                                    const Storage &g,
                                                    const Storage &result) {
@@ -46,59 +102,60 @@ LogicalResult FunctionLowering::lowerIncidenceGram(MatMulOp op,
   // edge naming a vertex twice adds each of its blocks there.
   Location loc = op.getLoc();
   auto type = cast<SystemTensorType>(op.getType());
-  auto blockShape = [](Value v) {
-    SmallVector<int64_t> shape =
-        cast<SystemTensorType>(v.getType()).getBlockShape();
-    return shape.empty() ? SmallVector<int64_t>{1, 1} : shape;
-  };
   bool blocked = !type.getBlockShape().empty();
-  SmallVector<int64_t> hBlock = blockShape(op.getLhs()),
-                       gBlock = blockShape(op.getRhs());
-  int64_t rows = hBlock[0], mid = hBlock[1], cols = gBlock[1];
+  std::array<int64_t, 3> shape = {blockShape(op.getLhs()).first,
+                                  blockShape(op.getLhs()).second,
+                                  blockShape(op.getRhs()).second};
   int64_t c = g.cardinality;
   Value h = lookup(op.getLhs()), gArray = lookup(op.getRhs());
   Value out = allocSystem(loc, type, result, /*zeroFill=*/true);
   Value locations = getPatternArray(BindingKind::PatternLocations,
                                     result.edges, result.rows, result.cols, c);
   // Edges write shared blocks: the loop stays sequential.
-  scf::ForOp::create(
-      b, loc, indexConstant(0), getSetSize(g.edges), indexConstant(1),
-      ValueRange{}, [&](OpBuilder &nb, Location, Value e, ValueRange) {
-        OpBuilder::InsertionGuard guard(b);
-        b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
-        Value first = arith::MulIOp::create(b, loc, e, indexConstant(c));
-        auto at = [&](Value block, int64_t r, int64_t s) {
-          SmallVector<Value> indices{block};
-          if (blocked)
-            indices.append({indexConstant(r), indexConstant(s)});
-          return indices;
-        };
-        for (int64_t i = 0; i < c; ++i) {
-          Value hPos = arith::AddIOp::create(b, loc, first, indexConstant(i));
-          for (int64_t j = 0; j < c; ++j) {
-            Value gPos =
-                arith::AddIOp::create(b, loc, first, indexConstant(j));
-            Value pos = arith::IndexCastOp::create(
-                b, loc, b.getIndexType(),
-                memref::LoadOp::create(
-                    b, loc, locations,
-                    ValueRange{e, indexConstant(i * c + j)}));
-            for (int64_t r = 0; r < rows; ++r)
-              for (int64_t s = 0; s < cols; ++s) {
-                Value sum = memref::LoadOp::create(b, loc, out, at(pos, r, s));
-                for (int64_t m = 0; m < mid; ++m) {
-                  Value x = memref::LoadOp::create(b, loc, h, at(hPos, r, m));
-                  Value y =
-                      memref::LoadOp::create(b, loc, gArray, at(gPos, m, s));
-                  sum = arith::AddFOp::create(
-                      b, loc, sum, arith::MulFOp::create(b, loc, x, y));
-                }
-                memref::StoreOp::create(b, loc, sum, out, at(pos, r, s));
-              }
-          }
-        }
-        scf::YieldOp::create(b, loc);
-      });
+  forEachEdge(*this, loc, g.edges, [&](Value e) {
+    Value first = arith::MulIOp::create(b, loc, e, indexConstant(c));
+    for (int64_t i = 0; i < c; ++i) {
+      Value hAt = arith::AddIOp::create(b, loc, first, indexConstant(i));
+      for (int64_t j = 0; j < c; ++j) {
+        Value gAt = arith::AddIOp::create(b, loc, first, indexConstant(j));
+        Value at = arith::IndexCastOp::create(
+            b, loc, b.getIndexType(),
+            memref::LoadOp::create(b, loc, locations,
+                                   ValueRange{e, indexConstant(i * c + j)}));
+        emitBlockProduct(*this, loc, blocked, shape, out, at, h, hAt, gArray,
+                         gAt, /*accumulate=*/true);
+      }
+    }
+  });
+  map(op, out);
+  return success();
+}
+
+LogicalResult FunctionLowering::lowerScaledIncidence(MatMulOp op,
+                                                     const Storage &incidence,
+                                                     bool diagonalOnRight) {
+  // Block e * c + k of the incidence is (e, endpoint_k(e)), or
+  // (endpoint_k(e), e) transposed; the diagonal factor scales it by its
+  // block at the column (on the right) or the row (on the left).
+  Location loc = op.getLoc();
+  auto type = cast<SystemTensorType>(op.getType());
+  bool blocked = !type.getBlockShape().empty();
+  std::array<int64_t, 3> shape = {blockShape(op.getLhs()).first,
+                                  blockShape(op.getLhs()).second,
+                                  blockShape(op.getRhs()).second};
+  Value x = lookup(op.getLhs()), y = lookup(op.getRhs());
+  Value out = allocSystem(loc, type, incidence, /*zeroFill=*/false);
+  // Each block is written once, by its edge.
+  forEachEdge(*this, loc, incidence.edges, [&](Value e) {
+    forEachEdgeBlock(loc, incidence, e, [&](Value endpoint, Value at) {
+      Value row = incidence.transposed ? endpoint : e;
+      Value col = incidence.transposed ? e : endpoint;
+      Value xAt = diagonalOnRight ? at : row;
+      Value yAt = diagonalOnRight ? col : at;
+      emitBlockProduct(*this, loc, blocked, shape, out, at, x, xAt, y, yAt,
+                       /*accumulate=*/false);
+    });
+  });
   map(op, out);
   return success();
 }
@@ -112,8 +169,21 @@ LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
   Storage a = storageOf(op.getLhs()), b2 = storageOf(op.getRhs());
   Storage storage = storageOf(op);
   Type component = type.getComponentType();
-  if (isIncidenceGram(a, b2, storage) && isa<FloatType>(component))
-    return lowerIncidenceGram(op, b2, storage);
+  if (isa<FloatType>(component)) {
+    if (isIncidenceGram(a, b2, storage))
+      return lowerIncidenceGram(op, b2, storage);
+    // A diagonal factor keeps an incidence's storage.
+    auto isIncidence = [](const Storage &s) {
+      return s.kind == Storage::Kind::Incidence;
+    };
+    auto isDiagonal = [](const Storage &s) {
+      return s.kind == Storage::Kind::Diagonal;
+    };
+    if (isIncidence(a) && isDiagonal(b2) && storage == a)
+      return lowerScaledIncidence(op, a, /*diagonalOnRight=*/true);
+    if (isDiagonal(a) && isIncidence(b2) && storage == b2)
+      return lowerScaledIncidence(op, b2, /*diagonalOnRight=*/false);
+  }
   if (!isProductOperand(a) || !isProductOperand(b2) ||
       !isProductOperand(storage))
     return op.emitError("products are supported of matrices assembled from "

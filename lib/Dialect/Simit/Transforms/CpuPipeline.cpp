@@ -39,6 +39,12 @@ void mlir::simit::buildSimitCpuPipeline(
   pm.addPass(createConvertSimitToLoops());
   pm.addPass(createCanonicalizerPass());
   pm.addPass(createCSEPass());
+  // Loops over the components of local tensors (element functions) become
+  // straight-line code with constant positions: the tensors stay in
+  // registers instead of on the stack.
+  pm.addPass(createSimitUnrollLocalTensorLoops());
+  pm.addPass(createCanonicalizerPass());
+  pm.addPass(createCSEPass());
   // Checks that remain after folding (dynamic indices, divisors) end the
   // run with their source position instead of trapping or reading poison.
   pm.addNestedPass<func::FuncOp>(createSimitGuardIntegerDivision());

@@ -36,7 +36,9 @@ void mlir::simit::buildSimitCpuPipeline(
   pm.addPass(createSimitLinalgToIndexExpr());
   pm.addPass(createSimitFuseIndexExpr());
   pm.addPass(createSimitAssignStorage());
-  pm.addPass(createConvertSimitToLoops());
+  ConvertSimitToLoopsOptions loopsOptions;
+  loopsOptions.prefetchScatterBlocks = true;
+  pm.addPass(createConvertSimitToLoops(loopsOptions));
   pm.addPass(createCanonicalizerPass());
   pm.addPass(createCSEPass());
   // Loops over the components of local tensors (element functions) become

@@ -129,7 +129,18 @@ def ConvertSimitToLoops : Pass<"convert-simit-to-loops", "::mlir::ModuleOp"> {
     described by their `simit.bindings` attribute (docs/lowering.md); the
     element functions and externs are erased. Unsupported input is reported
     on the operation.
+
+    With `prefetch-scatter-blocks` (the CPU pipeline's setting), an element
+    loop that accumulates into blocks of a BCSR matrix prefetches them
+    (`memref.prefetch`) at the start of each element, from its location
+    table.
   }];
+  let options = [
+    Option<"prefetchScatterBlocks", "prefetch-scatter-blocks", "bool",
+           /*default=*/"false",
+           "Prefetch the BCSR blocks an element accumulates into at the "
+           "start of the element">,
+  ];
   let dependentDialects = ["::mlir::func::FuncDialect",
                            "::mlir::scf::SCFDialect",
                            "::mlir::arith::ArithDialect",

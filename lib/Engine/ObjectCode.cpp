@@ -2,6 +2,7 @@
 
 #include "ObjectCode.h"
 
+#include "PerfMap.h"
 #include "RuntimeSymbols.h"
 #include "Threads.h"
 
@@ -85,6 +86,7 @@ simit::loadObjectCode(const ObjectCode &code) {
                  .create();
   if (!jit)
     return jit.takeError();
+  addPerfMapWhenAsked(**jit);
   llvm::orc::MangleAndInterner mangle((*jit)->getExecutionSession(),
                                       (*jit)->getDataLayout());
   // OpenMP calls (__kmpc_*) go to the runtime the engine is linked with,

@@ -623,6 +623,8 @@ LogicalResult FunctionLowering::run(func::FuncOp original) {
 namespace {
 struct ConvertSimitToLoops
     : public mlir::simit::impl::ConvertSimitToLoopsBase<ConvertSimitToLoops> {
+  using Base::Base;
+
   void runOnOperation() override {
     ModuleOp module = getOperation();
     // Element functions are those maps apply; they are inlined, not
@@ -670,6 +672,7 @@ struct ConvertSimitToLoops
           (original.getSymName() + ".lowered").str(),
           builder.getFunctionType({}, {}));
       FunctionLowering lowering(module, lowered);
+      lowering.prefetchScatterBlocks = prefetchScatterBlocks;
       if (failed(lowering.run(original))) {
         lowered.erase();
         failedAny = true;

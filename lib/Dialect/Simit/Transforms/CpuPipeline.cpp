@@ -36,7 +36,15 @@ void mlir::simit::buildSimitCpuPipeline(
   pm.addPass(createSimitLinalgToIndexExpr());
   pm.addPass(createSimitFuseIndexExpr());
   pm.addPass(createSimitAssignStorage());
-  pm.addPass(createConvertSimitToLoops());
+  ConvertSimitToLoopsOptions loopsOptions;
+  loopsOptions.prefetchScatterBlocks = true;
+  pm.addPass(createConvertSimitToLoops(loopsOptions));
+  pm.addPass(createCanonicalizerPass());
+  pm.addPass(createCSEPass());
+  // Loops over the components of local tensors (element functions) become
+  // straight-line code with constant positions: the tensors stay in
+  // registers instead of on the stack.
+  pm.addPass(createSimitUnrollLocalTensorLoops());
   pm.addPass(createCanonicalizerPass());
   pm.addPass(createCSEPass());
   // Checks that remain after folding (dynamic indices, divisors) end the

@@ -26,6 +26,8 @@
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
 #include "mlir/IR/Builders.h"
+#include "llvm/ADT/MapVector.h"
+#include "llvm/ADT/SetVector.h"
 #include "llvm/ADT/StringMap.h"
 
 #include <functional>
@@ -185,6 +187,12 @@ struct ElementContext {
   DenseMap<Value, unsigned> scalarSlots;
   /// Whether some write goes to a location shared with other elements.
   bool scatters = false;
+  /// The results (positions) that accumulate into blocks of a Pattern
+  /// matrix, with the positions in the element's location table row they
+  /// accumulate into (none: positions not known when lowering, all of
+  /// them): those blocks are prefetched at the start of the element.
+  llvm::MapVector<unsigned, llvm::SmallSetVector<int64_t, 16>>
+      patternAccumulations;
 };
 
 class FunctionLowering {
@@ -347,6 +355,9 @@ public:
   /// Tuples: the edge set and lowered edge index.
   DenseMap<Value, std::pair<SetType, Value>> tuples;
   ElementContext *element = nullptr;
+  /// Whether element loops prefetch the BCSR blocks they accumulate into
+  /// (convert-simit-to-loops{prefetch-scatter-blocks}).
+  bool prefetchScatterBlocks = false;
   /// Where memref.alloca of local variables go: the function entry, or the
   /// alloca scope of the set loop's body (so stack use does not grow with
   /// the set).

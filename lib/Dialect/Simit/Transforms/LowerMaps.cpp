@@ -13,6 +13,8 @@
 
 #include "LoopsLowering.h"
 
+#include "mlir/Dialect/Utils/StaticValueUtils.h"
+
 using namespace mlir;
 using namespace mlir::simit;
 using namespace mlir::simit::loops;
@@ -193,6 +195,14 @@ static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
     prefix.push_back(
         arith::IndexCastOp::create(b, loc, b.getIndexType(), block));
     scatters = true;
+    if (ctx.accumulate) {
+      auto &written = ctx.patternAccumulations[r];
+      std::optional<int64_t> ci = getConstantIntValue(i);
+      std::optional<int64_t> cj = getConstantIntValue(j);
+      for (int64_t k = 0; k < c * c; ++k)
+        if (!ci || !cj || k == *ci * c + *cj)
+          written.insert(k);
+    }
     break;
   }
   case Storage::Kind::Stencil: {
@@ -258,6 +268,51 @@ static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
                 l.component(insert.getValue().getType(), value, c));
   }
   return success();
+}
+
+/// Prefetches, at the start of the element, every block of the element's
+/// pattern that the element accumulates into: the blocks of a large matrix
+/// are scattered over memory, and without the prefetch each accumulation
+/// (a load, an add, a store) waits for its block at the end of the element
+/// function, where the loads of the next element cannot overlap it.
+static void prefetchPatternBlocks(FunctionLowering &l,
+                                  const ElementContext &ctx) {
+  OpBuilder &b = l.b;
+  Location loc = ctx.element.getLoc();
+  int64_t c = ctx.set.getCardinality();
+  for (const auto &[r, written] : ctx.patternAccumulations) {
+    const Storage &storage = ctx.outputStorages[r];
+    Value output = ctx.outputs[r];
+    auto type = cast<MemRefType>(output.getType());
+    Value locations =
+        l.getPatternArray(BindingKind::PatternLocations, storage.edges,
+                          storage.rows, storage.cols, c);
+    // One component per cache line of the block, and its last.
+    int64_t components = 1;
+    for (int64_t d = 1; d < type.getRank(); ++d)
+      components *= type.getDimSize(d);
+    Type component = type.getElementType();
+    int64_t bytes = component.isIntOrFloat()
+                        ? std::max<int64_t>(1, component.getIntOrFloatBitWidth() / 8)
+                        : 16;
+    int64_t perLine = std::max<int64_t>(1, 64 / bytes);
+    SmallVector<int64_t> touched;
+    for (int64_t component = 0; component < components; component += perLine)
+      touched.push_back(component);
+    if (touched.back() != components - 1)
+      touched.push_back(components - 1);
+    for (int64_t k : written) {
+      Value block = arith::IndexCastOp::create(
+          b, loc, b.getIndexType(),
+          memref::LoadOp::create(b, loc, locations,
+                                 ValueRange{ctx.element, l.indexConstant(k)}));
+      for (int64_t component : touched)
+        memref::PrefetchOp::create(b, loc, output,
+                                   l.blockIndices(type, {block}, component),
+                                   /*isWrite=*/true,
+                                   /*localityHint=*/3, /*isDataCache=*/true);
+    }
+  }
 }
 
 LogicalResult FunctionLowering::lowerElementAccess(Operation *op,
@@ -467,6 +522,9 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
   allocaBlock = savedAllocaBlock;
   if (failed(lowered))
     return failure();
+  b.setInsertionPointToStart(body);
+  if (prefetchScatterBlocks)
+    prefetchPatternBlocks(*this, ctx);
   // Iterations write shared locations (endpoints, matrix blocks, scalar
   // results): a parallel backend must make these updates atomic or colour
   // the set.

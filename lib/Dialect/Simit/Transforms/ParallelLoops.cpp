@@ -158,6 +158,8 @@ LogicalResult LoopClassifier::collectAccesses() {
     } else if (auto store = dyn_cast<vector::StoreOp>(op)) {
       record(store.getBase(), store.getIndices(),
              store.getVectorType().getRank(), true);
+    } else if (isa<memref::PrefetchOp>(op)) {
+      // A prefetch changes no value, wherever it points.
     } else if (auto call = dyn_cast<func::CallOp>(op);
                call && call.getCallee() == kRuntimeFail) {
       // A failed assertion (simit-lower-assertions): inside a parallel

@@ -129,7 +129,18 @@ def ConvertSimitToLoops : Pass<"convert-simit-to-loops", "::mlir::ModuleOp"> {
     described by their `simit.bindings` attribute (docs/lowering.md); the
     element functions and externs are erased. Unsupported input is reported
     on the operation.
+
+    With `prefetch-scatter-blocks` (the CPU pipeline's setting), an element
+    loop that accumulates into blocks of a BCSR matrix prefetches them
+    (`memref.prefetch`) at the start of each element, from its location
+    table.
   }];
+  let options = [
+    Option<"prefetchScatterBlocks", "prefetch-scatter-blocks", "bool",
+           /*default=*/"false",
+           "Prefetch the BCSR blocks an element accumulates into at the "
+           "start of the element">,
+  ];
   let dependentDialects = ["::mlir::func::FuncDialect",
                            "::mlir::scf::SCFDialect",
                            "::mlir::arith::ArithDialect",
@@ -221,6 +232,26 @@ def SimitHoistParallelAllocas : Pass<"simit-hoist-parallel-allocas", "::mlir::fu
   let dependentDialects = ["::mlir::memref::MemRefDialect"];
 }
 
+def SimitUnrollLocalTensorLoops : Pass<"simit-unroll-local-tensor-loops", "::mlir::ModuleOp"> {
+  let summary = "Fully unrolls small loops that index local tensors";
+  let description = [{
+    Unrolls every `scf.for` with constant bounds whose induction variable
+    decides the position of a `vector.extract` or `vector.insert` in its
+    body (a component of a local tensor, LowerLocalTensors.cpp), inner loops
+    first, when the unrolled body has at most `max-unrolled-ops` ops. A
+    dynamic position forces LLVM to keep the whole vector in memory; after
+    unrolling and canonicalization every position is a constant and the
+    local tensors of element functions stay in registers. Run it after
+    convert-simit-to-loops, followed by canonicalization.
+  }];
+  let options = [
+    Option<"maxUnrolledOps", "max-unrolled-ops", "int64_t",
+           /*default=*/"16384",
+           "Loops whose trip count times body size exceeds this stay loops">,
+  ];
+  let dependentDialects = ["::mlir::arith::ArithDialect"];
+}
+
 def SimitGuardIntegerDivision : Pass<"simit-guard-integer-division", "::mlir::func::FuncOp"> {
   let summary = "Asserts that integer divisions and mods cannot trap";
   let description = [{
@@ -306,7 +337,8 @@ def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
   let description = [{
     Inlines functions, solves sparse-plus-outer-product systems by
     Sherman–Morrison, rewrites linear algebra as index expressions, fuses
-    them, lowers to loops, marks the set loops that may run on all cores and
+    them, lowers to loops, unrolls the loops that index local tensors
+    (simit-unroll-local-tensor-loops), marks the set loops that may run on all cores and
     makes their results independent of the number of threads
     (simit-parallel-loops), frees temporaries, with `openmp` runs the marked
     loops on OpenMP threads (simit-parallel-loops-to-openmp), moves the stack

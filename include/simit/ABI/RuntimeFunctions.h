@@ -1,16 +1,19 @@
-//===--- RuntimeFunctions.h - Host functions of lowered Simit code -*- C++ -*-===//
+//===--- RuntimeFunctions.h - Functions lowered code calls ------*- C++ -*-===//
 //
-// Functions JIT-compiled Simit code calls, with C linkage. The engine
-// defines them in every JIT it links code into, so lowered code declares them
-// as `func.func private` and calls them by name (docs/api.md lists the MLIR
-// declarations).
+// Functions JIT-compiled Simit code calls, with C linkage: the runtime
+// library SimitRuntimeABI (lib/ABI), which does not depend on MLIR. Lowered
+// code declares them as `func.func private` and calls them by the names of
+// simit/ABI/RuntimeFunctionNames.h, which the engine binds to these
+// functions in every JIT it links code into (docs/api.md lists the MLIR
+// declarations). Memrefs arrive as the descriptors of simit/ABI/MemRef.h.
 //
 //===----------------------------------------------------------------------===//
 
-#ifndef SIMIT_ENGINE_RUNTIMEFUNCTIONS_H
-#define SIMIT_ENGINE_RUNTIMEFUNCTIONS_H
+#ifndef SIMIT_ABI_RUNTIMEFUNCTIONS_H
+#define SIMIT_ABI_RUNTIMEFUNCTIONS_H
 
-#include "mlir/ExecutionEngine/CRunnerUtils.h"
+#include "simit/ABI/MemRef.h"
+#include "simit/ABI/NumericsLayout.h"
 
 #include "llvm/Support/Error.h"
 
@@ -35,14 +38,18 @@ extern "C" {
 ///   memref<?xi32>, memref<?x?x?xf64>, memref<?x?xf64>, memref<?x?xf64>,
 ///   !llvm.ptr) attributes {llvm.emit_c_interface}
 void _mlir_ciface_simit_rt_solve_bcsr(
-    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
-    StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *b,
-    StridedMemRefType<double, 2> *x, const char *where);
+    simit::abi::MemRefDescriptor<int32_t, 1> *rowptr,
+    simit::abi::MemRefDescriptor<int32_t, 1> *colidx,
+    simit::abi::MemRefDescriptor<double, 3> *values,
+    simit::abi::MemRefDescriptor<double, 2> *b,
+    simit::abi::MemRefDescriptor<double, 2> *x, const char *where);
 /// The same on f32 components (@simit_rt_solve_bcsr_f32).
 void _mlir_ciface_simit_rt_solve_bcsr_f32(
-    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
-    StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *b,
-    StridedMemRefType<float, 2> *x, const char *where);
+    simit::abi::MemRefDescriptor<int32_t, 1> *rowptr,
+    simit::abi::MemRefDescriptor<int32_t, 1> *colidx,
+    simit::abi::MemRefDescriptor<float, 3> *values,
+    simit::abi::MemRefDescriptor<float, 2> *b,
+    simit::abi::MemRefDescriptor<float, 2> *x, const char *where);
 /// The last step of `(A + u v^T) \ b` rewritten by simit-sherman-morrison
 /// (SolveSession::shermanMorrison): given w = A^-1 u and c = A^-1 b, x =
 /// c - w (v.c) / (1 + v.w), or the bordered system [A u; v^T -1] by LU when
@@ -52,40 +59,52 @@ void _mlir_ciface_simit_rt_solve_bcsr_f32(
 ///   memref<?x?x?xf64>, memref<?x?xf64> u, v, b, w, c, x, !llvm.ptr), and
 ///   _f32.
 void _mlir_ciface_simit_rt_sherman_morrison_bcsr(
-    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
-    StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *u,
-    StridedMemRefType<double, 2> *v, StridedMemRefType<double, 2> *b,
-    StridedMemRefType<double, 2> *w, StridedMemRefType<double, 2> *c,
-    StridedMemRefType<double, 2> *x, const char *where);
+    simit::abi::MemRefDescriptor<int32_t, 1> *rowptr,
+    simit::abi::MemRefDescriptor<int32_t, 1> *colidx,
+    simit::abi::MemRefDescriptor<double, 3> *values,
+    simit::abi::MemRefDescriptor<double, 2> *u,
+    simit::abi::MemRefDescriptor<double, 2> *v,
+    simit::abi::MemRefDescriptor<double, 2> *b,
+    simit::abi::MemRefDescriptor<double, 2> *w,
+    simit::abi::MemRefDescriptor<double, 2> *c,
+    simit::abi::MemRefDescriptor<double, 2> *x, const char *where);
 void _mlir_ciface_simit_rt_sherman_morrison_bcsr_f32(
-    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
-    StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *u,
-    StridedMemRefType<float, 2> *v, StridedMemRefType<float, 2> *b,
-    StridedMemRefType<float, 2> *w, StridedMemRefType<float, 2> *c,
-    StridedMemRefType<float, 2> *x, const char *where);
+    simit::abi::MemRefDescriptor<int32_t, 1> *rowptr,
+    simit::abi::MemRefDescriptor<int32_t, 1> *colidx,
+    simit::abi::MemRefDescriptor<float, 3> *values,
+    simit::abi::MemRefDescriptor<float, 2> *u,
+    simit::abi::MemRefDescriptor<float, 2> *v,
+    simit::abi::MemRefDescriptor<float, 2> *b,
+    simit::abi::MemRefDescriptor<float, 2> *w,
+    simit::abi::MemRefDescriptor<float, 2> *c,
+    simit::abi::MemRefDescriptor<float, 2> *x, const char *where);
 /// triangularSolve(A, b) on a square BCSR system matrix (arguments as for
 /// @simit_rt_solve_bcsr): forward substitution with A's lower triangle; a
 /// zero diagonal entry ends the run with `where`.
 /// MLIR: @simit_rt_triangular_solve_bcsr(...), and _f32.
 void _mlir_ciface_simit_rt_triangular_solve_bcsr(
-    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
-    StridedMemRefType<double, 3> *values, StridedMemRefType<double, 2> *b,
-    StridedMemRefType<double, 2> *x, const char *where);
+    simit::abi::MemRefDescriptor<int32_t, 1> *rowptr,
+    simit::abi::MemRefDescriptor<int32_t, 1> *colidx,
+    simit::abi::MemRefDescriptor<double, 3> *values,
+    simit::abi::MemRefDescriptor<double, 2> *b,
+    simit::abi::MemRefDescriptor<double, 2> *x, const char *where);
 void _mlir_ciface_simit_rt_triangular_solve_bcsr_f32(
-    StridedMemRefType<int32_t, 1> *rowptr, StridedMemRefType<int32_t, 1> *colidx,
-    StridedMemRefType<float, 3> *values, StridedMemRefType<float, 2> *b,
-    StridedMemRefType<float, 2> *x, const char *where);
+    simit::abi::MemRefDescriptor<int32_t, 1> *rowptr,
+    simit::abi::MemRefDescriptor<int32_t, 1> *colidx,
+    simit::abi::MemRefDescriptor<float, 3> *values,
+    simit::abi::MemRefDescriptor<float, 2> *b,
+    simit::abi::MemRefDescriptor<float, 2> *x, const char *where);
 /// x = A \ b for a block diagonal A (values memref<?xBxBxT>, block r at
 /// (r, r)): @simit_rt_solve_diag(memref<?x?x?xf64>, memref<?x?xf64>,
 /// memref<?x?xf64>, !llvm.ptr), and @simit_rt_solve_diag_f32.
-void _mlir_ciface_simit_rt_solve_diag(StridedMemRefType<double, 3> *values,
-                                      StridedMemRefType<double, 2> *b,
-                                      StridedMemRefType<double, 2> *x,
-                                      const char *where);
-void _mlir_ciface_simit_rt_solve_diag_f32(StridedMemRefType<float, 3> *values,
-                                          StridedMemRefType<float, 2> *b,
-                                          StridedMemRefType<float, 2> *x,
-                                          const char *where);
+void _mlir_ciface_simit_rt_solve_diag(
+    simit::abi::MemRefDescriptor<double, 3> *values,
+    simit::abi::MemRefDescriptor<double, 2> *b,
+    simit::abi::MemRefDescriptor<double, 2> *x, const char *where);
+void _mlir_ciface_simit_rt_solve_diag_f32(
+    simit::abi::MemRefDescriptor<float, 3> *values,
+    simit::abi::MemRefDescriptor<float, 2> *b,
+    simit::abi::MemRefDescriptor<float, 2> *x, const char *where);
 
 /// C = A B for system matrices: each of A, B and C BCSR (layout 0: rowptr,
 /// colidx, values memref<?xBrxBcxT>) or block diagonal (layout 1: index
@@ -97,21 +116,26 @@ void _mlir_ciface_simit_rt_solve_diag_f32(StridedMemRefType<float, 3> *values,
 ///   i32, memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>, i64, !llvm.ptr),
 ///   and @simit_rt_matmul_bcsr_f32.
 void _mlir_ciface_simit_rt_matmul_bcsr(
-    int32_t layoutA, StridedMemRefType<int32_t, 1> *rowptrA,
-    StridedMemRefType<int32_t, 1> *colidxA, StridedMemRefType<double, 3> *a,
-    int32_t layoutB, StridedMemRefType<int32_t, 1> *rowptrB,
-    StridedMemRefType<int32_t, 1> *colidxB, StridedMemRefType<double, 3> *b,
-    int32_t layoutC, StridedMemRefType<int32_t, 1> *rowptrC,
-    StridedMemRefType<int32_t, 1> *colidxC, StridedMemRefType<double, 3> *c,
-    int64_t cols, const char *where);
+    int32_t layoutA, simit::abi::MemRefDescriptor<int32_t, 1> *rowptrA,
+    simit::abi::MemRefDescriptor<int32_t, 1> *colidxA,
+    simit::abi::MemRefDescriptor<double, 3> *a, int32_t layoutB,
+    simit::abi::MemRefDescriptor<int32_t, 1> *rowptrB,
+    simit::abi::MemRefDescriptor<int32_t, 1> *colidxB,
+    simit::abi::MemRefDescriptor<double, 3> *b, int32_t layoutC,
+    simit::abi::MemRefDescriptor<int32_t, 1> *rowptrC,
+    simit::abi::MemRefDescriptor<int32_t, 1> *colidxC,
+    simit::abi::MemRefDescriptor<double, 3> *c, int64_t cols,
+    const char *where);
 void _mlir_ciface_simit_rt_matmul_bcsr_f32(
-    int32_t layoutA, StridedMemRefType<int32_t, 1> *rowptrA,
-    StridedMemRefType<int32_t, 1> *colidxA, StridedMemRefType<float, 3> *a,
-    int32_t layoutB, StridedMemRefType<int32_t, 1> *rowptrB,
-    StridedMemRefType<int32_t, 1> *colidxB, StridedMemRefType<float, 3> *b,
-    int32_t layoutC, StridedMemRefType<int32_t, 1> *rowptrC,
-    StridedMemRefType<int32_t, 1> *colidxC, StridedMemRefType<float, 3> *c,
-    int64_t cols, const char *where);
+    int32_t layoutA, simit::abi::MemRefDescriptor<int32_t, 1> *rowptrA,
+    simit::abi::MemRefDescriptor<int32_t, 1> *colidxA,
+    simit::abi::MemRefDescriptor<float, 3> *a, int32_t layoutB,
+    simit::abi::MemRefDescriptor<int32_t, 1> *rowptrB,
+    simit::abi::MemRefDescriptor<int32_t, 1> *colidxB,
+    simit::abi::MemRefDescriptor<float, 3> *b, int32_t layoutC,
+    simit::abi::MemRefDescriptor<int32_t, 1> *rowptrC,
+    simit::abi::MemRefDescriptor<int32_t, 1> *colidxC,
+    simit::abi::MemRefDescriptor<float, 3> *c, int64_t cols, const char *where);
 
 /// Ends the run of the exported function in progress (simit::runGuarded)
 /// with `message` as its error; outside a guarded run, a fatal error.
@@ -148,23 +172,6 @@ void _mlir_memref_to_llvm_free(void *pointer);
 void simit_rt_phase_begin(int32_t phase);
 void simit_rt_phase_end(int32_t phase);
 
-/// How block k of an array that simit_rt_check_numerics_* scans sits in
-/// its tensor (docs/lowering.md, storage of system tensors).
-enum SimitNumericsLayout : int32_t {
-  /// A vector: block k is element k of the row set.
-  SIMIT_NUMERICS_VECTOR = 0,
-  /// A diagonal matrix: block k is (k, k).
-  SIMIT_NUMERICS_DIAGONAL = 1,
-  /// BCSR: the row r with rowptr[r] <= k < rowptr[r + 1], column colidx[k].
-  SIMIT_NUMERICS_PATTERN = 2,
-  /// `perRow` blocks a row (an incidence matrix): row k / perRow, column
-  /// colidx[k].
-  SIMIT_NUMERICS_FIXED_ROWS = 3,
-  /// A grid stencil matrix of `perRow` offsets: block k is row
-  /// k % (blocks / perRow) at offset number k / (blocks / perRow).
-  SIMIT_NUMERICS_STENCIL = 4,
-};
-
 /// The check of --check-numerics (simit-check-numerics): scans a result
 /// array (memref<*xf64> / memref<*xf32>, dimension 0 the blocks) and, if it
 /// holds a NaN or infinity and no problem of this run is recorded yet,
@@ -183,19 +190,19 @@ enum SimitNumericsLayout : int32_t {
 ///   !llvm.ptr, memref<?xi32>, i64, !llvm.ptr)
 ///   attributes {llvm.emit_c_interface}, likewise _f32.
 void _mlir_ciface_simit_rt_check_numerics_f64(
-    UnrankedMemRefType<double> *values, int32_t layout, int64_t perRow,
-    StridedMemRefType<int32_t, 1> *rowptr,
-    StridedMemRefType<int32_t, 1> *colidx, const char *what,
+    simit::abi::UnrankedMemRefDescriptor<double> *values, int32_t layout,
+    int64_t perRow, simit::abi::MemRefDescriptor<int32_t, 1> *rowptr,
+    simit::abi::MemRefDescriptor<int32_t, 1> *colidx, const char *what,
     const char *result, const char *rowSet, const char *colSet,
-    StridedMemRefType<int32_t, 1> *mapEndpoints, int64_t mapCardinality,
-    const char *mapSet);
+    simit::abi::MemRefDescriptor<int32_t, 1> *mapEndpoints,
+    int64_t mapCardinality, const char *mapSet);
 void _mlir_ciface_simit_rt_check_numerics_f32(
-    UnrankedMemRefType<float> *values, int32_t layout, int64_t perRow,
-    StridedMemRefType<int32_t, 1> *rowptr,
-    StridedMemRefType<int32_t, 1> *colidx, const char *what,
+    simit::abi::UnrankedMemRefDescriptor<float> *values, int32_t layout,
+    int64_t perRow, simit::abi::MemRefDescriptor<int32_t, 1> *rowptr,
+    simit::abi::MemRefDescriptor<int32_t, 1> *colidx, const char *what,
     const char *result, const char *rowSet, const char *colSet,
-    StridedMemRefType<int32_t, 1> *mapEndpoints, int64_t mapCardinality,
-    const char *mapSet);
+    simit::abi::MemRefDescriptor<int32_t, 1> *mapEndpoints,
+    int64_t mapCardinality, const char *mapSet);
 
 /// Dense solvers of small local f64 matrices (Eigen). Matrices and vectors
 /// are row-major memref<?xf64>; a factorisation is an opaque heap handle
@@ -210,21 +217,22 @@ void _mlir_ciface_simit_rt_check_numerics_f32(
 ///   @simit_rt_lufree(!llvm.ptr), @simit_rt_cholfree(!llvm.ptr)
 ///   @simit_rt_triangularSolve(memref<?xf64> A, memref<?xf64> b,
 ///       memref<?xf64> x, i64 n)   (A's lower triangle, forward substitution)
-void *_mlir_ciface_simit_rt_lu(StridedMemRefType<double, 1> *a, int64_t n);
-void *_mlir_ciface_simit_rt_chol(StridedMemRefType<double, 1> *a, int64_t n);
-void _mlir_ciface_simit_rt_lusolve(void *handle, StridedMemRefType<double, 1> *b,
-                                   StridedMemRefType<double, 1> *x);
+void *_mlir_ciface_simit_rt_lu(simit::abi::MemRefDescriptor<double, 1> *a,
+                               int64_t n);
+void *_mlir_ciface_simit_rt_chol(simit::abi::MemRefDescriptor<double, 1> *a,
+                                 int64_t n);
+void _mlir_ciface_simit_rt_lusolve(void *handle,
+                                   simit::abi::MemRefDescriptor<double, 1> *b,
+                                   simit::abi::MemRefDescriptor<double, 1> *x);
 void _mlir_ciface_simit_rt_lltsolve(void *handle,
-                                    StridedMemRefType<double, 1> *b,
-                                    StridedMemRefType<double, 1> *x);
-void _mlir_ciface_simit_rt_lumatsolve(void *handle,
-                                      StridedMemRefType<double, 1> *b,
-                                      StridedMemRefType<double, 1> *x,
-                                      int64_t cols);
-void _mlir_ciface_simit_rt_lltmatsolve(void *handle,
-                                       StridedMemRefType<double, 1> *b,
-                                       StridedMemRefType<double, 1> *x,
-                                       int64_t cols);
+                                    simit::abi::MemRefDescriptor<double, 1> *b,
+                                    simit::abi::MemRefDescriptor<double, 1> *x);
+void _mlir_ciface_simit_rt_lumatsolve(
+    void *handle, simit::abi::MemRefDescriptor<double, 1> *b,
+    simit::abi::MemRefDescriptor<double, 1> *x, int64_t cols);
+void _mlir_ciface_simit_rt_lltmatsolve(
+    void *handle, simit::abi::MemRefDescriptor<double, 1> *b,
+    simit::abi::MemRefDescriptor<double, 1> *x, int64_t cols);
 /// Sparse factorisations of square system matrices through the SolveSession
 /// of the run (UMFPACK LU, CHOLMOD supernodal Cholesky; symbolic analysis
 /// once per pattern, a factorisation reused for the same values), BCSR
@@ -238,28 +246,47 @@ void _mlir_ciface_simit_rt_lltmatsolve(void *handle,
 ///       !llvm.ptr where) -> !llvm.ptr, likewise @simit_rt_chol_bcsr
 ///   @simit_rt_lusolve_bcsr(!llvm.ptr, memref<?x?xf64> b, memref<?x?xf64> x,
 ///       !llvm.ptr where), likewise @simit_rt_lltsolve_bcsr
-void *_mlir_ciface_simit_rt_lu_bcsr(StridedMemRefType<int32_t, 1> *rowptr,
-                                    StridedMemRefType<int32_t, 1> *colidx,
-                                    StridedMemRefType<double, 3> *values,
-                                    const char *where);
-void *_mlir_ciface_simit_rt_chol_bcsr(StridedMemRefType<int32_t, 1> *rowptr,
-                                      StridedMemRefType<int32_t, 1> *colidx,
-                                      StridedMemRefType<double, 3> *values,
-                                      const char *where);
-void _mlir_ciface_simit_rt_lusolve_bcsr(void *handle,
-                                        StridedMemRefType<double, 2> *b,
-                                        StridedMemRefType<double, 2> *x,
-                                        const char *where);
-void _mlir_ciface_simit_rt_lltsolve_bcsr(void *handle,
-                                         StridedMemRefType<double, 2> *b,
-                                         StridedMemRefType<double, 2> *x,
-                                         const char *where);
+void *
+_mlir_ciface_simit_rt_lu_bcsr(simit::abi::MemRefDescriptor<int32_t, 1> *rowptr,
+                              simit::abi::MemRefDescriptor<int32_t, 1> *colidx,
+                              simit::abi::MemRefDescriptor<double, 3> *values,
+                              const char *where);
+void *_mlir_ciface_simit_rt_chol_bcsr(
+    simit::abi::MemRefDescriptor<int32_t, 1> *rowptr,
+    simit::abi::MemRefDescriptor<int32_t, 1> *colidx,
+    simit::abi::MemRefDescriptor<double, 3> *values, const char *where);
+void _mlir_ciface_simit_rt_lusolve_bcsr(
+    void *handle, simit::abi::MemRefDescriptor<double, 2> *b,
+    simit::abi::MemRefDescriptor<double, 2> *x, const char *where);
+void _mlir_ciface_simit_rt_lltsolve_bcsr(
+    void *handle, simit::abi::MemRefDescriptor<double, 2> *b,
+    simit::abi::MemRefDescriptor<double, 2> *x, const char *where);
 void simit_rt_lufree(void *handle);
 void simit_rt_cholfree(void *handle);
-void _mlir_ciface_simit_rt_triangularSolve(StridedMemRefType<double, 1> *a,
-                                           StridedMemRefType<double, 1> *b,
-                                           StridedMemRefType<double, 1> *x,
-                                           int64_t n);
+void _mlir_ciface_simit_rt_triangularSolve(
+    simit::abi::MemRefDescriptor<double, 1> *a,
+    simit::abi::MemRefDescriptor<double, 1> *b,
+    simit::abi::MemRefDescriptor<double, 1> *x, int64_t n);
+
+/// What the host code of simit-gpu-pipeline calls (GPUFunctions.cpp), over
+/// the CUDA driver loaded at run time (simit/Runtime/CudaDriver.h): the
+/// statement of the launches that follow, for messages, and the mgpu*
+/// functions MLIR's gpu-to-llvm lowering emits. A failing driver call ends
+/// the run through simit_rt_fail.
+void simit_rt_gpu_statement(const char *where);
+void *mgpuModuleLoadJIT(void *ptx, int optLevel);
+void mgpuModuleUnload(void *module);
+void *mgpuModuleGetFunction(void *module, const char *name);
+void mgpuLaunchKernel(void *function, intptr_t gridX, intptr_t gridY,
+                      intptr_t gridZ, intptr_t blockX, intptr_t blockY,
+                      intptr_t blockZ, int32_t sharedBytes, void *stream,
+                      void **params, void **extra, size_t paramCount);
+void *mgpuStreamCreate();
+void mgpuStreamDestroy(void *stream);
+void mgpuStreamSynchronize(void *stream);
+void *mgpuMemAlloc(uint64_t bytes, void *stream, bool hostShared);
+void mgpuMemFree(void *pointer, void *stream);
+void mgpuMemcpy(void *dst, void *src, size_t bytes, void *stream);
 
 } // extern "C"
 
@@ -291,4 +318,4 @@ llvm::Error runGuarded(void (*entry)(void **), void **args,
 
 } // namespace simit
 
-#endif // SIMIT_ENGINE_RUNTIMEFUNCTIONS_H
+#endif // SIMIT_ABI_RUNTIMEFUNCTIONS_H

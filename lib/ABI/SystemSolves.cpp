@@ -177,27 +177,18 @@ extern "C" void _mlir_ciface_simit_rt_sherman_morrison_bcsr_f32(
   { u1, u2, u3, v1, v2, v3, b, w1, w2, w3, c, x }
 #define SIMIT_RT_WOODBURY_ARGS_4                                               \
   { u1, u2, u3, u4, v1, v2, v3, v4, b, w1, w2, w3, w4, c, x }
-#define SIMIT_RT_WOODBURY_PARAMS_2(V)                                          \
-  V u1, V u2, V v1, V v2, V b, V w1, V w2, V c, V x
-#define SIMIT_RT_WOODBURY_PARAMS_3(V)                                          \
-  V u1, V u2, V u3, V v1, V v2, V v3, V b, V w1, V w2, V w3, V c, V x
-#define SIMIT_RT_WOODBURY_PARAMS_4(V)                                          \
-  V u1, V u2, V u3, V u4, V v1, V v2, V v3, V v4, V b, V w1, V w2, V w3, V w4, \
-      V c, V x
-using F64Vector = MemRefDescriptor<double, 2> *;
-using F32Vector = MemRefDescriptor<float, 2> *;
 SIMIT_RT_WOODBURY(_mlir_ciface_simit_rt_woodbury2_bcsr, double, 2,
-                  SIMIT_RT_WOODBURY_PARAMS_2(F64Vector))
+                  SIMIT_RT_WOODBURY_PARAMS_2(SimitF64Vector))
 SIMIT_RT_WOODBURY(_mlir_ciface_simit_rt_woodbury3_bcsr, double, 3,
-                  SIMIT_RT_WOODBURY_PARAMS_3(F64Vector))
+                  SIMIT_RT_WOODBURY_PARAMS_3(SimitF64Vector))
 SIMIT_RT_WOODBURY(_mlir_ciface_simit_rt_woodbury4_bcsr, double, 4,
-                  SIMIT_RT_WOODBURY_PARAMS_4(F64Vector))
+                  SIMIT_RT_WOODBURY_PARAMS_4(SimitF64Vector))
 SIMIT_RT_WOODBURY(_mlir_ciface_simit_rt_woodbury2_bcsr_f32, float, 2,
-                  SIMIT_RT_WOODBURY_PARAMS_2(F32Vector))
+                  SIMIT_RT_WOODBURY_PARAMS_2(SimitF32Vector))
 SIMIT_RT_WOODBURY(_mlir_ciface_simit_rt_woodbury3_bcsr_f32, float, 3,
-                  SIMIT_RT_WOODBURY_PARAMS_3(F32Vector))
+                  SIMIT_RT_WOODBURY_PARAMS_3(SimitF32Vector))
 SIMIT_RT_WOODBURY(_mlir_ciface_simit_rt_woodbury4_bcsr_f32, float, 4,
-                  SIMIT_RT_WOODBURY_PARAMS_4(F32Vector))
+                  SIMIT_RT_WOODBURY_PARAMS_4(SimitF32Vector))
 
 extern "C" void _mlir_ciface_simit_rt_triangular_solve_bcsr(
     MemRefDescriptor<int32_t, 1> *rowptr, MemRefDescriptor<int32_t, 1> *colidx,

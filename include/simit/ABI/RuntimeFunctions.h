@@ -78,6 +78,37 @@ void _mlir_ciface_simit_rt_sherman_morrison_bcsr_f32(
     simit::abi::MemRefDescriptor<float, 2> *w,
     simit::abi::MemRefDescriptor<float, 2> *c,
     simit::abi::MemRefDescriptor<float, 2> *x, const char *where);
+/// Ranks 2 to 4 of the rewrite (the Woodbury form): the same with
+/// u_1..u_k, v_1..v_k, b, w_1..w_k, c, x.
+/// MLIR: @simit_rt_woodbury<k>_bcsr(memref<?xi32>, memref<?xi32>,
+///   memref<?x?x?xf64>, memref<?x?xf64> x (3k + 3), !llvm.ptr), and _f32.
+typedef simit::abi::MemRefDescriptor<double, 2> *SimitF64Vector;
+typedef simit::abi::MemRefDescriptor<float, 2> *SimitF32Vector;
+#define SIMIT_RT_WOODBURY_PARAMS_2(V)                                          \
+  V u1, V u2, V v1, V v2, V b, V w1, V w2, V c, V x
+#define SIMIT_RT_WOODBURY_PARAMS_3(V)                                          \
+  V u1, V u2, V u3, V v1, V v2, V v3, V b, V w1, V w2, V w3, V c, V x
+#define SIMIT_RT_WOODBURY_PARAMS_4(V)                                          \
+  V u1, V u2, V u3, V u4, V v1, V v2, V v3, V v4, V b, V w1, V w2, V w3,    \
+      V w4, V c, V x
+#define SIMIT_RT_DECLARE_WOODBURY(NAME, T, PARAMS)                             \
+  void NAME(simit::abi::MemRefDescriptor<int32_t, 1> *rowptr,                  \
+            simit::abi::MemRefDescriptor<int32_t, 1> *colidx,                  \
+            simit::abi::MemRefDescriptor<T, 3> *values, PARAMS,                \
+            const char *where);
+SIMIT_RT_DECLARE_WOODBURY(_mlir_ciface_simit_rt_woodbury2_bcsr, double,
+                          SIMIT_RT_WOODBURY_PARAMS_2(SimitF64Vector))
+SIMIT_RT_DECLARE_WOODBURY(_mlir_ciface_simit_rt_woodbury3_bcsr, double,
+                          SIMIT_RT_WOODBURY_PARAMS_3(SimitF64Vector))
+SIMIT_RT_DECLARE_WOODBURY(_mlir_ciface_simit_rt_woodbury4_bcsr, double,
+                          SIMIT_RT_WOODBURY_PARAMS_4(SimitF64Vector))
+SIMIT_RT_DECLARE_WOODBURY(_mlir_ciface_simit_rt_woodbury2_bcsr_f32, float,
+                          SIMIT_RT_WOODBURY_PARAMS_2(SimitF32Vector))
+SIMIT_RT_DECLARE_WOODBURY(_mlir_ciface_simit_rt_woodbury3_bcsr_f32, float,
+                          SIMIT_RT_WOODBURY_PARAMS_3(SimitF32Vector))
+SIMIT_RT_DECLARE_WOODBURY(_mlir_ciface_simit_rt_woodbury4_bcsr_f32, float,
+                          SIMIT_RT_WOODBURY_PARAMS_4(SimitF32Vector))
+#undef SIMIT_RT_DECLARE_WOODBURY
 /// triangularSolve(A, b) on a square BCSR system matrix (arguments as for
 /// @simit_rt_solve_bcsr): forward substitution with A's lower triangle; a
 /// zero diagonal entry ends the run with `where`.

@@ -15,7 +15,7 @@ install(DIRECTORY ${SIMIT_BINARY_DIR}/include/simit
 # Every library and tool by name: a name that is no target is a configure
 # error, not a library silently left out of the install.
 install(TARGETS MLIRSimitDialect MLIRSimitTransforms SimitFrontend SimitIRGen
-    SimitRuntime SimitEngine
+    SimitRuntime SimitRuntimeABI SimitEngine
   EXPORT SimitTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})

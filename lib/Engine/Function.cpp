@@ -10,7 +10,7 @@
 //===----------------------------------------------------------------------===//
 
 #include "simit/Engine/Function.h"
-#include "simit/Engine/RuntimeFunctions.h"
+#include "simit/ABI/RuntimeFunctions.h"
 
 #include "CompiledModule.h"
 #include "Threads.h"

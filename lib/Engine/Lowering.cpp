@@ -4,6 +4,7 @@
 
 #include "Stopwatch.h"
 
+#include "simit/ABI/RuntimeFunctionNames.h"
 #include "simit/Dialect/Simit/IR/Simit.h"
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
@@ -213,7 +214,9 @@ static void markLaunchStatements(mlir::ModuleOp module) {
   mlir::OpBuilder builder(context);
   builder.setInsertionPointToEnd(module.getBody());
   auto marker = mlir::LLVM::LLVMFuncOp::create(
-      builder, module.getLoc(), "simit_rt_gpu_statement",
+      builder, module.getLoc(),
+      ::simit::abi::runtimeFunctionName(
+          ::simit::abi::RuntimeFunction::GPUStatement),
       mlir::LLVM::LLVMFunctionType::get(mlir::LLVM::LLVMVoidType::get(context),
                                         {ptr}));
   for (auto [index, launch] : llvm::enumerate(launches)) {

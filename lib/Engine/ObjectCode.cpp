@@ -6,7 +6,7 @@
 #include "RuntimeSymbols.h"
 #include "Threads.h"
 
-#include "simit/Engine/RuntimeFunctions.h"
+#include "simit/ABI/RuntimeFunctions.h"
 
 #include "llvm/ExecutionEngine/Orc/ExecutionUtils.h"
 #include "llvm/ExecutionEngine/Orc/LLJIT.h"

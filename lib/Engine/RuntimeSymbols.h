@@ -9,12 +9,12 @@
 
 namespace simit {
 
-/// The runtime functions of include/simit/Engine/RuntimeFunctions.h under
-/// the names lowered code calls them by.
+/// The runtime functions of simit/ABI/RuntimeFunctions.h under the names
+/// lowered code calls them by (simit/ABI/RuntimeFunctionNames.h).
 llvm::orc::SymbolMap runtimeSymbolMap(llvm::orc::MangleAndInterner interner);
 
 /// Calls `add` with the name and address of each function the host code of
-/// simit-gpu-pipeline calls (the mgpu* functions, GPURuntimeFunctions.cpp).
+/// simit-gpu-pipeline calls (the mgpu* functions, lib/ABI/GPUFunctions.cpp).
 void addGPURuntimeSymbols(
     llvm::function_ref<void(llvm::StringRef, void *)> add);
 

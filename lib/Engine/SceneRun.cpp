@@ -2,7 +2,7 @@
 
 #include "simit/Engine/SceneRun.h"
 
-#include "simit/Engine/RuntimeFunctions.h"
+#include "simit/ABI/RuntimeFunctions.h"
 #include "simit/Runtime/Scene.h"
 #include "simit/Runtime/SceneOutput.h"
 

@@ -172,7 +172,7 @@ func::FuncOp IRGenerator::declareRuntimeFunction(llvm::StringRef base,
     builder.setInsertionPointToEnd(module.getBody());
     auto decl = func::FuncOp::create(builder, module.getLoc(), name, type);
     decl.setPrivate();
-    bool isHost = !base.starts_with("simit_rt_");
+    bool isHost = !::simit::abi::parseRuntimeFunction(base);
     decl->setAttr(isHost ? "simit.extern_function" : "simit.runtime_function",
                   builder.getStringAttr(simitName));
     runtimeFunctions[name] = decl;

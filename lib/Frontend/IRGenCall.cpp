@@ -42,8 +42,11 @@ SmallVector<Value> IRGenerator::genCall(const CallExpr &e) {
   case Intrinsic::CholFree:
   case Intrinsic::TriangularSolve:
     return genSolverIntrinsic(e);
-  case Intrinsic::Clock: return genRuntimeCall(e, "clock");
-  case Intrinsic::StoreTime: return genRuntimeCall(e, "storeTime");
+  case Intrinsic::Clock:
+    return genRuntimeCall(e, ::simit::abi::RuntimeFunction::Clock, "clock");
+  case Intrinsic::StoreTime:
+    return genRuntimeCall(e, ::simit::abi::RuntimeFunction::StoreTime,
+                          "storeTime");
   default:
     return {genIntrinsic(e)};
   }
@@ -88,14 +91,16 @@ SmallVector<Value> IRGenerator::genSolverIntrinsic(const CallExpr &e) {
   }
 }
 
-SmallVector<Value> IRGenerator::genRuntimeCall(const CallExpr &e,
-                                               StringRef name) {
+SmallVector<Value>
+IRGenerator::genRuntimeCall(const CallExpr &e,
+                            ::simit::abi::RuntimeFunction function,
+                            StringRef name) {
   SmallVector<Value> args;
   for (const ExprPtr &arg : e.args)
     args.push_back(genExpr(*arg));
   SmallVector<mlir::Type> results = convertResultTypes(e);
   func::FuncOp callee = declareRuntimeFunction(
-      ("simit_rt_" + name).str(), name,
+      ::simit::abi::runtimeFunctionName(function), name,
       builder.getFunctionType(ValueRange(args).getTypes(), results));
   auto call = func::CallOp::create(builder, loc(e.loc), callee, args);
   return SmallVector<Value>(call.getResults());

@@ -11,6 +11,7 @@
 #ifndef SIMIT_LIB_FRONTEND_IRGENIMPL_H
 #define SIMIT_LIB_FRONTEND_IRGENIMPL_H
 
+#include "simit/ABI/RuntimeFunctionNames.h"
 #include "simit/Dialect/Simit/IR/Simit.h"
 #include "simit/Frontend/IRGen.h"
 
@@ -145,8 +146,10 @@ private:
   mlir::Value genIntrinsic(const CallExpr &e);
   /// lu, chol, their solves and frees, and triangularSolve as simit ops.
   llvm::SmallVector<mlir::Value> genSolverIntrinsic(const CallExpr &e);
-  llvm::SmallVector<mlir::Value> genRuntimeCall(const CallExpr &e,
-                                                llvm::StringRef name);
+  /// A call of the runtime's `function`, the language's `name`.
+  llvm::SmallVector<mlir::Value>
+  genRuntimeCall(const CallExpr &e, ::simit::abi::RuntimeFunction function,
+                 llvm::StringRef name);
   llvm::SmallVector<mlir::Value> genMap(const MapExpr &e);
 
   //===--- IRGenStmt.cpp --------------------------------------------------===//

@@ -11,7 +11,7 @@
 #include "Common.h"
 
 #include "simit/Engine/Program.h"
-#include "simit/Engine/RuntimeFunctions.h"
+#include "simit/ABI/RuntimeFunctions.h"
 #include "simit/Runtime/SolveSession.h"
 
 #include <pybind11/stl.h>

@@ -2,7 +2,7 @@
 //
 // Needs no GPU. Programs compiled for Target::GPU become objects whose
 // undefined symbols must all be defined by the engine's runtime (the mgpu*
-// functions of GPURuntimeFunctions.cpp and the simit_rt_* ones) or by the
+// functions of lib/ABI/GPUFunctions.cpp and the simit_rt_* ones) or by the
 // process (libc): a lowering that starts asking for a runtime function the
 // engine lacks fails here, not on a GPU machine at link time. The kernels'
 // PTX must be in the object, and the kernels loaded by its initializer.

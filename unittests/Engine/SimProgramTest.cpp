@@ -9,7 +9,7 @@
 #include "EngineTestSupport.h"
 
 #include "simit/Engine/Program.h"
-#include "simit/Engine/RuntimeFunctions.h"
+#include "simit/ABI/RuntimeFunctions.h"
 #include "simit/Runtime/Set.h"
 
 #include "gmock/gmock.h"

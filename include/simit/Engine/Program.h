@@ -46,11 +46,12 @@ struct ProgramOptions {
   /// are not `export`ed: the functions `%!` assertions and --eval call.
   std::vector<std::string> hostFunctions;
   /// Bracket assemblies and solves with the phase timer (simit-time-phases;
-  /// simit::readPhaseTimes() in RuntimeFunctions.h reads it).
+  /// simit::readPhaseTimes() in simit/ABI/RuntimeFunctions.h reads it).
   bool timePhases = false;
   /// Scan the results of assemblies and solves for NaN and infinity
   /// (simit-check-numerics; simit::takeNumericsProblem() in
-  /// RuntimeFunctions.h reads the first one). Off, nothing is scanned.
+  /// simit/ABI/RuntimeFunctions.h reads the first one). Off, nothing is
+  /// scanned.
   bool checkNumerics = false;
   /// Threads that run the set loops (docs/threads.md): 0 takes
   /// $SIMIT_NUM_THREADS when set, else every core (resolveThreadCount()).

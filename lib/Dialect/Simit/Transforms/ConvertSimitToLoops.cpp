@@ -389,15 +389,15 @@ LogicalResult FunctionLowering::lowerOp(Operation *op) {
     return element ? success() : lowerFunctionReturn(ret);
   if (auto call = dyn_cast<func::CallOp>(op)) {
     auto callee = module.lookupSymbol<func::FuncOp>(call.getCalleeAttr());
-    // Runtime functions on scalars only (lib/Engine/RuntimeFunctions.cpp)
+    // Runtime functions on scalars only (lib/ABI/Timing.cpp)
     // stay calls of their private declarations.
     auto isScalar = [](Type t) { return isa<FloatType, IntegerType>(t); };
     if (callee && callee.isExternal() &&
         callee->hasAttr("simit.runtime_function") &&
-        llvm::is_contained({StringRef("simit_rt_clock"),
-                            StringRef("simit_rt_storeTime"),
-                            StringRef("simit_rt_phase_begin"),
-                            StringRef("simit_rt_phase_end")},
+        llvm::is_contained({runtimeName(::simit::abi::RuntimeFunction::Clock),
+                            runtimeName(::simit::abi::RuntimeFunction::StoreTime),
+                            runtimeName(::simit::abi::RuntimeFunction::PhaseBegin),
+                            runtimeName(::simit::abi::RuntimeFunction::PhaseEnd)},
                            call.getCallee()) &&
         llvm::all_of(call.getOperandTypes(), isScalar) &&
         llvm::all_of(call.getResultTypes(), isScalar)) {

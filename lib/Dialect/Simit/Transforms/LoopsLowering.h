@@ -21,6 +21,8 @@
 #ifndef SIMIT_LIB_DIALECT_SIMIT_TRANSFORMS_LOOPSLOWERING_H
 #define SIMIT_LIB_DIALECT_SIMIT_TRANSFORMS_LOOPSLOWERING_H
 
+#include "RuntimeFunction.h"
+
 #include "simit/ABI/BindingKind.h"
 #include "simit/Dialect/Simit/IR/SimitStorage.h"
 #include "simit/Dialect/Simit/Transforms/Passes.h"
@@ -376,14 +378,16 @@ private:
   LogicalResult lowerFunctionReturn(func::ReturnOp op);
   /// Solves call the runtime's SolveSession (docs/solvers.md).
   LogicalResult lowerSolve(SolveOp op);
-  /// `op`'s result = the solve `method` ("solve": A \ b; "triangular_solve":
-  /// with A's lower triangle; "sherman_morrison", "woodbury<k>": the last
-  /// step of simit.woodbury) of system matrix `matrix` and system vectors
-  /// `vectors`, by the runtime function @simit_rt_<method>_{bcsr,diag}[_f32]
-  /// with `where` = `what` and the source position.
+  /// `op`'s result = the solve `method` (Solve: A \ b; Triangular: with A's
+  /// lower triangle; LowRank: the last step of simit.woodbury of `rank`
+  /// outer products) of system matrix `matrix` and system vectors
+  /// `vectors`, by the runtime's function for the method
+  /// (::simit::abi::systemSolveFunction: @simit_rt_<method>_{bcsr,diag}
+  /// [_f32]) with `where` = `what` and the source position.
   LogicalResult lowerSystemSolve(Operation *op, Value matrix,
-                                 ValueRange vectors, StringRef method,
-                                 StringRef what);
+                                 ValueRange vectors,
+                                 ::simit::abi::SystemSolve method,
+                                 StringRef what, unsigned rank = 0);
   /// Products of system matrices (LowerProducts.cpp): the runtime's
   /// numeric SpGEMM on the bind-time product pattern.
   LogicalResult lowerMatMul(MatMulOp op);

@@ -77,7 +77,7 @@ void lowerAssertion(cf::AssertOp op, func::FuncOp fail, ModuleOp module) {
 }
 
 struct LowerAssertions
-    : public simit::impl::SimitLowerAssertionsBase<LowerAssertions> {
+    : public mlir::simit::impl::SimitLowerAssertionsBase<LowerAssertions> {
   void runOnOperation() override {
     ModuleOp module = getOperation();
     SmallVector<cf::AssertOp> assertions;

@@ -5,7 +5,7 @@
 // needs to name an element: the layout of the blocks in the array (how the
 // storage maps a block to its row and column), the pattern's index arrays,
 // and the source description the pass wrote. The runtime function is
-// simit_rt_check_numerics_f64/_f32 (lib/Engine/RuntimeFunctions.cpp).
+// simit_rt_check_numerics_f64/_f32 (lib/ABI/CheckNumerics.cpp).
 //
 //===----------------------------------------------------------------------===//
 
@@ -13,7 +13,8 @@
 
 // The layout codes are shared with the runtime that reads them (a header
 // of plain declarations; nothing of the engine is linked).
-#include "simit/Engine/RuntimeFunctions.h"
+#include "simit/ABI/NumericsLayout.h"
+#include "simit/ABI/RuntimeFunctionNames.h"
 
 using namespace mlir;
 using namespace mlir::simit;
@@ -74,8 +75,9 @@ LogicalResult FunctionLowering::scanForNonFinite(Operation *op) {
         {values, b.getI32Type(), b.getI64Type(), indexArray, indexArray, ptr,
          ptr, ptr, ptr, indexArray, b.getI64Type(), ptr},
         {});
-    StringRef calleeName = component.isF64() ? "simit_rt_check_numerics_f64"
-                                             : "simit_rt_check_numerics_f32";
+    StringRef calleeName = runtimeName(
+        component.isF64() ? ::simit::abi::RuntimeFunction::CheckNumericsF64
+                          : ::simit::abi::RuntimeFunction::CheckNumericsF32);
     func::FuncOp callee = declareRuntime(loc, calleeName, calleeType);
     if (!callee)
       return op->emitError("@") << calleeName

@@ -10,6 +10,7 @@
 using namespace mlir;
 using namespace mlir::simit;
 using namespace mlir::simit::loops;
+using ::simit::abi::RuntimeFunction;
 
 Value FunctionLowering::callRuntime(Location loc, StringRef name,
                                     TypeRange results, ValueRange args) {
@@ -41,13 +42,13 @@ LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {
     return success();
   }
   if (auto concat = dyn_cast<StringConcatOp>(op)) {
-    map(concat, callRuntime(loc, "simit_rt_string_concat", {ptrType},
+    map(concat, callRuntime(loc, runtimeName(RuntimeFunction::StringConcat), {ptrType},
                             {lookup(concat.getLhs()), lookup(concat.getRhs())}));
     return success();
   }
   if (auto cmp = dyn_cast<StringCmpOp>(op)) {
     Value order =
-        callRuntime(loc, "simit_rt_string_compare", {b.getI32Type()},
+        callRuntime(loc, runtimeName(RuntimeFunction::StringCompare), {b.getI32Type()},
                     {lookup(cmp.getLhs()), lookup(cmp.getRhs())});
     arith::CmpIPredicate predicate;
     switch (cmp.getPredicate()) {
@@ -65,7 +66,7 @@ LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {
 
   auto print = cast<PrintOp>(op);
   auto printText = [&](StringRef text) {
-    callRuntime(loc, "simit_rt_print_str", {}, {stringConstant(text)});
+    callRuntime(loc, runtimeName(RuntimeFunction::PrintStr), {}, {stringConstant(text)});
   };
   auto printFloat = [&](Value scalar) -> LogicalResult {
     auto floatType = cast<FloatType>(scalar.getType());
@@ -73,13 +74,13 @@ LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {
       scalar = arith::ExtFOp::create(b, loc, b.getF64Type(), scalar);
     else if (floatType.getWidth() > 64)
       return op->emitError("cannot print floats wider than 64 bits");
-    callRuntime(loc, "simit_rt_print_f64", {}, {scalar});
+    callRuntime(loc, runtimeName(RuntimeFunction::PrintF64), {}, {scalar});
     return success();
   };
   auto printScalar = [&](Value scalar) -> LogicalResult {
     Type type = scalar.getType();
     if (isa<LLVM::LLVMPointerType>(type)) {
-      callRuntime(loc, "simit_rt_print_str", {}, {scalar});
+      callRuntime(loc, runtimeName(RuntimeFunction::PrintStr), {}, {scalar});
       return success();
     }
     if (isa<FloatType>(type))
@@ -106,7 +107,7 @@ LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {
         scalar = arith::ExtSIOp::create(b, loc, b.getI64Type(), scalar);
       else if (intType.getWidth() > 64)
         return op->emitError("cannot print integers wider than 64 bits");
-      callRuntime(loc, "simit_rt_print_i64", {}, {scalar});
+      callRuntime(loc, runtimeName(RuntimeFunction::PrintI64), {}, {scalar});
       return success();
     }
     return op->emitError("printing values of type ")
@@ -154,13 +155,13 @@ LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {
               OpBuilder::InsertionGuard guard(b);
               b.setInsertionPoint(tb.getInsertionBlock(),
                                   tb.getInsertionPoint());
-              callRuntime(loc, "simit_rt_print_str", {},
+              callRuntime(loc, runtimeName(RuntimeFunction::PrintStr), {},
                           {stringConstant(blockSize == 1 ? " " : "\n")});
               scf::YieldOp::create(b, loc);
             });
             for (int64_t c = 0; c < blockSize; ++c) {
               if (c > 0)
-                callRuntime(loc, "simit_rt_print_str", {},
+                callRuntime(loc, runtimeName(RuntimeFunction::PrintStr), {},
                             {stringConstant(" ")});
               Value scalar = memref::LoadOp::create(
                   b, loc, array, blockIndices(memref, {i}, c));

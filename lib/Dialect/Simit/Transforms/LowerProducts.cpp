@@ -204,9 +204,9 @@ LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
        values, i32, indexArray, indexArray, values, b.getI64Type(),
        LLVM::LLVMPointerType::get(ctx)},
       {});
-  std::string name = "simit_rt_matmul_bcsr";
-  if (component.isF32())
-    name += "_f32";
+  StringRef name = runtimeName(component.isF32()
+                                   ? ::simit::abi::RuntimeFunction::MatmulBCSRF32
+                                   : ::simit::abi::RuntimeFunction::MatmulBCSR);
   func::FuncOp callee = declareRuntime(loc, name, calleeType);
   if (!callee)
     return op.emitError("@") << name << " is declared with another type";

@@ -80,24 +80,27 @@ static bool isSparseSquare(const Storage &s) {
   return (s.isBCSR() || s.kind == Storage::Kind::Diagonal) && s.rows == s.cols;
 }
 
-/// `\`: the runtime's SolveSession (lib/Engine/RuntimeFunctions).
+/// `\`: the runtime's SolveSession (lib/ABI/SystemSolves.cpp).
 LogicalResult FunctionLowering::lowerSolve(SolveOp op) {
   // The solves of simit-sherman-morrison say which they are.
   std::string what = "solve";
   if (auto note = op->getAttrOfType<StringAttr>("simit.solve_note"))
     what += (" [" + note.getValue() + "]").str();
-  return lowerSystemSolve(op, op.getMatrix(), op.getRhs(), "solve", what);
+  return lowerSystemSolve(op, op.getMatrix(), op.getRhs(),
+                          ::simit::abi::SystemSolve::Solve, what);
 }
 
 LogicalResult FunctionLowering::lowerSystemSolve(Operation *op, Value matrix,
                                                  ValueRange vectors,
-                                                 StringRef method,
-                                                 StringRef what) {
+                                                 ::simit::abi::SystemSolve method,
+                                                 StringRef what,
+                                                 unsigned rank) {
   Location loc = op->getLoc();
   Storage storage = storageOf(matrix);
   auto matrixType = cast<SystemTensorType>(matrix.getType());
   // `\` also takes block diagonal matrices.
-  bool diagonal = storage.kind == Storage::Kind::Diagonal && method == "solve";
+  bool diagonal = storage.kind == Storage::Kind::Diagonal &&
+                  method == ::simit::abi::SystemSolve::Solve;
   if (!isSparseSquare(storage))
     return op->emitError("solves are supported for square matrices "
                          "assembled from a set; this matrix is stored as ")
@@ -127,10 +130,13 @@ LogicalResult FunctionLowering::lowerSystemSolve(Operation *op, Value matrix,
   argTypes.push_back(values);
   argTypes.append(vectors.size() + 1, vector);
   argTypes.push_back(LLVM::LLVMPointerType::get(ctx));
-  std::string solver = ("simit_rt_" + method +
-                        (diagonal ? "_diag" : "_bcsr") +
-                        (component.isF32() ? "_f32" : ""))
-                           .str();
+  std::optional<::simit::abi::RuntimeFunction> function =
+      ::simit::abi::systemSolveFunction(
+          diagonal ? ::simit::abi::SystemSolve::Diagonal : method,
+          component.isF32(), rank);
+  if (!function)
+    return op->emitError("the runtime has no solve of rank ") << rank;
+  StringRef solver = runtimeName(*function);
   func::FuncOp callee =
       declareRuntime(loc, solver, FunctionType::get(ctx, argTypes, {}));
   if (!callee)
@@ -155,8 +161,7 @@ LogicalResult FunctionLowering::lowerSystemSolve(Operation *op, Value matrix,
 }
 
 /// The language's name of a factorisation or solve op (lu, lusolve,
-/// triangularSolve, ...): the runtime function @simit_rt_<name> and the
-/// statement the runtime's messages name.
+/// triangularSolve, ...): the statement the messages name.
 static std::string intrinsicName(Operation *op) {
   auto lu = [](FactorizationKind kind) {
     return kind == FactorizationKind::LU;
@@ -168,6 +173,32 @@ static std::string intrinsicName(Operation *op) {
   if (auto solve = dyn_cast<FactorSolveOp>(op))
     return solve.getIntrinsicName().str();
   return "triangularSolve";
+}
+
+/// The runtime function of a factorisation or solve op on a system matrix
+/// (`system`: BCSR arrays) or on dense local tensors.
+static ::simit::abi::RuntimeFunction runtimeFunctionOf(Operation *op,
+                                                       bool system) {
+  using F = ::simit::abi::RuntimeFunction;
+  auto lu = [](FactorizationKind kind) {
+    return kind == FactorizationKind::LU;
+  };
+  if (auto factorize = dyn_cast<FactorizeOp>(op)) {
+    if (lu(factorize.getKind()))
+      return system ? F::LUBCSR : F::LU;
+    return system ? F::CholBCSR : F::Chol;
+  }
+  if (auto free = dyn_cast<FactorFreeOp>(op))
+    return lu(free.getKind()) ? F::LUFree : F::CholFree;
+  if (auto solve = dyn_cast<FactorSolveOp>(op)) {
+    bool isLU = lu(solve.getKind());
+    if (system)
+      return isLU ? F::LUSolveBCSR : F::LLTSolveBCSR;
+    if (getTensorOrder(solve.getRhs().getType()) == 2)
+      return isLU ? F::LUMatSolve : F::LLTMatSolve;
+    return isLU ? F::LUSolve : F::LLTSolve;
+  }
+  return F::TriangularSolve;
 }
 
 LogicalResult FunctionLowering::lowerWoodbury(WoodburyOp op) {
@@ -183,17 +214,19 @@ LogicalResult FunctionLowering::lowerWoodbury(WoodburyOp op) {
   llvm::append_range(vectors, op.getWs());
   vectors.push_back(op.getSolution());
   if (k == 1)
-    return lowerSystemSolve(op, op.getMatrix(), vectors, "sherman_morrison",
-                            "Sherman-Morrison");
+    return lowerSystemSolve(op, op.getMatrix(), vectors,
+                            ::simit::abi::SystemSolve::LowRank,
+                            "Sherman-Morrison", k);
   return lowerSystemSolve(op, op.getMatrix(), vectors,
-                          "woodbury" + std::to_string(k), "Woodbury");
+                          ::simit::abi::SystemSolve::LowRank, "Woodbury", k);
 }
 
 LogicalResult FunctionLowering::lowerSystemFactorisation(Operation *op) {
   Location loc = op->getLoc();
   if (auto solve = dyn_cast<TriangularSolveOp>(op))
     return lowerSystemSolve(op, solve.getMatrix(), solve.getRhs(),
-                            "triangular_solve", "triangularSolve");
+                            ::simit::abi::SystemSolve::Triangular,
+                            "triangularSolve");
   std::string name = intrinsicName(op);
   auto factorize = dyn_cast<FactorizeOp>(op);
   auto solve = dyn_cast<FactorSolveOp>(op);
@@ -232,7 +265,8 @@ LogicalResult FunctionLowering::lowerSystemFactorisation(Operation *op) {
   auto indexArray = MemRefType::get({dyn}, b.getI32Type());
   auto values = MemRefType::get({dyn, dyn, dyn}, b.getF64Type());
   auto vector = MemRefType::get({dyn, dyn}, b.getF64Type());
-  std::string runtimeName = "simit_rt_" + name + "_bcsr";
+  StringRef runtimeName =
+      mlir::simit::runtimeName(runtimeFunctionOf(op, /*system=*/true));
   // The runtime ends the run with `where` ("chol (file:line:col)") when the
   // factorisation or solve fails, and names the statement in statistics.
   Value where = stringConstant(loc, name + sourcePositionSuffix(op));
@@ -346,7 +380,8 @@ LogicalResult FunctionLowering::lowerFactorisation(Operation *op) {
   else if (matSolve)
     sizeArg(shape(1)[1]);
 
-  std::string runtimeName = "simit_rt_" + name;
+  StringRef runtimeName =
+      mlir::simit::runtimeName(runtimeFunctionOf(op, /*system=*/false));
   if (free) {
     callRuntime(loc, runtimeName, {}, args);
     return success();

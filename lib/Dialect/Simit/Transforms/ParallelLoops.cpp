@@ -25,6 +25,8 @@
 //
 //===----------------------------------------------------------------------===//
 
+#include "RuntimeFunction.h"
+
 #include "simit/ABI/BindingKind.h"
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 

@@ -27,7 +27,8 @@ using namespace mlir;
 using namespace mlir::simit;
 
 namespace {
-constexpr llvm::StringLiteral kRaise = "simit_rt_raise_parallel_failure";
+constexpr StringRef kRaise =
+    runtimeName(::simit::abi::RuntimeFunction::RaiseParallelFailure);
 
 LogicalResult convertLoop(scf::ParallelOp loop) {
   if (loop.getNumResults() != 0)
@@ -89,7 +90,7 @@ LogicalResult convertLoop(scf::ParallelOp loop) {
 }
 
 struct ParallelLoopsToOpenMP
-    : public simit::impl::SimitParallelLoopsToOpenMPBase<
+    : public mlir::simit::impl::SimitParallelLoopsToOpenMPBase<
           ParallelLoopsToOpenMP> {
   void runOnOperation() override {
     SmallVector<scf::ParallelOp> marked;

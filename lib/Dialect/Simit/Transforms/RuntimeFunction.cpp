@@ -4,8 +4,8 @@
 
 using namespace mlir;
 
-func::FuncOp simit::declareRuntimeFunction(ModuleOp module, StringRef name,
-                                           FunctionType type) {
+func::FuncOp mlir::simit::declareRuntimeFunction(ModuleOp module, StringRef name,
+                                                 FunctionType type) {
   if (auto existing = module.lookupSymbol<func::FuncOp>(name)) {
     if (existing.getFunctionType() == type)
       return existing;

@@ -3,7 +3,7 @@
 // A time step is mostly assembly (maps) and linear solves; the driver wants
 // both figures without the user splitting the step into functions. The
 // runtime's phase timer accumulates the time between matching begin/end
-// calls (lib/Engine/RuntimeFunctions.cpp).
+// calls (lib/ABI/Timing.cpp).
 //
 //===----------------------------------------------------------------------===//
 
@@ -24,8 +24,8 @@ using namespace mlir::simit;
 namespace {
 enum Phase : int32_t { Assembly = 0, Solve = 1 };
 
-constexpr StringLiteral kBegin = "simit_rt_phase_begin";
-constexpr StringLiteral kEnd = "simit_rt_phase_end";
+constexpr StringRef kBegin = runtimeName(::simit::abi::RuntimeFunction::PhaseBegin);
+constexpr StringRef kEnd = runtimeName(::simit::abi::RuntimeFunction::PhaseEnd);
 
 bool isAssembly(Operation *op) { return isa<MapOp, AssembleOp>(op); }
 
@@ -72,7 +72,7 @@ LogicalResult declareTimer(ModuleOp module, StringRef name) {
   return success();
 }
 
-struct TimePhases : public simit::impl::SimitTimePhasesBase<TimePhases> {
+struct TimePhases : public mlir::simit::impl::SimitTimePhasesBase<TimePhases> {
   void runOnOperation() override {
     ModuleOp module = getOperation();
     SmallVector<std::pair<Operation *, Phase>> timed;

@@ -1,7 +1,7 @@
 // RUN: simit-opt %s --split-input-file --verify-diagnostics --convert-simit-to-loops | FileCheck %s
 
 // Scalar runtime functions (clock, storeTime) stay calls of their private
-// declarations; the JIT binds them to lib/Engine/RuntimeFunctions.cpp.
+// declarations; the JIT binds them to the functions of lib/ABI.
 
 // CHECK-LABEL: func.func @monotonic() -> i1
 // CHECK: %[[T0:.*]] = call @simit_rt_clock() : () -> f64

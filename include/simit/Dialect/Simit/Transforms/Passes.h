@@ -39,9 +39,6 @@ constexpr llvm::StringLiteral kCheckNumericsAttr = "simit.check_numerics";
 /// of a scatter loop).
 constexpr llvm::StringLiteral kParallelLoopAttr = "simit.parallel";
 
-/// The runtime function a failed assertion calls (simit-lower-assertions).
-constexpr llvm::StringLiteral kRuntimeFail = "simit_rt_fail";
-
 /// Whether `function` is an entry point the host calls: it carries the
 /// `simit.export` unit attribute (the frontend's `export func`).
 bool isExportedFunction(func::FuncOp function);

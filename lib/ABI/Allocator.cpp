@@ -1,4 +1,4 @@
-//===--- RuntimeAllocator.cpp - Heap memory of JIT-compiled code ----------===//
+//===--- Allocator.cpp - Heap memory of JIT-compiled code -----------------===//
 //
 // Lowered code allocates the same temporaries every frame: assembled
 // matrices, right-hand sides, CG vectors. glibc hands blocks that large back
@@ -10,7 +10,7 @@
 //
 //===----------------------------------------------------------------------===//
 
-#include "simit/Engine/RuntimeFunctions.h"
+#include "simit/ABI/RuntimeFunctions.h"
 
 #include <cstdlib>
 #include <mutex>

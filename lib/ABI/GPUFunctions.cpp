@@ -1,4 +1,4 @@
-//===--- GPURuntimeFunctions.cpp - The mgpu* functions of GPU code --------===//
+//===--- GPUFunctions.cpp - The mgpu* functions of GPU code ---------------===//
 //
 // What the host code of simit-gpu-pipeline calls: MLIR's gpu-to-llvm
 // lowering and gpu.binary's translation emit calls of mgpu* functions
@@ -10,9 +10,7 @@
 //
 //===----------------------------------------------------------------------===//
 
-#include "RuntimeSymbols.h"
-
-#include "simit/Engine/RuntimeFunctions.h"
+#include "simit/ABI/RuntimeFunctions.h"
 #include "simit/Runtime/CudaDriver.h"
 
 #include "llvm/ADT/DenseMap.h"
@@ -288,21 +286,3 @@ void mgpuMemcpy(void *dst, void *src, size_t bytes, void *stream) {
 }
 
 } // extern "C"
-
-void simit::addGPURuntimeSymbols(
-    llvm::function_ref<void(llvm::StringRef, void *)> add) {
-  add("simit_rt_gpu_statement",
-      reinterpret_cast<void *>(&simit_rt_gpu_statement));
-  add("mgpuModuleLoadJIT", reinterpret_cast<void *>(&mgpuModuleLoadJIT));
-  add("mgpuModuleUnload", reinterpret_cast<void *>(&mgpuModuleUnload));
-  add("mgpuModuleGetFunction",
-      reinterpret_cast<void *>(&mgpuModuleGetFunction));
-  add("mgpuLaunchKernel", reinterpret_cast<void *>(&mgpuLaunchKernel));
-  add("mgpuStreamCreate", reinterpret_cast<void *>(&mgpuStreamCreate));
-  add("mgpuStreamDestroy", reinterpret_cast<void *>(&mgpuStreamDestroy));
-  add("mgpuStreamSynchronize",
-      reinterpret_cast<void *>(&mgpuStreamSynchronize));
-  add("mgpuMemAlloc", reinterpret_cast<void *>(&mgpuMemAlloc));
-  add("mgpuMemFree", reinterpret_cast<void *>(&mgpuMemFree));
-  add("mgpuMemcpy", reinterpret_cast<void *>(&mgpuMemcpy));
-}

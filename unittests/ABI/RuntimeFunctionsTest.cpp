@@ -1,6 +1,6 @@
 //===--- RuntimeFunctionsTest.cpp - Host functions of lowered code --------===//
 
-#include "simit/Engine/RuntimeFunctions.h"
+#include "simit/ABI/RuntimeFunctions.h"
 
 #include <Eigen/Dense>
 
@@ -12,10 +12,13 @@
 #include <vector>
 
 namespace {
+using simit::abi::MemRefDescriptor;
+using simit::abi::UnrankedMemRefDescriptor;
+
 template <typename T, int N>
-StridedMemRefType<T, N> describe(T *data, std::array<int64_t, N> sizes) {
-  StridedMemRefType<T, N> m;
-  m.basePtr = m.data = data;
+MemRefDescriptor<T, N> describe(T *data, std::array<int64_t, N> sizes) {
+  MemRefDescriptor<T, N> m;
+  m.allocated = m.data = data;
   m.offset = 0;
   int64_t stride = 1;
   for (int d = N - 1; d >= 0; --d) {
@@ -32,9 +35,9 @@ struct DenseBCSR {
   static constexpr int rows = 4, b = 3, n = rows * b;
   std::vector<int32_t> rowptr, colidx;
   std::vector<double> values, rhs, x = std::vector<double>(n, 0.0);
-  StridedMemRefType<int32_t, 1> rp, ci;
-  StridedMemRefType<double, 3> vals;
-  StridedMemRefType<double, 2> bm, xm;
+  MemRefDescriptor<int32_t, 1> rp, ci;
+  MemRefDescriptor<double, 3> vals;
+  MemRefDescriptor<double, 2> bm, xm;
 
   DenseBCSR(const Eigen::MatrixXd &a, const Eigen::VectorXd &bv)
       : rhs(bv.data(), bv.data() + n) {
@@ -89,8 +92,7 @@ void expectSolvesLike(const Eigen::MatrixXd &a, unsigned seed) {
 TEST(RuntimeFunctionsTest, SolveMatchesADenseSolve) {
   Eigen::MatrixXd m = randomMatrix(7);
   int n = DenseBCSR::n;
-  expectSolvesLike(m * m.transpose() + n * Eigen::MatrixXd::Identity(n, n),
-                   1);
+  expectSolvesLike(m * m.transpose() + n * Eigen::MatrixXd::Identity(n, n), 1);
   expectSolvesLike(m + n * Eigen::MatrixXd::Identity(n, n), 2);
   Eigen::MatrixXd indefinite = m + m.transpose();
   expectSolvesLike(indefinite, 3);
@@ -178,14 +180,13 @@ TEST(RuntimeFunctionsTest, SparseLUSolvesAndHandlesAreChecked) {
 namespace {
 /// Hands `m` to the scan as the unranked memref lowered code passes.
 template <typename T, int N>
-void scan(StridedMemRefType<T, N> &m, int32_t layout, int64_t perRow,
-          StridedMemRefType<int32_t, 1> &rowptr,
-          StridedMemRefType<int32_t, 1> &colidx, const char *result,
-          const char *rowSet, const char *colSet,
-          StridedMemRefType<int32_t, 1> mapEndpoints = {nullptr, nullptr, 0,
-                                                        {0}, {1}},
-          int64_t mapCardinality = 0) {
-  UnrankedMemRefType<T> unranked{N, &m};
+void scan(
+    MemRefDescriptor<T, N> &m, int32_t layout, int64_t perRow,
+    MemRefDescriptor<int32_t, 1> &rowptr, MemRefDescriptor<int32_t, 1> &colidx,
+    const char *result, const char *rowSet, const char *colSet,
+    MemRefDescriptor<int32_t, 1> mapEndpoints = {nullptr, nullptr, 0, {0}, {1}},
+    int64_t mapCardinality = 0) {
+  UnrankedMemRefDescriptor<T> unranked{N, &m};
   if constexpr (std::is_same_v<T, double>)
     _mlir_ciface_simit_rt_check_numerics_f64(
         &unranked, layout, perRow, &rowptr, &colidx, "map f to e", result,

@@ -99,7 +99,8 @@ std::optional<Description> describe(Operation *op, ModuleOp module) {
     return description;
   }
   if (auto solve = dyn_cast<FactorSolveOp>(op)) {
-    description.op = (solve.getIntrinsicName() + sourcePositionSuffix(op)).str();
+    description.op =
+        (solve.getIntrinsicName() + sourcePositionSuffix(op)).str();
     description.results = {"solution"};
     return description;
   }

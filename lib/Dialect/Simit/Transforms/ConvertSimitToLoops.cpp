@@ -31,6 +31,7 @@ namespace simit {
 using namespace mlir;
 using namespace mlir::simit;
 using namespace mlir::simit::loops;
+using ::simit::abi::RuntimeFunction;
 
 int64_t mlir::simit::loops::numComponents(Type type) {
   if (auto tensor = dyn_cast<RankedTensorType>(type))
@@ -394,10 +395,10 @@ LogicalResult FunctionLowering::lowerOp(Operation *op) {
     auto isScalar = [](Type t) { return isa<FloatType, IntegerType>(t); };
     if (callee && callee.isExternal() &&
         callee->hasAttr("simit.runtime_function") &&
-        llvm::is_contained({runtimeName(::simit::abi::RuntimeFunction::Clock),
-                            runtimeName(::simit::abi::RuntimeFunction::StoreTime),
-                            runtimeName(::simit::abi::RuntimeFunction::PhaseBegin),
-                            runtimeName(::simit::abi::RuntimeFunction::PhaseEnd)},
+        llvm::is_contained({runtimeName(RuntimeFunction::Clock),
+                            runtimeName(RuntimeFunction::StoreTime),
+                            runtimeName(RuntimeFunction::PhaseBegin),
+                            runtimeName(RuntimeFunction::PhaseEnd)},
                            call.getCallee()) &&
         llvm::all_of(call.getOperandTypes(), isScalar) &&
         llvm::all_of(call.getResultTypes(), isScalar)) {

@@ -4,7 +4,8 @@
 
 using namespace mlir;
 
-func::FuncOp mlir::simit::declareRuntimeFunction(ModuleOp module, StringRef name,
+func::FuncOp mlir::simit::declareRuntimeFunction(ModuleOp module,
+                                                 StringRef name,
                                                  FunctionType type) {
   if (auto existing = module.lookupSymbol<func::FuncOp>(name)) {
     if (existing.getFunctionType() == type)

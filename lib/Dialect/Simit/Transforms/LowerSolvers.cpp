@@ -160,45 +160,37 @@ LogicalResult FunctionLowering::lowerSystemSolve(Operation *op, Value matrix,
   return success();
 }
 
-/// The language's name of a factorisation or solve op (lu, lusolve,
-/// triangularSolve, ...): the statement the messages name.
-static std::string intrinsicName(Operation *op) {
-  auto lu = [](FactorizationKind kind) {
-    return kind == FactorizationKind::LU;
-  };
-  if (auto factorize = dyn_cast<FactorizeOp>(op))
-    return lu(factorize.getKind()) ? "lu" : "chol";
-  if (auto free = dyn_cast<FactorFreeOp>(op))
-    return lu(free.getKind()) ? "lufree" : "cholfree";
-  if (auto solve = dyn_cast<FactorSolveOp>(op))
-    return solve.getIntrinsicName().str();
-  return "triangularSolve";
-}
-
-/// The runtime function of a factorisation or solve op on a system matrix
-/// (`system`: BCSR arrays) or on dense local tensors.
-static ::simit::abi::RuntimeFunction runtimeFunctionOf(Operation *op,
-                                                       bool system) {
+/// What a factorisation or solve op calls: the language's intrinsic (lu,
+/// lusolve, triangularSolve, ...; the statement messages name) and the
+/// runtime function, on a system matrix (`system`: BCSR arrays) or on
+/// dense local tensors.
+struct SolverCall {
+  StringRef intrinsic;
+  ::simit::abi::RuntimeFunction function;
+};
+static SolverCall solverCallOf(Operation *op, bool system) {
   using F = ::simit::abi::RuntimeFunction;
   auto lu = [](FactorizationKind kind) {
     return kind == FactorizationKind::LU;
   };
   if (auto factorize = dyn_cast<FactorizeOp>(op)) {
     if (lu(factorize.getKind()))
-      return system ? F::LUBCSR : F::LU;
-    return system ? F::CholBCSR : F::Chol;
+      return {"lu", system ? F::LUBCSR : F::LU};
+    return {"chol", system ? F::CholBCSR : F::Chol};
   }
   if (auto free = dyn_cast<FactorFreeOp>(op))
-    return lu(free.getKind()) ? F::LUFree : F::CholFree;
+    return lu(free.getKind()) ? SolverCall{"lufree", F::LUFree}
+                              : SolverCall{"cholfree", F::CholFree};
   if (auto solve = dyn_cast<FactorSolveOp>(op)) {
     bool isLU = lu(solve.getKind());
+    StringRef name = solve.getIntrinsicName();
     if (system)
-      return isLU ? F::LUSolveBCSR : F::LLTSolveBCSR;
+      return {name, isLU ? F::LUSolveBCSR : F::LLTSolveBCSR};
     if (getTensorOrder(solve.getRhs().getType()) == 2)
-      return isLU ? F::LUMatSolve : F::LLTMatSolve;
-    return isLU ? F::LUSolve : F::LLTSolve;
+      return {name, isLU ? F::LUMatSolve : F::LLTMatSolve};
+    return {name, isLU ? F::LUSolve : F::LLTSolve};
   }
-  return F::TriangularSolve;
+  return {"triangularSolve", F::TriangularSolve};
 }
 
 LogicalResult FunctionLowering::lowerWoodbury(WoodburyOp op) {
@@ -227,7 +219,8 @@ LogicalResult FunctionLowering::lowerSystemFactorisation(Operation *op) {
     return lowerSystemSolve(op, solve.getMatrix(), solve.getRhs(),
                             ::simit::abi::SystemSolve::Triangular,
                             "triangularSolve");
-  std::string name = intrinsicName(op);
+  SolverCall call = solverCallOf(op, /*system=*/true);
+  std::string name = call.intrinsic.str();
   auto factorize = dyn_cast<FactorizeOp>(op);
   auto solve = dyn_cast<FactorSolveOp>(op);
   Value matrix = factorize ? factorize.getMatrix() : Value();
@@ -265,8 +258,7 @@ LogicalResult FunctionLowering::lowerSystemFactorisation(Operation *op) {
   auto indexArray = MemRefType::get({dyn}, b.getI32Type());
   auto values = MemRefType::get({dyn, dyn, dyn}, b.getF64Type());
   auto vector = MemRefType::get({dyn, dyn}, b.getF64Type());
-  StringRef runtimeName =
-      mlir::simit::runtimeName(runtimeFunctionOf(op, /*system=*/true));
+  StringRef runtimeName = mlir::simit::runtimeName(call.function);
   // The runtime ends the run with `where` ("chol (file:line:col)") when the
   // factorisation or solve fails, and names the statement in statistics.
   Value where = stringConstant(loc, name + sourcePositionSuffix(op));
@@ -306,7 +298,8 @@ LogicalResult FunctionLowering::lowerFactorisation(Operation *op) {
   if (llvm::any_of(op->getOperandTypes(), isSystem))
     return lowerSystemFactorisation(op);
   MLIRContext *ctx = b.getContext();
-  std::string name = intrinsicName(op);
+  SolverCall call = solverCallOf(op, /*system=*/false);
+  std::string name = call.intrinsic.str();
   Type f64 = b.getF64Type();
   Type ptr = LLVM::LLVMPointerType::get(ctx);
   Type flat = MemRefType::get({ShapedType::kDynamic}, f64);
@@ -380,8 +373,7 @@ LogicalResult FunctionLowering::lowerFactorisation(Operation *op) {
   else if (matSolve)
     sizeArg(shape(1)[1]);
 
-  StringRef runtimeName =
-      mlir::simit::runtimeName(runtimeFunctionOf(op, /*system=*/false));
+  StringRef runtimeName = mlir::simit::runtimeName(call.function);
   if (free) {
     callRuntime(loc, runtimeName, {}, args);
     return success();

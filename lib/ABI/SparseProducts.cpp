@@ -1,7 +1,7 @@
 //===--- SparseProducts.cpp - Products of system matrices -----------------===//
 //
-// C = A B of system matrices, each BCSR or block diagonal, into C's
-// pattern (simit::multiplyInto).
+// C = A B of system matrices, each BCSR or block diagonal (A and B may be
+// incidences read row by row), into C's pattern (simit::multiplyInto).
 //
 //===----------------------------------------------------------------------===//
 
@@ -16,12 +16,13 @@ using simit::abi::isContiguous;
 using simit::abi::MemRefDescriptor;
 
 namespace {
-/// The BlockMatrixView of lowered arrays: BCSR (layout 0) or block
-/// diagonal (layout 1, index arrays unused).
+using IndexArray = MemRefDescriptor<int32_t, 1>;
+
+/// The BlockMatrixView of lowered arrays: BCSR (layout 0), block diagonal
+/// (layout 1, index arrays unused) or an incidence's rows (layout 2).
 template <typename T>
-simit::BlockMatrixView<T> blockMatrix(int32_t layout,
-                                      MemRefDescriptor<int32_t, 1> *rowptr,
-                                      MemRefDescriptor<int32_t, 1> *colidx,
+simit::BlockMatrixView<T> blockMatrix(int32_t layout, IndexArray *rowptr,
+                                      IndexArray *colidx, IndexArray *positions,
                                       MemRefDescriptor<T, 3> *values) {
   simit::BlockMatrixView<T> view;
   view.blockRows = values->sizes[1];
@@ -34,28 +35,33 @@ simit::BlockMatrixView<T> blockMatrix(int32_t layout,
   view.rows = rowptr->sizes[0] - 1;
   view.rowptr = rowptr->data + rowptr->offset;
   view.colidx = colidx->data + colidx->offset;
+  if (layout == 2)
+    view.positions = positions->data + positions->offset;
   return view;
 }
 
 template <typename T>
-bool multiplyMatrices(int32_t layoutA, MemRefDescriptor<int32_t, 1> *rowptrA,
-                      MemRefDescriptor<int32_t, 1> *colidxA,
-                      MemRefDescriptor<T, 3> *a, int32_t layoutB,
-                      MemRefDescriptor<int32_t, 1> *rowptrB,
-                      MemRefDescriptor<int32_t, 1> *colidxB,
-                      MemRefDescriptor<T, 3> *b, int32_t layoutC,
-                      MemRefDescriptor<int32_t, 1> *rowptrC,
-                      MemRefDescriptor<int32_t, 1> *colidxC,
+bool multiplyMatrices(int32_t layoutA, IndexArray *rowptrA, IndexArray *colidxA,
+                      IndexArray *positionsA, MemRefDescriptor<T, 3> *a,
+                      int32_t layoutB, IndexArray *rowptrB, IndexArray *colidxB,
+                      IndexArray *positionsB, MemRefDescriptor<T, 3> *b,
+                      int32_t layoutC, IndexArray *rowptrC, IndexArray *colidxC,
                       MemRefDescriptor<T, 3> *c, int64_t cols,
                       const char *where) {
-  for (auto *m : {rowptrA, colidxA, rowptrB, colidxB, rowptrC, colidxC})
+  for (IndexArray *m : {rowptrA, colidxA, positionsA, rowptrB, colidxB,
+                        positionsB, rowptrC, colidxC})
     if (!isContiguous(*m))
       return fail(where, "index arrays must be contiguous");
   if (!isContiguous(*a) || !isContiguous(*b) || !isContiguous(*c))
     return fail(where, "value arrays must be contiguous");
-  simit::BlockMatrixView<T> left = blockMatrix(layoutA, rowptrA, colidxA, a);
-  simit::BlockMatrixView<T> right = blockMatrix(layoutB, rowptrB, colidxB, b);
-  simit::BlockMatrixView<T> result = blockMatrix(layoutC, rowptrC, colidxC, c);
+  if (layoutC == 2)
+    return fail(where, "the product's result must be BCSR or block diagonal");
+  simit::BlockMatrixView<T> left =
+      blockMatrix(layoutA, rowptrA, colidxA, positionsA, a);
+  simit::BlockMatrixView<T> right =
+      blockMatrix(layoutB, rowptrB, colidxB, positionsB, b);
+  simit::BlockMatrixView<T> result =
+      blockMatrix(layoutC, rowptrC, colidxC, nullptr, c);
   left.cols = right.rows;
   right.cols = result.cols = cols;
   if (llvm::Error err = simit::multiplyInto(left, right, result))
@@ -65,27 +71,27 @@ bool multiplyMatrices(int32_t layoutA, MemRefDescriptor<int32_t, 1> *rowptrA,
 } // namespace
 
 extern "C" void _mlir_ciface_simit_rt_matmul_bcsr(
-    int32_t layoutA, MemRefDescriptor<int32_t, 1> *rowptrA,
-    MemRefDescriptor<int32_t, 1> *colidxA, MemRefDescriptor<double, 3> *a,
-    int32_t layoutB, MemRefDescriptor<int32_t, 1> *rowptrB,
-    MemRefDescriptor<int32_t, 1> *colidxB, MemRefDescriptor<double, 3> *b,
-    int32_t layoutC, MemRefDescriptor<int32_t, 1> *rowptrC,
-    MemRefDescriptor<int32_t, 1> *colidxC, MemRefDescriptor<double, 3> *c,
-    int64_t cols, const char *where) {
-  if (!multiplyMatrices(layoutA, rowptrA, colidxA, a, layoutB, rowptrB, colidxB,
-                        b, layoutC, rowptrC, colidxC, c, cols, where))
+    int32_t layoutA, IndexArray *rowptrA, IndexArray *colidxA,
+    IndexArray *positionsA, MemRefDescriptor<double, 3> *a, int32_t layoutB,
+    IndexArray *rowptrB, IndexArray *colidxB, IndexArray *positionsB,
+    MemRefDescriptor<double, 3> *b, int32_t layoutC, IndexArray *rowptrC,
+    IndexArray *colidxC, MemRefDescriptor<double, 3> *c, int64_t cols,
+    const char *where) {
+  if (!multiplyMatrices(layoutA, rowptrA, colidxA, positionsA, a, layoutB,
+                        rowptrB, colidxB, positionsB, b, layoutC, rowptrC,
+                        colidxC, c, cols, where))
     abandonRun();
 }
 
 extern "C" void _mlir_ciface_simit_rt_matmul_bcsr_f32(
-    int32_t layoutA, MemRefDescriptor<int32_t, 1> *rowptrA,
-    MemRefDescriptor<int32_t, 1> *colidxA, MemRefDescriptor<float, 3> *a,
-    int32_t layoutB, MemRefDescriptor<int32_t, 1> *rowptrB,
-    MemRefDescriptor<int32_t, 1> *colidxB, MemRefDescriptor<float, 3> *b,
-    int32_t layoutC, MemRefDescriptor<int32_t, 1> *rowptrC,
-    MemRefDescriptor<int32_t, 1> *colidxC, MemRefDescriptor<float, 3> *c,
-    int64_t cols, const char *where) {
-  if (!multiplyMatrices(layoutA, rowptrA, colidxA, a, layoutB, rowptrB, colidxB,
-                        b, layoutC, rowptrC, colidxC, c, cols, where))
+    int32_t layoutA, IndexArray *rowptrA, IndexArray *colidxA,
+    IndexArray *positionsA, MemRefDescriptor<float, 3> *a, int32_t layoutB,
+    IndexArray *rowptrB, IndexArray *colidxB, IndexArray *positionsB,
+    MemRefDescriptor<float, 3> *b, int32_t layoutC, IndexArray *rowptrC,
+    IndexArray *colidxC, MemRefDescriptor<float, 3> *c, int64_t cols,
+    const char *where) {
+  if (!multiplyMatrices(layoutA, rowptrA, colidxA, positionsA, a, layoutB,
+                        rowptrB, colidxB, positionsB, b, layoutC, rowptrC,
+                        colidxC, c, cols, where))
     abandonRun();
 }

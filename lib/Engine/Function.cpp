@@ -16,6 +16,7 @@
 #include "Threads.h"
 
 #include "simit/Runtime/ElementColouring.h"
+#include "simit/Runtime/IncidenceView.h"
 #include "simit/Runtime/PatternAlgebra.h"
 #include "simit/Runtime/SparsityPattern.h"
 
@@ -147,6 +148,7 @@ struct Function::Impl {
   bool initialized = false;
   std::vector<std::pair<const Set *, uint64_t>> setVersions;
   std::vector<std::shared_ptr<const SparsityPattern>> patterns;
+  std::vector<std::shared_ptr<const IncidenceView>> incidences;
   /// Unions of patterns by their union binding's "set" (the joined edge
   /// sets), rows and cols, and the gather maps into them.
   std::map<std::string, std::shared_ptr<const SparsityPattern>> unions;
@@ -380,6 +382,30 @@ llvm::Error Function::Impl::prepareArgument(const ArgumentBinding &arg,
       pushMemRef(word, p.columnIndices().data(), {p.numBlocks()});
     return llvm::Error::success();
   }
+  case Kind::IncidenceRowPtr:
+  case Kind::IncidenceColIdx:
+  case Kind::IncidencePositions: {
+    llvm::Expected<Set *> edges = boundSet(arg.set);
+    if (!edges)
+      return edges.takeError();
+    bool transposed = arg.cols == arg.set;
+    llvm::Expected<Set *> endpoints = boundSet(transposed ? arg.rows : arg.cols);
+    if (!endpoints)
+      return endpoints.takeError();
+    auto view = IncidenceView::get(**edges, **endpoints, transposed);
+    if (!view)
+      return error(arg.describe() + ": " + llvm::toString(view.takeError()));
+    incidences.push_back(*view);
+    const IncidenceView &v = **view;
+    if (arg.kind == Kind::IncidenceRowPtr)
+      pushMemRef(word, v.rowPtr.data(), {v.rows + 1});
+    else
+      pushMemRef(word, (arg.kind == Kind::IncidenceColIdx ? v.colIdx
+                                                          : v.positions)
+                           .data(),
+                 {static_cast<int64_t>(v.colIdx.size())});
+    return llvm::Error::success();
+  }
   case Kind::ElementColours: {
     llvm::Expected<Set *> set = boundSet(arg.set);
     if (!set)
@@ -494,6 +520,7 @@ llvm::Error Function::Impl::init() {
   initialized = false;
   setVersions.clear();
   patterns.clear();
+  incidences.clear();
   unions.clear();
   gathers.clear();
   colourings.clear();

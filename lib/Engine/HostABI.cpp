@@ -188,6 +188,11 @@ std::string ArgumentBinding::describe() const {
   case Kind::PatternLocations:
     return "sparsity pattern of set '" + set + "' over ('" + rows + "', '" +
            cols + "')";
+  case Kind::IncidenceRowPtr:
+  case Kind::IncidenceColIdx:
+  case Kind::IncidencePositions:
+    return "rows of the incidence of set '" + set + "' over ('" + rows +
+           "', '" + cols + "')";
   case Kind::UnionRowPtr:
   case Kind::UnionColIdx:
     return "union of the sparsity patterns of '" +
@@ -269,6 +274,9 @@ public:
     case Kind::PatternRowPtr:
     case Kind::PatternColIdx:
     case Kind::PatternLocations:
+    case Kind::IncidenceRowPtr:
+    case Kind::IncidenceColIdx:
+    case Kind::IncidencePositions:
       if (llvm::Error err = get("set", binding.set))
         return err;
       if (llvm::Error err = get("rows", binding.rows))
@@ -377,6 +385,9 @@ static llvm::Error checkKindType(const HostSignature &signature,
   case Kind::UnionGather:
   case Kind::ProductRowPtr:
   case Kind::ProductColIdx:
+  case Kind::IncidenceRowPtr:
+  case Kind::IncidenceColIdx:
+  case Kind::IncidencePositions:
   case Kind::ElementColours:
     if (!type.isMemRef || type.rank() != 1 || type.scalar != ScalarKind::Int32)
       return fail("memref<?xi32>");

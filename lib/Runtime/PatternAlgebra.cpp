@@ -1,6 +1,7 @@
 //===--- PatternAlgebra.cpp - Sparsity of sums and products ---------------===//
 
 #include "simit/Runtime/PatternAlgebra.h"
+#include "simit/Runtime/IncidenceView.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -13,6 +14,17 @@ simit::unionPattern(llvm::ArrayRef<const Set *> edgeSets, const Set &rows,
   std::vector<std::shared_ptr<const SparsityPattern>> owned;
   std::vector<const SparsityPattern *> members;
   for (const Set *edges : edgeSets) {
+    // Over (E, V) or (V, E), E's own pattern is its incidence's.
+    if (edges == &rows || edges == &cols) {
+      bool transposed = edges == &cols;
+      auto view =
+          IncidenceView::get(*edges, transposed ? rows : cols, transposed);
+      if (!view)
+        return view.takeError();
+      owned.push_back((*view)->pattern());
+      members.push_back(owned.back().get());
+      continue;
+    }
     auto pattern = SparsityPattern::get(*edges, rows, cols);
     if (!pattern)
       return pattern.takeError();

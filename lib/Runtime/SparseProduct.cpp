@@ -16,6 +16,9 @@ template <typename T>
 llvm::Error simit::multiplyInto(const BlockMatrixView<T> &a,
                                 const BlockMatrixView<T> &b,
                                 const BlockMatrixView<T> &c) {
+  if (c.positions)
+    return llvm::createStringError(
+        "matrix product: the result must be BCSR or block diagonal");
   if (a.cols != b.rows || a.blockCols != b.blockRows || c.rows != a.rows ||
       c.cols != b.cols || c.blockRows != a.blockRows ||
       c.blockCols != b.blockCols)

@@ -36,49 +36,13 @@ struct NotYetRun {
   int blockSize = 0;
 };
 constexpr NotYetRun kNotYetRun[] = {
-    // Products with an incidence factor other than those of
-    // isRunningIncidenceProduct: "a matrix stored as
-    // 'product(incidence(...), ...)' is not supported by the loop lowering".
-    {"product", "incidence"},
-    {"product", "incidenceT"},
-    {"transposedProduct", "incidence"},
-    {"transposedProduct", "incidenceT"},
-    {"productTransposed", "incidence"},
-    {"productTransposed", "incidenceT"},
     // Slices of blocked system matrices: the op verifier rejects them.
     {"rowSlices", nullptr, 3},
     {"luMatSolve", nullptr}, // lumatsolve and lltmatsolve on system matrices
     {"cholMatSolve", nullptr},
 };
 
-/// The products with incidence factors that run: an incidence's transpose
-/// times the incidence, by operation and sources.
-constexpr const char *kIncidenceGrams[][3] = {
-    {"transposedProduct", "incidence", "incidence"},
-    {"product", "incidenceT", "incidence"},
-    {"productTransposed", "incidenceT", "incidenceT"},
-};
-
-/// Whether `c` is a product that runs although a kNotYetRun rule names
-/// one of its sources: a Gram product of incidences, or an incidence and a
-/// diagonal (which scales its blocks).
-bool isRunningIncidenceProduct(const Case &c) {
-  if (c.sources.size() != 2)
-    return false;
-  llvm::StringRef first = c.sources[0]->name, second = c.sources[1]->name;
-  if (llvm::any_of(kIncidenceGrams, [&](const auto &gram) {
-        return llvm::StringRef(gram[0]) == c.operation->name &&
-               gram[1] == first && gram[2] == second;
-      }))
-    return true;
-  return (first == "diag") != (second == "diag") &&
-         llvm::StringRef(c.operation->name).contains_insensitive("product") &&
-         llvm::StringRef(c.operation->name) != "elementwiseProduct";
-}
-
 bool isNotYetRun(const Case &c) {
-  if (isRunningIncidenceProduct(c))
-    return false;
   return llvm::any_of(kNotYetRun, [&](const NotYetRun &rule) {
     bool operation =
         !rule.operation || llvm::StringRef(rule.operation) == c.operation->name;

@@ -38,6 +38,11 @@ enum class BindingKind {
   ProductRowPtr,    // memref<?xi32>: BCSR row pointers of the product of
                     // the patterns `left*right` over (rows, mid, cols)
   ProductColIdx,    // memref<?xi32>: its block columns
+  IncidenceRowPtr,  // memref<?xi32>: per row of the incidence of edge set
+                    // `set` over (rows, cols) (one of them the edge set
+                    // itself), its first block (simit::IncidenceView)
+  IncidenceColIdx,  // memref<?xi32>: per block, its column
+  IncidencePositions, // memref<?xi32>: per block, its value position
   ElementColours,   // memref<?xi32>: the colouring of edge set `set` in
                     // chunks of `chunk` elements
   Extern,           // an extern tensor `name`
@@ -52,6 +57,8 @@ inline constexpr BindingKind kBindingKinds[] = {
     BindingKind::PatternLocations, BindingKind::UnionRowPtr,
     BindingKind::UnionColIdx,      BindingKind::UnionGather,
     BindingKind::ProductRowPtr,    BindingKind::ProductColIdx,
+    BindingKind::IncidenceRowPtr,  BindingKind::IncidenceColIdx,
+    BindingKind::IncidencePositions,
     BindingKind::ElementColours,   BindingKind::Extern,
     BindingKind::Parameter};
 
@@ -82,6 +89,12 @@ constexpr std::string_view spelling(BindingKind kind) {
     return "product_rowptr";
   case BindingKind::ProductColIdx:
     return "product_colidx";
+  case BindingKind::IncidenceRowPtr:
+    return "incidence_rowptr";
+  case BindingKind::IncidenceColIdx:
+    return "incidence_colidx";
+  case BindingKind::IncidencePositions:
+    return "incidence_positions";
   case BindingKind::ElementColours:
     return "element_colours";
   case BindingKind::Extern:

@@ -139,19 +139,23 @@ void _mlir_ciface_simit_rt_solve_diag_f32(
 
 /// C = A B for system matrices: each of A, B and C BCSR (layout 0: rowptr,
 /// colidx, values memref<?xBrxBcxT>) or block diagonal (layout 1: index
-/// arrays unused); C's pattern holds the product (simit::productPattern),
-/// `cols` is its number of block columns. A block of the product outside
-/// C's pattern ends the run with `where`.
+/// arrays unused); A and B may also be incidences read row by row (layout
+/// 2: the rowptr, colidx and value positions of simit::IncidenceView).
+/// C's pattern holds the product (simit::productPattern), `cols` is its
+/// number of block columns. A block of the product outside C's pattern
+/// ends the run with `where`.
 /// MLIR: @simit_rt_matmul_bcsr(i32, memref<?xi32>, memref<?xi32>,
-///   memref<?x?x?xf64>, i32, memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>,
-///   i32, memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>, i64, !llvm.ptr),
-///   and @simit_rt_matmul_bcsr_f32.
+///   memref<?xi32>, memref<?x?x?xf64>, i32, memref<?xi32>, memref<?xi32>,
+///   memref<?xi32>, memref<?x?x?xf64>, i32, memref<?xi32>, memref<?xi32>,
+///   memref<?x?x?xf64>, i64, !llvm.ptr), and @simit_rt_matmul_bcsr_f32.
 void _mlir_ciface_simit_rt_matmul_bcsr(
     int32_t layoutA, simit::abi::MemRefDescriptor<int32_t, 1> *rowptrA,
     simit::abi::MemRefDescriptor<int32_t, 1> *colidxA,
+    simit::abi::MemRefDescriptor<int32_t, 1> *positionsA,
     simit::abi::MemRefDescriptor<double, 3> *a, int32_t layoutB,
     simit::abi::MemRefDescriptor<int32_t, 1> *rowptrB,
     simit::abi::MemRefDescriptor<int32_t, 1> *colidxB,
+    simit::abi::MemRefDescriptor<int32_t, 1> *positionsB,
     simit::abi::MemRefDescriptor<double, 3> *b, int32_t layoutC,
     simit::abi::MemRefDescriptor<int32_t, 1> *rowptrC,
     simit::abi::MemRefDescriptor<int32_t, 1> *colidxC,
@@ -160,9 +164,11 @@ void _mlir_ciface_simit_rt_matmul_bcsr(
 void _mlir_ciface_simit_rt_matmul_bcsr_f32(
     int32_t layoutA, simit::abi::MemRefDescriptor<int32_t, 1> *rowptrA,
     simit::abi::MemRefDescriptor<int32_t, 1> *colidxA,
+    simit::abi::MemRefDescriptor<int32_t, 1> *positionsA,
     simit::abi::MemRefDescriptor<float, 3> *a, int32_t layoutB,
     simit::abi::MemRefDescriptor<int32_t, 1> *rowptrB,
     simit::abi::MemRefDescriptor<int32_t, 1> *colidxB,
+    simit::abi::MemRefDescriptor<int32_t, 1> *positionsB,
     simit::abi::MemRefDescriptor<float, 3> *b, int32_t layoutC,
     simit::abi::MemRefDescriptor<int32_t, 1> *rowptrC,
     simit::abi::MemRefDescriptor<int32_t, 1> *colidxC,

@@ -28,7 +28,9 @@ namespace simit {
 
 /// The union of the patterns of the matrices over (rows, cols) assembled
 /// from each of `edgeSets` (each must have rows and cols among its endpoint
-/// sets); the pattern itself for one edge set.
+/// sets); the pattern itself for one edge set. An edge set E over (E, V)
+/// or (V, E) stands for its incidence matrix or its transpose
+/// (IncidenceView), the factors of products like D * A or D * D'.
 llvm::Expected<std::shared_ptr<const SparsityPattern>>
 unionPattern(llvm::ArrayRef<const Set *> edgeSets, const Set &rows,
              const Set &cols);

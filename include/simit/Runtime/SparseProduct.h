@@ -18,18 +18,23 @@ namespace simit {
 /// A matrix of rows x cols blocks of blockRows x blockCols row-major
 /// components: BCSR (row r's blocks rowptr[r] .. rowptr[r + 1] at columns
 /// colidx[...], sorted), or block diagonal when rowptr is null (block r at
-/// (r, r)).
+/// (r, r)). With `positions` (an incidence's rows, IncidenceView), block k
+/// of the rows is at value position positions[k], and a row may name a
+/// column twice; such a matrix is only read.
 template <typename T> struct BlockMatrixView {
   int64_t rows = 0, cols = 0;
   int64_t blockRows = 1, blockCols = 1;
   const int32_t *rowptr = nullptr;
   const int32_t *colidx = nullptr;
+  const int32_t *positions = nullptr;
   T *values = nullptr;
 
   int64_t begin(int64_t r) const { return rowptr ? rowptr[r] : r; }
   int64_t end(int64_t r) const { return rowptr ? rowptr[r + 1] : r + 1; }
   int64_t column(int64_t k) const { return colidx ? colidx[k] : k; }
-  T *block(int64_t k) const { return values + k * blockRows * blockCols; }
+  T *block(int64_t k) const {
+    return values + (positions ? positions[k] : k) * blockRows * blockCols;
+  }
 };
 
 /// Overwrites C's values with A B. C's pattern must hold every block of the

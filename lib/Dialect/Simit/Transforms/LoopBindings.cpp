@@ -150,6 +150,19 @@ Value FunctionLowering::gatherMap(const Storage &storage, const Storage &part,
                     MemRefType::get({ShapedType::kDynamic}, b.getI32Type()));
 }
 
+std::array<Value, 3> FunctionLowering::incidenceRows(const Storage &storage) {
+  Type type = MemRefType::get({ShapedType::kDynamic}, b.getI32Type());
+  auto array = [&](BindingKind kind) {
+    return getBinding(kind,
+                      {storage.edges.getValue(), storage.rows.getValue(),
+                       storage.cols.getValue()},
+                      type);
+  };
+  return {array(BindingKind::IncidenceRowPtr),
+          array(BindingKind::IncidenceColIdx),
+          array(BindingKind::IncidencePositions)};
+}
+
 Value FunctionLowering::emptyIndexArray() {
   // One stack slot at the function entry, so loops do not grow the stack.
   if (!noIndices) {

@@ -193,6 +193,17 @@ struct EncodingReader {
     }
   }
 
+  /// The edge sets of a product's factor: patternSets, or the edge set of
+  /// an incidence or its transpose (the runtime reads the pattern of E over
+  /// (E, V) or (V, E) as the incidence's).
+  std::optional<SmallVector<StringAttr, 2>> factorSets(StorageAttr e) {
+    StorageAttr inner =
+        e.getKind() == StorageKind::Transpose ? e.getOperand() : e;
+    if (inner.getKind() == StorageKind::Incidence)
+      return SmallVector<StringAttr, 2>{inner.getSet()};
+    return patternSets(e);
+  }
+
   std::optional<Storage> read(StorageAttr e, StringAttr rows,
                               StringAttr cols) {
     switch (e.getKind()) {
@@ -249,9 +260,9 @@ struct EncodingReader {
       if (e.getMembers().size() != 2)
         return std::nullopt;
       std::optional<SmallVector<StringAttr, 2>> left =
-          patternSets(e.getMember(0));
+          factorSets(e.getMember(0));
       std::optional<SmallVector<StringAttr, 2>> right =
-          patternSets(e.getMember(1));
+          factorSets(e.getMember(1));
       StringAttr mid = colSet(e.getMember(0));
       if (!left || !right || !mid)
         return std::nullopt;

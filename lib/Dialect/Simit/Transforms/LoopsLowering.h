@@ -32,6 +32,7 @@
 #include "llvm/ADT/SetVector.h"
 #include "llvm/ADT/StringMap.h"
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <tuple>
@@ -67,7 +68,8 @@ struct Storage {
     /// A BCSR matrix over (rows, cols) on the pattern of the product of a
     /// pattern or union over (rows, mid) (edge sets `members`) and one over
     /// (mid, cols) (`rightMembers`), with the diagonal when square. Built
-    /// once per binding (simit::productPattern).
+    /// once per binding (simit::productPattern). A factor may be an
+    /// incidence or its transpose: its edge set is then its rows or cols.
     Product
   };
   Kind kind = Kind::Dense;
@@ -248,6 +250,10 @@ public:
   /// union; Storage::isBCSR).
   Value rowPointers(const Storage &storage);
   Value columnIndices(const Storage &storage);
+  /// The rows of an incidence storage (or its transpose) as the runtime's
+  /// product reads them: per row its first block, per block its column and
+  /// value position (incidence_* bindings, simit::IncidenceView).
+  std::array<Value, 3> incidenceRows(const Storage &storage);
   /// An empty memref<?xi32> for runtime functions whose index arrays a
   /// layout does not use.
   Value emptyIndexArray();

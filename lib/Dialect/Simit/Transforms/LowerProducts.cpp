@@ -6,7 +6,9 @@
 // bindings); each call computes the values with the runtime's numeric
 // product. A block diagonal factor keeps the other factor's pattern. The
 // transpose of an incidence times the incidence is summed edge by edge on
-// the edge set's pattern; a diagonal factor scales an incidence's blocks.
+// the edge set's pattern; a diagonal factor scales an incidence's blocks;
+// other products with an incidence factor read its rows through a
+// bind-time view (simit::IncidenceView).
 //
 //===----------------------------------------------------------------------===//
 
@@ -19,10 +21,11 @@ using namespace mlir;
 using namespace mlir::simit;
 using namespace mlir::simit::loops;
 
-/// Whether the runtime's product takes a matrix stored as `s`: block
-/// diagonal or BCSR.
+/// Whether the runtime's product takes a factor stored as `s`: block
+/// diagonal, BCSR, or an incidence read row by row.
 static bool isProductOperand(const Storage &s) {
-  return s.kind == Storage::Kind::Diagonal || s.isBCSR();
+  return s.kind == Storage::Kind::Diagonal || s.isBCSR() ||
+         s.kind == Storage::Kind::Incidence;
 }
 
 /// Whether `h` (over (V, E)) times `g` (over (E, V)) is an incidence's
@@ -185,7 +188,7 @@ LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
       return lowerScaledIncidence(op, b2, /*diagonalOnRight=*/false);
   }
   if (!isProductOperand(a) || !isProductOperand(b2) ||
-      !isProductOperand(storage))
+      !(storage.kind == Storage::Kind::Diagonal || storage.isBCSR()))
     return op.emitError("products are supported of matrices assembled from "
                         "sets and their sums; these are stored as ")
            << a.describe() << " and " << b2.describe();
@@ -200,9 +203,9 @@ LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
   auto values = MemRefType::get({dyn, dyn, dyn}, component);
   auto calleeType = FunctionType::get(
       ctx,
-      {i32, indexArray, indexArray, values, i32, indexArray, indexArray,
-       values, i32, indexArray, indexArray, values, b.getI64Type(),
-       LLVM::LLVMPointerType::get(ctx)},
+      {i32, indexArray, indexArray, indexArray, values, i32, indexArray,
+       indexArray, indexArray, values, i32, indexArray, indexArray, values,
+       b.getI64Type(), LLVM::LLVMPointerType::get(ctx)},
       {});
   StringRef name = runtimeName(component.isF32()
                                    ? ::simit::abi::RuntimeFunction::MatmulBCSRF32
@@ -211,20 +214,28 @@ LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
   if (!callee)
     return op.emitError("@") << name << " is declared with another type";
 
-  // Each matrix: its layout (0 BCSR, 1 block diagonal), index arrays and
-  // values.
+  // Each matrix: its layout (0 BCSR, 1 block diagonal, 2 an incidence's
+  // rows), index arrays (the factors' with value positions) and values.
   SmallVector<Value> args;
-  auto addMatrix = [&](const Storage &s, Value array) {
-    bool diagonal = s.kind == Storage::Kind::Diagonal;
-    args.push_back(arith::ConstantIntOp::create(b, loc, i32, diagonal));
-    args.push_back(diagonal ? emptyIndexArray() : rowPointers(s));
-    args.push_back(diagonal ? emptyIndexArray() : columnIndices(s));
+  auto addMatrix = [&](const Storage &s, Value array, bool isFactor) {
+    int64_t layout = s.kind == Storage::Kind::Diagonal    ? 1
+                     : s.kind == Storage::Kind::Incidence ? 2
+                                                          : 0;
+    args.push_back(arith::ConstantIntOp::create(b, loc, i32, layout));
+    if (layout == 2) {
+      llvm::append_range(args, incidenceRows(s));
+    } else {
+      args.push_back(layout == 1 ? emptyIndexArray() : rowPointers(s));
+      args.push_back(layout == 1 ? emptyIndexArray() : columnIndices(s));
+      if (isFactor)
+        args.push_back(emptyIndexArray());
+    }
     args.push_back(asRuntimeBlocks(loc, array, values));
   };
-  addMatrix(a, lookup(op.getLhs()));
-  addMatrix(b2, lookup(op.getRhs()));
+  addMatrix(a, lookup(op.getLhs()), /*isFactor=*/true);
+  addMatrix(b2, lookup(op.getRhs()), /*isFactor=*/true);
   Value result = allocSystem(loc, type, storage, /*zeroFill=*/false);
-  addMatrix(storage, result);
+  addMatrix(storage, result, /*isFactor=*/false);
   args.push_back(arith::IndexCastOp::create(b, loc, b.getI64Type(),
                                             getSetSize(storage.cols)));
   args.push_back(stringConstant(loc, "product" + sourcePositionSuffix(op)));

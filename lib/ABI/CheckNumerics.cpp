@@ -46,6 +46,8 @@ std::pair<int64_t, int64_t> blockPosition(int32_t layout, int64_t perRow,
   }
   case SIMIT_NUMERICS_FIXED_ROWS:
     return {k / perRow, colidx[k]};
+  case SIMIT_NUMERICS_DENSE:
+    return {k / perRow, k % perRow};
   case SIMIT_NUMERICS_STENCIL: {
     int64_t points = blocks / perRow;
     return {k % points, k / points};

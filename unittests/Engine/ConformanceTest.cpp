@@ -38,8 +38,6 @@ struct NotYetRun {
 constexpr NotYetRun kNotYetRun[] = {
     // Slices of blocked system matrices: the op verifier rejects them.
     {"rowSlices", nullptr, 3},
-    {"luMatSolve", nullptr}, // lumatsolve and lltmatsolve on system matrices
-    {"cholMatSolve", nullptr},
 };
 
 bool isNotYetRun(const Case &c) {

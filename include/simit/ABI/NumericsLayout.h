@@ -26,6 +26,9 @@ enum SimitNumericsLayout : int32_t {
   /// A grid stencil matrix of `perRow` offsets: block k is row
   /// k % (blocks / perRow) at offset number k / (blocks / perRow).
   SIMIT_NUMERICS_STENCIL = 4,
+  /// A dense matrix of `perRow` columns: block k is (k / perRow,
+  /// k % perRow).
+  SIMIT_NUMERICS_DENSE = 5,
 };
 
 #endif // SIMIT_ABI_NUMERICSLAYOUT_H

@@ -256,6 +256,9 @@ Value FunctionLowering::numBlocks(const Storage &storage,
   case Storage::Kind::Incidence:
     return arith::MulIOp::create(b, loc, getSetSize(storage.edges),
                                  indexConstant(storage.cardinality));
+  case Storage::Kind::DenseMatrix:
+    return arith::MulIOp::create(b, loc, getSetSize(storage.rows),
+                                 getSetSize(storage.cols));
   }
   llvm_unreachable("storage kind");
 }

@@ -100,6 +100,10 @@ FailureOr<Value> IndexExprLowering::access(unsigned i) {
   }
   if (storage.kind == Storage::Kind::Incidence)
     return incidenceEntry(i, row, col, inner, Value());
+  if (storage.kind == Storage::Kind::DenseMatrix) {
+    inner.insert(inner.begin(), l.findBlock(loc, storage, row, col));
+    return memref::LoadOp::create(b, loc, lowered, inner).getResult();
+  }
   // Elsewhere a search of the row (a diagonal result read from a
   // pattern): zero where the matrix has no block.
   Value position = l.findBlock(loc, storage, row, col);
@@ -154,7 +158,10 @@ IndexExprLowering::choose(ArrayRef<unsigned> vars) {
         break;
       Storage storage = storageOf(o);
       ArrayRef<int64_t> list = indexList(o);
-      if (!storage.isMatrix() || list.size() != 2 || list[0] == list[1])
+      // A dense matrix has every block: it couples nothing, and its
+      // variables run over their whole sets.
+      if (!storage.isMatrix() || storage.kind == Storage::Kind::DenseMatrix ||
+          list.size() != 2 || list[0] == list[1])
         continue;
       // A(u, v) couples v along its rows; A(v, u), read transposed, along
       // the rows of its transpose.

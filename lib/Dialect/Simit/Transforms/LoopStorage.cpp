@@ -34,6 +34,8 @@ SmallVector<StringAttr, 2> Storage::patternSets() const {
 bool Storage::contains(const Storage &o) const {
   if (*this == o)
     return true;
+  if (kind == Kind::DenseMatrix)
+    return o.isMatrix() && rows == o.rows && cols == o.cols;
   // An edge pattern over (V, V) holds every diagonal block of V, and so do
   // a stencil (it always stores offset 0) and a union of patterns.
   if (o.kind == Kind::Diagonal)
@@ -57,6 +59,8 @@ std::optional<Storage> mlir::simit::loops::transposedStorage(const Storage &s) {
     return Storage::pattern(s.edges, s.cols, s.rows);
   case Storage::Kind::Union:
     return Storage::unionOf(s.members, s.cols, s.rows);
+  case Storage::Kind::DenseMatrix:
+    return Storage::denseMatrix(s.cols, s.rows);
   case Storage::Kind::Product:
   case Storage::Kind::Stencil:
   case Storage::Kind::Incidence:
@@ -111,6 +115,10 @@ std::string Storage::describe() const {
             rows.getValue() + "', '" + cols.getValue() + "')")
         .str();
   }
+  case Kind::DenseMatrix:
+    return ("dense matrix over ('" + rows.getValue() + "', '" +
+            cols.getValue() + "')")
+        .str();
   case Kind::Product:
     return ("product of matrices over ('" + rows.getValue() + "', '" +
             mid.getValue() + "') and ('" + mid.getValue() + "', '" +
@@ -276,6 +284,7 @@ struct EncodingReader {
       return product;
     }
     case StorageKind::Dense:
+      return Storage::denseMatrix(rows, cols);
     case StorageKind::Empty:
     case StorageKind::LowRank:
       return std::nullopt;

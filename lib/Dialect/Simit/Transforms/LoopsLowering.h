@@ -70,7 +70,11 @@ struct Storage {
     /// (mid, cols) (`rightMembers`), with the diagonal when square. Built
     /// once per binding (simit::productPattern). A factor may be an
     /// incidence or its transpose: its edge set is then its rows or cols.
-    Product
+    Product,
+    /// A matrix over (rows, cols) with every block stored: block
+    /// r * |cols| + c is (r, c). The solution of `lumatsolve` and
+    /// `lltmatsolve` (A^-1 B is dense); no index arrays.
+    DenseMatrix
   };
   Kind kind = Kind::Dense;
   /// Diagonal: rows == cols == the set. Pattern: the edge set and the two
@@ -101,6 +105,9 @@ struct Storage {
   static Storage stencil(StringAttr grid, StringAttr points,
                          ArrayAttr offsets) {
     return Storage{Kind::Stencil, grid, points, points, offsets};
+  }
+  static Storage denseMatrix(StringAttr rows, StringAttr cols) {
+    return Storage{Kind::DenseMatrix, nullptr, rows, cols};
   }
   static Storage incidence(StringAttr edges, StringAttr cols,
                            int64_t cardinality) {
@@ -435,6 +442,10 @@ private:
   /// solves of system vectors, and triangular solves: the runtime's sparse
   /// solvers.
   LogicalResult lowerSystemFactorisation(Operation *op);
+  /// lumatsolve / lltmatsolve of a system matrix of scalars into a dense
+  /// matrix, column by column with the runtime's vector solve.
+  LogicalResult lowerFactorMatrixSolve(FactorSolveOp solve,
+                                       func::FuncOp vectorSolve, Value where);
   /// A call to the runtime function `name`, declared on first use.
   Value callRuntime(Location loc, StringRef name, TypeRange results,
                     ValueRange args);

@@ -43,6 +43,8 @@ SimitNumericsLayout layoutOf(const Storage &storage) {
     return SIMIT_NUMERICS_FIXED_ROWS;
   case Storage::Kind::Stencil:
     return SIMIT_NUMERICS_STENCIL;
+  case Storage::Kind::DenseMatrix:
+    return SIMIT_NUMERICS_DENSE;
   }
   llvm_unreachable("storage kind");
 }
@@ -65,7 +67,7 @@ LogicalResult FunctionLowering::scanForNonFinite(Operation *op) {
   // One call of the runtime's scan; mapCardinality 0 names no elements of
   // the mapped set.
   auto scan = [&](Value array, Type component, SimitNumericsLayout layout,
-                  int64_t perRow, Value rowptr, Value colidx, StringRef name,
+                  Value perRow, Value rowptr, Value colidx, StringRef name,
                   StringAttr rowSet, StringAttr colSet, Value mapEndpoints,
                   int64_t mapCardinality, StringAttr mapSet) -> LogicalResult {
     Type ptr = LLVM::LLVMPointerType::get(ctx);
@@ -87,8 +89,10 @@ LogicalResult FunctionLowering::scanForNonFinite(Operation *op) {
         ValueRange{memref::CastOp::create(b, loc, values, array),
                    arith::ConstantIntOp::create(b, loc, b.getI32Type(),
                                                 layout),
-                   arith::ConstantIntOp::create(b, loc, b.getI64Type(),
-                                                perRow),
+                   perRow ? perRow
+                          : arith::ConstantIntOp::create(b, loc,
+                                                         b.getI64Type(), 0)
+                                .getResult(),
                    rowptr ? rowptr : emptyIndexArray(),
                    colidx ? colidx : emptyIndexArray(),
                    stringConstant(loc, what.getValue()),
@@ -111,19 +115,25 @@ LogicalResult FunctionLowering::scanForNonFinite(Operation *op) {
     Storage storage = storageOf(result);
     SimitNumericsLayout layout = layoutOf(storage);
     Value rowptr, colidx;
-    int64_t perRow = 0;
+    Value perRow;
+    auto constantPerRow = [&](int64_t n) {
+      return arith::ConstantIntOp::create(b, loc, b.getI64Type(), n);
+    };
     if (layout == SIMIT_NUMERICS_PATTERN) {
       rowptr = rowPointers(storage);
       colidx = columnIndices(storage);
     } else if (layout == SIMIT_NUMERICS_FIXED_ROWS) {
       // The edge set's endpoint array is the column index, row by row.
-      perRow = storage.cardinality;
+      perRow = constantPerRow(storage.cardinality);
       ReassociationIndices both = {0, 1};
       colidx = memref::CollapseShapeOp::create(
           b, loc, getEndpoints(storage.edges, storage.cardinality),
           ArrayRef<ReassociationIndices>{both});
     } else if (layout == SIMIT_NUMERICS_STENCIL) {
-      perRow = storage.offsets.size();
+      perRow = constantPerRow(storage.offsets.size());
+    } else if (layout == SIMIT_NUMERICS_DENSE) {
+      perRow = arith::IndexCastOp::create(b, loc, b.getI64Type(),
+                                          getSetSize(storage.cols));
     }
     if (!rowptr)
       rowptr = emptyIndexArray();
@@ -165,7 +175,7 @@ LogicalResult FunctionLowering::scanForNonFinite(Operation *op) {
       std::string name =
           (mapped.getName().getValue() + "." + field.getValue()).str();
       if (failed(scan(array, getComponentType(fieldType),
-                      SIMIT_NUMERICS_VECTOR, 0, {}, {}, name,
+                      SIMIT_NUMERICS_VECTOR, {}, {}, {}, name,
                       mapped.getName(), {}, {}, 0, {})))
         return failure();
     }

@@ -344,6 +344,9 @@ LogicalResult IndexExprLowering::lower() {
       Value stored = *value;
       if (resultStorage.isMatrix()) {
         Value position = positions.lookup(resultOperand);
+        // A dense result's loops run over whole sets, not its blocks.
+        if (resultStorage.kind == Storage::Kind::DenseMatrix)
+          position = l.findBlock(loc, resultStorage, indices[0], indices[1]);
         // An entry of an incidence is its edge's first block at the
         // endpoint; the edge's other blocks there are zero.
         if (entrywiseIncidences &&

@@ -231,6 +231,7 @@ static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
     break;
   }
   case Storage::Kind::Union:
+  case Storage::Kind::DenseMatrix:
     return insert.emitError("a map result cannot be stored as ")
            << storage.describe();
   }

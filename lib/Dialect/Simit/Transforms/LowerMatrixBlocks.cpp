@@ -37,6 +37,10 @@ Value FunctionLowering::findBlock(Location loc, const Storage &storage,
   for (auto &[s, r, c, position] : l.blockPositions)
     if (s == storage && r == row && c == col && isVisible(b, position))
       return position;
+  if (storage.kind == Storage::Kind::DenseMatrix)
+    return arith::AddIOp::create(
+        b, loc, arith::MulIOp::create(b, loc, row, getSetSize(storage.cols)),
+        col);
   Value none = l.indexConstant(-1);
   if (storage.kind == Storage::Kind::Diagonal) {
     Value onDiagonal =

@@ -242,11 +242,19 @@ LogicalResult FunctionLowering::lowerSystemFactorisation(Operation *op) {
            << "' on a system matrix needs a square f64 matrix of scalars or "
               "square blocks assembled from a set; this one is stored as "
            << storage.describe();
-  if (solve && !(f64Blocks(solve.getRhs().getType(), 1) &&
-                 solve.getType() == solve.getRhs().getType()))
+  auto scalarMatrix = [&](Type t) {
+    auto type = dyn_cast<SystemTensorType>(t);
+    return f64Blocks(t, 2) && type.getBlockShape().empty();
+  };
+  bool matrixSolve = solve && scalarMatrix(solve.getRhs().getType()) &&
+                     scalarMatrix(solve.getType());
+  if (solve && !matrixSolve &&
+      !(f64Blocks(solve.getRhs().getType(), 1) &&
+        solve.getType() == solve.getRhs().getType()))
     return op->emitError("'") << name
                               << "' on system tensors needs an f64 vector "
-                                 "right-hand side, solved to its own type";
+                                 "right-hand side, solved to its own type, "
+                                 "or an f64 matrix of scalars";
   if (!factorize && !solve)
     return op->emitError("'") << name
                               << "' is not supported on system tensors by "
@@ -282,6 +290,8 @@ LogicalResult FunctionLowering::lowerSystemFactorisation(Operation *op) {
   if (!callee)
     return op->emitError("@") << runtimeName
                               << " is declared with another type";
+  if (matrixSolve)
+    return lowerFactorMatrixSolve(solve, callee, where);
   Value x = allocSystem(loc, solve.getType(), Storage::dense(),
                         /*zeroFill=*/false);
   func::CallOp::create(
@@ -289,6 +299,71 @@ LogicalResult FunctionLowering::lowerSystemFactorisation(Operation *op) {
       ValueRange{lookup(solve.getFactorization()),
                  asRuntimeBlocks(loc, lookup(solve.getRhs()), vector),
                  asRuntimeBlocks(loc, x, vector), where});
+  map(solve.getResult(), x);
+  return success();
+}
+
+LogicalResult FunctionLowering::lowerFactorMatrixSolve(FactorSolveOp solve,
+                                                      func::FuncOp vectorSolve,
+                                                      Value where) {
+  // X = A^-1 B column by column: column j of B gathered into a vector (zero
+  // where B stores no block), solved with the factorisation, and written
+  // into column j of X, which is dense.
+  Location loc = solve.getLoc();
+  auto rhsType = cast<SystemTensorType>(solve.getRhs().getType());
+  auto resultType = cast<SystemTensorType>(solve.getType());
+  Storage rhs = storageOf(solve.getRhs());
+  Storage result = storageOf(solve);
+  if (result.kind != Storage::Kind::DenseMatrix)
+    return solve.emitError("the solution of '")
+           << solve.getIntrinsicName() << "' must be stored as a dense "
+           << "matrix; it is stored as " << result.describe();
+  Value rhsRows = getSetSize(cast<StringAttr>(rhsType.getDims()[0]));
+  Value cols = getSetSize(cast<StringAttr>(rhsType.getDims()[1]));
+  Value resultRows = getSetSize(cast<StringAttr>(resultType.getDims()[0]));
+  auto vectorType = MemRefType::get({ShapedType::kDynamic}, b.getF64Type());
+  auto runtimeVector = MemRefType::get(
+      {ShapedType::kDynamic, ShapedType::kDynamic}, b.getF64Type());
+  Value column = memref::AllocOp::create(b, loc, vectorType, rhsRows);
+  Value solution = memref::AllocOp::create(b, loc, vectorType, resultRows);
+  Value x = allocSystem(loc, resultType, result, /*zeroFill=*/false);
+  Value bValues = lookup(solve.getRhs());
+  Value zero = zeroOf(b.getF64Type());
+  auto forEachRow = [&](Value rows, function_ref<void(Value)> body) {
+    scf::ForOp::create(
+        b, loc, indexConstant(0), rows, indexConstant(1), ValueRange{},
+        [&](OpBuilder &nb, Location, Value r, ValueRange) {
+          OpBuilder::InsertionGuard guard(b);
+          b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
+          body(r);
+          scf::YieldOp::create(b, loc);
+        });
+  };
+  forEachRow(cols, [&](Value j) {
+    forEachRow(rhsRows, [&](Value r) {
+      Value position = findBlock(loc, rhs, r, j);
+      Value present = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::sge,
+                                            position, indexConstant(0));
+      Value at =
+          arith::SelectOp::create(b, loc, present, position, indexConstant(0));
+      Value stored = memref::LoadOp::create(b, loc, bValues, at);
+      memref::StoreOp::create(
+          b, loc, arith::SelectOp::create(b, loc, present, stored, zero),
+          column, r);
+    });
+    func::CallOp::create(b, loc, vectorSolve,
+                         ValueRange{lookup(solve.getFactorization()),
+                                    asRuntimeBlocks(loc, column, runtimeVector),
+                                    asRuntimeBlocks(loc, solution,
+                                                    runtimeVector),
+                                    where});
+    forEachRow(resultRows, [&](Value r) {
+      memref::StoreOp::create(b, loc,
+                              memref::LoadOp::create(b, loc, solution, r), x,
+                              findBlock(loc, result, r, j));
+    });
+  });
+  // The buffer deallocation passes free the two vectors.
   map(solve.getResult(), x);
   return success();
 }

@@ -210,6 +210,10 @@ StorageAnalysis::visitOperation(Operation *op,
         else
           setResult(0, StorageRule::of(storage::product({in[0], in[1]})), op);
       })
+      .Case([&](FactorSolveOp) {
+        // lumatsolve / lltmatsolve: A^-1 B fills in every block.
+        setResult(0, StorageRule::of(storage::dense(ctx)), op);
+      })
       .Case([&](OuterOp) {
         setResult(0,
                   StorageRule::of(storage::lowRank(storage::empty(ctx), 1)),

@@ -95,10 +95,10 @@
 // CHECK: %[[DIAGONAL:.*]] = arith.constant 1 : i32
 // CHECK-NEXT: %[[ZERO:.*]] = arith.constant 0 : i64
 // CHECK: call @simit_rt_check_numerics_f64(%{{[^,]*}}, %[[DIAGONAL]], %[[ZERO]],
-// CHECK: %[[COLUMNS:.*]] = memref.collapse_shape %[[ENDPOINTS]] {{\[\[}}0, 1]] : memref<?x2xi32> into memref<?xi32>
+// CHECK: %[[TWO:.*]] = arith.constant 2 : i64
+// CHECK-NEXT: %[[COLUMNS:.*]] = memref.collapse_shape %[[ENDPOINTS]] {{\[\[}}0, 1]] : memref<?x2xi32> into memref<?xi32>
 // CHECK-NEXT: memref.cast %{{.*}} : memref<?xf64> to memref<*xf64>
 // CHECK-NEXT: %[[INCIDENCE:.*]] = arith.constant 3 : i32
-// CHECK-NEXT: %[[TWO:.*]] = arith.constant 2 : i64
 // CHECK: %[[NOCARD:.*]] = arith.constant 0 : i64
 // CHECK-NEXT: %[[NOSET:.*]] = llvm.mlir.addressof @[[NONE]]
 // CHECK-NEXT: call @simit_rt_check_numerics_f64(%{{[^,]*}}, %[[INCIDENCE]], %[[TWO]], %{{[^,]*}}, %[[COLUMNS]], %{{[^,]*}}, %{{[^,]*}}, %{{[^,]*}}, %{{[^,]*}}, %{{[^,]*}}, %[[NOCARD]], %[[NOSET]])

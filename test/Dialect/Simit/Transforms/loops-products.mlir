@@ -42,10 +42,10 @@ func.func @mass(%p : !Point) -> !A {
 // CHECK: %[[N:.*]] = memref.load %[[PROWPTR]][%[[NP]]] : memref<?xi32>
 // CHECK: %[[NB:.*]] = arith.index_cast %[[N]] : i32 to index
 // CHECK: %[[C:.*]] = memref.alloc(%[[NB]]) : memref<?xf64>
-// CHECK: call @simit_rt_matmul_bcsr(%c0_i32{{.*}}, %{{.*}}, %{{.*}}, %{{.*}}, %c0_i32{{.*}}, %[[SROWPTR]], %[[SCOLIDX]], %{{.*}}, %c0_i32{{.*}}, %[[PROWPTR]], %[[PCOLIDX]], %{{.*}}, %{{.*}}, %{{.*}})
+// CHECK: call @simit_rt_matmul_bcsr(%c0_i32{{[^,]*}}, %{{[^,]*}}, %{{[^,]*}}, %[[EMPTY]], %{{[^,]*}}, %c0_i32{{[^,]*}}, %[[SROWPTR]], %[[SCOLIDX]], %[[EMPTY]], %{{[^,]*}}, %c0_i32{{[^,]*}}, %[[PROWPTR]], %[[PCOLIDX]], %{{[^,]*}}, %{{[^,]*}}, %{{[^,]*}})
 // CHECK: %[[D:.*]] = memref.alloc(%{{.*}}) : memref<?xf64>
-// CHECK: call @simit_rt_matmul_bcsr(%c1_i32{{.*}}, %[[EMPTY]], %[[EMPTY]], %{{.*}}, %c0_i32{{.*}}, %[[SROWPTR]], %[[SCOLIDX]], %{{.*}}, %c0_i32{{.*}}, %[[SROWPTR]], %[[SCOLIDX]], %{{.*}}, %{{.*}}, %{{.*}})
-// CHECK: func.func private @simit_rt_matmul_bcsr(i32, memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>, i32, memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>, i32, memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>, i64, !llvm.ptr) attributes {llvm.emit_c_interface}
+// CHECK: call @simit_rt_matmul_bcsr(%c1_i32{{[^,]*}}, %[[EMPTY]], %[[EMPTY]], %[[EMPTY]], %{{[^,]*}}, %c0_i32{{[^,]*}}, %[[SROWPTR]], %[[SCOLIDX]], %[[EMPTY]], %{{[^,]*}}, %c0_i32{{[^,]*}}, %[[SROWPTR]], %[[SCOLIDX]], %{{[^,]*}}, %{{[^,]*}}, %{{[^,]*}})
+// CHECK: func.func private @simit_rt_matmul_bcsr(i32, memref<?xi32>, memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>, i32, memref<?xi32>, memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>, i32, memref<?xi32>, memref<?xi32>, memref<?x?x?xf64>, i64, !llvm.ptr) attributes {llvm.emit_c_interface}
 func.func @products() -> (f64, f64) attributes {simit.export} {
   %springs = simit.get_set @springs : !Springs
   %rods = simit.get_set @rods : !Rods

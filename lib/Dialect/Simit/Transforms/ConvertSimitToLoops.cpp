@@ -68,72 +68,8 @@ bool mlir::simit::loops::isSystem(Type type) { return hasSetDimension(type); }
 // Types
 //===----------------------------------------------------------------------===//
 
-/// The numbers a local tensor of `component`s is stored as: complex
-/// components are (re, im) pairs of their part type.
-static Type storedNumberType(Type component) {
-  if (auto complex = dyn_cast<ComplexType>(component))
-    return complex.getElementType();
-  return component;
-}
-
-/// The length of the flat vector or array that stores a local tensor.
-static int64_t storedLength(Type type) {
-  return numComponents(type) *
-         (isa<ComplexType>(getComponentType(type)) ? 2 : 1);
-}
-
 Type FunctionLowering::convertType(Type type) {
-  if (isa<FloatType, IntegerType, IndexType, ComplexType>(type))
-    return type;
-  if (isa<StringType, OpaqueType>(type))
-    return LLVM::LLVMPointerType::get(type.getContext());
-  if (isa<SetType, ElementType>(type))
-    return IndexType::get(type.getContext());
-  if (auto system = dyn_cast<SystemTensorType>(type)) {
-    Type component = system.getComponentType();
-    if (!system.isSystem())
-      return VectorType::get({storedLength(type)}, storedNumberType(component));
-    if (isa<ComplexType>(component))
-      return nullptr;
-    // Outer dimensions: a set is dynamic; a matrix over two sets stores a
-    // dynamic number of blocks. Then the block shape.
-    SmallVector<int64_t> shape;
-    unsigned sets = 0;
-    for (Attribute dim : system.getDims()) {
-      if (isa<StringAttr>(dim))
-        ++sets;
-      else if (sets == 0 || system.getOrder() > 1)
-        shape.push_back(cast<IntegerAttr>(dim).getInt());
-    }
-    if (sets > 2 || (sets == 2 && system.getOrder() != 2))
-      return nullptr;
-    shape.insert(shape.begin(), ShapedType::kDynamic);
-    if (isa<SystemTensorType>(system.getBlockType()) &&
-        isSystem(system.getBlockType()))
-      return nullptr;
-    llvm::append_range(shape, localShape(system.getBlockType()));
-    return MemRefType::get(shape, component);
-  }
-  if (auto tensor = dyn_cast<RankedTensorType>(type)) {
-    if (tensor.getRank() == 0)
-      return tensor.getElementType();
-    return VectorType::get({storedLength(type)},
-                           storedNumberType(tensor.getElementType()));
-  }
-  if (auto ref = dyn_cast<RefType>(type)) {
-    Type value = ref.getValueType();
-    if (isSystem(value))
-      return convertType(value);
-    if (isa<FloatType, IntegerType, IndexType, ComplexType>(value))
-      return MemRefType::get({}, value);
-    if (isa<StringType>(value))
-      return MemRefType::get({}, LLVM::LLVMPointerType::get(type.getContext()));
-    if (isa<RankedTensorType, SystemTensorType>(value))
-      return MemRefType::get({storedLength(value)},
-                             storedNumberType(getComponentType(value)));
-    return nullptr;
-  }
-  return nullptr;
+  return typeConverter.convertType(type);
 }
 
 Value FunctionLowering::lookup(Value original) {

@@ -25,6 +25,7 @@
 
 #include "simit/ABI/BindingKind.h"
 #include "simit/Dialect/Simit/IR/SimitStorage.h"
+#include "simit/Dialect/Simit/Transforms/LoopsTypeConverter.h"
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
 #include "mlir/IR/Builders.h"
@@ -215,7 +216,8 @@ public:
 
   //===--- Values and types ---------------------------------------------===//
 
-  /// The lowered type of a simit value type, or null when unsupported.
+  /// The lowered type of a simit value type (LoopsTypeConverter), or null
+  /// when unsupported.
   Type convertType(Type type);
   Value lookup(Value original);
   void map(Value original, Value lowered) { values[original] = lowered; }
@@ -379,6 +381,7 @@ public:
   Block *allocaBlock = nullptr;
 
 private:
+  LoopsTypeConverter typeConverter;
   /// Storages by original value: those computed from types, and aliases.
   DenseMap<Value, Storage> storages;
   /// Collects setTypes and reports every matrix whose encoding has no

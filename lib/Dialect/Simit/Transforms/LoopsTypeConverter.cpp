@@ -1,0 +1,115 @@
+//===- LoopsTypeConverter.cpp - Types of the loop lowering ----------------===//
+
+#include "simit/Dialect/Simit/Transforms/LoopsTypeConverter.h"
+
+#include "simit/Dialect/Simit/IR/Simit.h"
+
+#include "mlir/Dialect/LLVMIR/LLVMTypes.h"
+
+using namespace mlir;
+using namespace mlir::simit;
+
+/// The numbers a local tensor of `component`s is stored as: complex
+/// components are (re, im) pairs of their part type.
+static Type storedNumberType(Type component) {
+  if (auto complex = dyn_cast<ComplexType>(component))
+    return complex.getElementType();
+  return component;
+}
+
+/// The number of components of a local tensor (1 for a scalar).
+static int64_t numLocalComponents(Type type) {
+  if (auto tensor = dyn_cast<RankedTensorType>(type))
+    return tensor.getNumElements();
+  if (auto system = dyn_cast<SystemTensorType>(type)) {
+    int64_t n = numLocalComponents(system.getBlockType());
+    for (Attribute dim : system.getDims())
+      n *= cast<IntegerAttr>(dim).getInt();
+    return n;
+  }
+  return 1;
+}
+
+/// The length of the flat vector or slot that stores a local tensor.
+static int64_t storedLength(Type type) {
+  return numLocalComponents(type) *
+         (isa<ComplexType>(getComponentType(type)) ? 2 : 1);
+}
+
+/// The component shape of a local block: the builtin shape, or the integer
+/// dimensions of a `!simit.tensor` followed by its block's.
+static void appendBlockShape(Type type, SmallVectorImpl<int64_t> &shape) {
+  if (auto tensor = dyn_cast<RankedTensorType>(type)) {
+    llvm::append_range(shape, tensor.getShape());
+    return;
+  }
+  if (auto system = dyn_cast<SystemTensorType>(type)) {
+    for (Attribute dim : system.getDims())
+      shape.push_back(cast<IntegerAttr>(dim).getInt());
+    appendBlockShape(system.getBlockType(), shape);
+  }
+}
+
+/// The array of a system tensor: a dynamic number of blocks (a set's
+/// elements, or a matrix's stored blocks), then the block shape; null
+/// where there is no lowering.
+static Type systemArrayType(SystemTensorType system) {
+  Type component = system.getComponentType();
+  if (isa<ComplexType>(component))
+    return nullptr;
+  SmallVector<int64_t> shape{ShapedType::kDynamic};
+  unsigned sets = 0;
+  for (Attribute dim : system.getDims()) {
+    if (isa<StringAttr>(dim))
+      ++sets;
+    else if (sets == 0 || system.getOrder() > 1)
+      shape.push_back(cast<IntegerAttr>(dim).getInt());
+  }
+  if (sets > 2 || (sets == 2 && system.getOrder() != 2))
+    return nullptr;
+  if (hasSetDimension(system.getBlockType()))
+    return nullptr;
+  appendBlockShape(system.getBlockType(), shape);
+  return MemRefType::get(shape, component);
+}
+
+LoopsTypeConverter::LoopsTypeConverter() {
+  // Conversions are tried last added first: anything not matched below
+  // has no lowering.
+  addConversion([](Type) -> Type { return nullptr; });
+  addConversion([](Type type) -> std::optional<Type> {
+    if (isa<FloatType, IntegerType, IndexType, ComplexType>(type))
+      return type;
+    if (isa<StringType, OpaqueType>(type))
+      return LLVM::LLVMPointerType::get(type.getContext());
+    if (isa<SetType, ElementType>(type))
+      return IndexType::get(type.getContext());
+    return std::nullopt;
+  });
+  addConversion([](RankedTensorType tensor) -> Type {
+    if (tensor.getRank() == 0)
+      return tensor.getElementType();
+    return VectorType::get({storedLength(tensor)},
+                           storedNumberType(tensor.getElementType()));
+  });
+  addConversion([](SystemTensorType system) -> Type {
+    if (hasSetDimension(system))
+      return systemArrayType(system);
+    return VectorType::get({storedLength(system)},
+                           storedNumberType(system.getComponentType()));
+  });
+  addConversion([this](RefType ref) -> Type {
+    Type value = ref.getValueType();
+    if (hasSetDimension(value))
+      return convertType(value);
+    if (isa<FloatType, IntegerType, IndexType, ComplexType>(value))
+      return MemRefType::get({}, value);
+    if (isa<StringType>(value))
+      return MemRefType::get({},
+                             LLVM::LLVMPointerType::get(ref.getContext()));
+    if (isa<RankedTensorType, SystemTensorType>(value))
+      return MemRefType::get({storedLength(value)},
+                             storedNumberType(getComponentType(value)));
+    return nullptr;
+  });
+}

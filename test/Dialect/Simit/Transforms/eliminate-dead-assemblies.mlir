@@ -1,0 +1,126 @@
+// RUN: simit-opt %s --split-input-file --simit-eliminate-dead-assemblies | FileCheck %s
+
+// An assembly whose second result nothing uses calls a copy of its element
+// function that returns the first only; the original function is erased.
+
+!Point = !simit.element<"Point", {x : tensor<3xf64>, m : f64}>
+!Spring = !simit.element<"Spring", {k : f64}>
+!V = !simit.tensor<["points"] x tensor<3xf64>>
+!A = !simit.tensor<["points", "points"] x tensor<3x3xf64>>
+!Points = !simit.set<"points", !Point>
+!Springs = !simit.set<"springs", !Spring, ["points", "points"]>
+simit.extern @points : !Points
+simit.extern @springs : !Springs
+
+// CHECK-NOT: func.func @force(
+// CHECK-LABEL: func.func @force_live_1(
+// CHECK-SAME: -> !simit.tensor<["points"] x tensor<3xf64>>
+// CHECK: return %{{.*}} : !simit.tensor<["points"] x tensor<3xf64>>
+func.func @force(%s : !Spring, %p : !simit.tuple<!Point x 2>) -> (!A, !V) {
+  %p0 = simit.tuple_get %p[0] : !simit.tuple<!Point x 2> -> !Point
+  %k = simit.elem_read %s["k"] : !Spring -> f64
+  %kb = simit.broadcast %k : f64 -> tensor<3x3xf64>
+  %A0 = simit.zeros : !A
+  %A1 = simit.insert %kb into %A0[%p0, %p0] : tensor<3x3xf64> into !A, (!Point, !Point)
+  %f = simit.broadcast %k : f64 -> tensor<3xf64>
+  %V0 = simit.zeros : !V
+  %V1 = simit.insert %f into %V0[%p0] : tensor<3xf64> into !V, (!Point)
+  return %A1, %V1 : !A, !V
+}
+
+// CHECK-LABEL: func.func @step(
+// CHECK: %[[F:.*]] = simit.assemble @force_live_1() to %{{.*}} reduce <add> : (!simit.set<"springs", {{.*}}>) -> !simit.tensor<["points"] x tensor<3xf64>>
+// CHECK: simit.field_write %[[F]]
+func.func @step() attributes {simit.export} {
+  %springs = simit.get_set @springs : !Springs
+  %points = simit.get_set @points : !Points
+  %K, %f = simit.assemble @force() to %springs reduce <add> : (!Springs) -> (!A, !V)
+  simit.field_write %f, %points["x"] : !V, !Points
+  return
+}
+
+// -----
+
+// A map none of whose results is used, over a function without effects,
+// is erased with the function.
+
+!Point = !simit.element<"Point", {x : tensor<3xf64>, m : f64}>
+!V = !simit.tensor<["points"] x tensor<3xf64>>
+!Points = !simit.set<"points", !Point>
+simit.extern @points : !Points
+
+// CHECK-NOT: func.func @weight
+func.func @weight(%p : !Point) -> !V {
+  %m = simit.elem_read %p["m"] : !Point -> f64
+  %b = simit.broadcast %m : f64 -> tensor<3xf64>
+  %V0 = simit.zeros : !V
+  %V1 = simit.insert %b into %V0[%p] : tensor<3xf64> into !V, (!Point)
+  return %V1 : !V
+}
+
+// CHECK-LABEL: func.func @unused(
+// CHECK-NOT: simit.assemble
+// CHECK: return
+func.func @unused() attributes {simit.export} {
+  %points = simit.get_set @points : !Points
+  %w = simit.assemble @weight() to %points reduce <add> : (!Points) -> !V
+  return
+}
+
+// -----
+
+// A map whose element function writes a field stays for that effect,
+// without results.
+
+!Point = !simit.element<"Point", {x : tensor<3xf64>, m : f64}>
+!V = !simit.tensor<["points"] x tensor<3xf64>>
+!Points = !simit.set<"points", !Point>
+simit.extern @points : !Points
+
+// CHECK-LABEL: func.func @move_live(
+// CHECK-SAME: (%{{.*}}: !Point) {
+// CHECK: simit.elem_write
+// CHECK: return
+// CHECK-NOT: func.func @move(
+func.func @move(%p : !Point) -> !V {
+  %x = simit.elem_read %p["x"] : !Point -> tensor<3xf64>
+  simit.elem_write %x, %p["x"] : tensor<3xf64>, !Point
+  %V0 = simit.zeros : !V
+  %V1 = simit.insert %x into %V0[%p] : tensor<3xf64> into !V, (!Point)
+  return %V1 : !V
+}
+
+// CHECK-LABEL: func.func @apply(
+// CHECK: simit.map @move_live() to %{{.*}} : (!simit.set<"points", {{.*}}>) -> ()
+func.func @apply() attributes {simit.export} {
+  %points = simit.get_set @points : !Points
+  %v = simit.map @move() to %points : (!Points) -> !V
+  return
+}
+
+// -----
+
+// Every result used: nothing changes.
+
+!Point = !simit.element<"Point", {x : tensor<3xf64>, m : f64}>
+!V = !simit.tensor<["points"] x tensor<3xf64>>
+!Points = !simit.set<"points", !Point>
+simit.extern @points : !Points
+
+// CHECK-LABEL: func.func @weight(
+func.func @weight(%p : !Point) -> !V {
+  %m = simit.elem_read %p["m"] : !Point -> f64
+  %b = simit.broadcast %m : f64 -> tensor<3xf64>
+  %V0 = simit.zeros : !V
+  %V1 = simit.insert %b into %V0[%p] : tensor<3xf64> into !V, (!Point)
+  return %V1 : !V
+}
+
+// CHECK-LABEL: func.func @used(
+// CHECK: simit.assemble @weight()
+func.func @used() attributes {simit.export} {
+  %points = simit.get_set @points : !Points
+  %w = simit.assemble @weight() to %points reduce <add> : (!Points) -> !V
+  simit.field_write %w, %points["x"] : !V, !Points
+  return
+}

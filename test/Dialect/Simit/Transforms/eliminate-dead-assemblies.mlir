@@ -78,7 +78,7 @@ func.func @unused() attributes {simit.export} {
 simit.extern @points : !Points
 
 // CHECK-LABEL: func.func @move_live(
-// CHECK-SAME: (%{{.*}}: !Point) {
+// CHECK-SAME: %{{.*}}: !Point) {
 // CHECK: simit.elem_write
 // CHECK: return
 // CHECK-NOT: func.func @move(

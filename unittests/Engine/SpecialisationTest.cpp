@@ -2,13 +2,16 @@
 //
 // ProgramOptions::specialisation (docs/scene-specialisation.md): entry
 // functions, constant externs and uniform fields, and their place in the
-// compile cache's key. Results are checked against K x worked out by hand.
+// compile cache's key; SceneRunner's use of them. Results are checked
+// against K x worked out by hand.
 //
 //===----------------------------------------------------------------------===//
 
 #include "EngineTestSupport.h"
 
 #include "simit/Engine/Program.h"
+#include "simit/Engine/SceneRun.h"
+#include "simit/Runtime/Scene.h"
 #include "simit/Runtime/Set.h"
 
 #include "gtest/gtest.h"
@@ -170,4 +173,57 @@ TEST(SpecialisationTest, FoldedValuesAreInTheCacheKey) {
   EXPECT_EQ(run(1.0, cached), (std::vector<double>{-2.0, -4.0, 6.0}));
   EXPECT_TRUE(cached);
   llvm::sys::fs::remove_directories(directory);
+}
+
+namespace {
+/// Two points joined by one spring of stiffness 2 (given once for the
+/// whole set, so uniform), and a field w that no function uses.
+constexpr llvm::StringLiteral kSpringScene = R"json({
+  "program": "empty-sets.sim",
+  "sets": {
+    "points": { "size": 2, "fields": { "x": [1, 2, 3], "w": 7 } },
+    "springs": { "elements": [[0, 1]], "endpoints": "points",
+                 "fields": { "k": 2 } }
+  },
+  "externs": { "h": { "value": 0.5, "constant": true } },
+  "step": "step",
+  "frames": 1
+})json";
+
+/// The scene run with `options`; its points' x after the frame.
+std::unique_ptr<SceneRunner> runSpringScene(const SceneRunOptions &options) {
+  auto scene = parseScene(kSpringScene, "spring.json",
+                          SIMIT_SOURCE_DIR "/test/Run/Inputs");
+  EXPECT_TRUE(static_cast<bool>(scene)) << llvm::toString(scene.takeError());
+  auto runner = SceneRunner::create(std::move(*scene), options);
+  if (!runner) {
+    ADD_FAILURE() << llvm::toString(runner.takeError());
+    return nullptr;
+  }
+  EXPECT_EQ(message((*runner)->run()), "success");
+  return std::move(*runner);
+}
+
+std::vector<double> positions(SceneRunner &runner) {
+  Set *points = runner.sets().find("points");
+  const double *x = static_cast<const double *>(points->fieldData("x"));
+  return std::vector<double>(x, x + 6);
+}
+} // namespace
+
+TEST(SpecialisationTest, ASceneBuildsOnlyTheFieldsItsFunctionsUse) {
+  SceneRunOptions options;
+  options.threads = 1;
+  std::unique_ptr<SceneRunner> skipping = runSpringScene(options);
+  options.skipUnusedFields = false;
+  options.foldConstantExterns = false;
+  options.foldUniformFields = false;
+  std::unique_ptr<SceneRunner> building = runSpringScene(options);
+  ASSERT_TRUE(skipping && building);
+  EXPECT_EQ(skipping->sets().find("points")->fieldDescriptor("w"), nullptr);
+  EXPECT_NE(building->sets().find("points")->fieldDescriptor("w"), nullptr);
+  // K(p0, p1) = 2 I: v0 = 2 x1 + x0 = 3 x, v1 = x; x' = x + 0.5 v.
+  std::vector<double> expected = {2.5, 5, 7.5, 1.5, 3, 4.5};
+  EXPECT_EQ(positions(*skipping), expected);
+  EXPECT_EQ(positions(*building), expected);
 }

@@ -9,6 +9,7 @@
 
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
+#include "mlir/IR/Iterators.h"
 #include "mlir/IR/SymbolTable.h"
 #include "mlir/Interfaces/SideEffectInterfaces.h"
 
@@ -52,6 +53,68 @@ static bool hasEffects(func::FuncOp function) {
   return result.wasInterrupted();
 }
 
+/// Whether what is loaded from `slot` flows, through ops without effects
+/// (not terminators: a returned or yielded value escapes), only into stores
+/// back to `slot`: the variable no longer reaches a result.
+static bool onlyFeedsItself(AllocOp slot) {
+  SmallVector<Value> loaded;
+  for (Operation *user : slot->getUsers()) {
+    if (auto store = dyn_cast<StoreOp>(user);
+        store && store.getRef() == slot.getResult())
+      continue;
+    if (!isa<LoadOp>(user))
+      return false;
+    loaded.push_back(user->getResult(0));
+  }
+  DenseSet<Operation *> seen;
+  while (!loaded.empty()) {
+    Value value = loaded.pop_back_val();
+    for (Operation *user : value.getUsers()) {
+      if (!seen.insert(user).second)
+        continue;
+      if (auto store = dyn_cast<StoreOp>(user)) {
+        if (store.getRef() != slot.getResult())
+          return false;
+        continue;
+      }
+      if (user->hasTrait<OpTrait::IsTerminator>() ||
+          user->getNumRegions() != 0 || !isMemoryEffectFree(user))
+        return false;
+      llvm::append_range(loaded, user->getResults());
+    }
+  }
+  return true;
+}
+
+/// Erases what no longer reaches a result: unused values, and the
+/// variables (`simit.alloc` slots) whose values only flow back into
+/// themselves, with their loads and stores. The loop lowering takes a
+/// variable holding a set tensor for a result of the element function, so
+/// none may be left over.
+static void eraseDeadWork(func::FuncOp function) {
+  bool changed = true;
+  while (changed) {
+    changed = false;
+    function.walk<WalkOrder::PostOrder, ReverseIterator>([&](Operation *op) {
+      if (op != function && isOpTriviallyDead(op)) {
+        op->erase();
+        changed = true;
+      }
+    });
+    SmallVector<AllocOp> dead;
+    function.walk([&](AllocOp slot) {
+      if (onlyFeedsItself(slot))
+        dead.push_back(slot);
+    });
+    for (AllocOp slot : dead)
+      for (Operation *user : llvm::make_early_inc_range(slot->getUsers()))
+        if (isa<StoreOp>(user)) {
+          user->erase();
+          changed = true;
+        }
+  }
+}
+
 /// A copy of `callee` that returns only the results at `kept`, inserted
 /// after it under a fresh name.
 static func::FuncOp cloneWithResults(func::FuncOp callee,
@@ -76,6 +139,7 @@ static func::FuncOp cloneWithResults(func::FuncOp callee,
       values.push_back(ret.getOperand(index));
     ret->setOperands(values);
   });
+  eraseDeadWork(copy);
   symbols.insert(copy, std::next(Block::iterator(callee)));
   return copy;
 }

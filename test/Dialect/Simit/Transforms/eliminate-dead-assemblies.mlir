@@ -124,3 +124,53 @@ func.func @used() attributes {simit.export} {
   simit.field_write %w, %points["x"] : !V, !Points
   return
 }
+
+// -----
+
+// Results written through variables (the frontend's form of `K(p, p) = ...`
+// in a branch): the dropped result's variable and the values stored to it
+// are erased with it.
+
+!Point = !simit.element<"Point", {x : tensor<3xf64>, c : i32}>
+!V = !simit.tensor<["points"] x tensor<3xf64>>
+!A = !simit.tensor<["points", "points"] x tensor<3x3xf64>>
+!Points = !simit.set<"points", !Point>
+simit.extern @points : !Points
+
+// CHECK-LABEL: func.func @force_live_1(
+// CHECK-NOT: !simit.ref<!simit.tensor<["points", "points"]
+// CHECK-NOT: simit.outer
+// CHECK: simit.alloc : !simit.ref<!simit.tensor<["points"] x tensor<3xf64>>>
+// CHECK: scf.if
+// CHECK: simit.insert %{{.*}}[%{{.*}}] : tensor<3xf64>
+// CHECK-NOT: simit.outer
+// CHECK: return
+func.func @force(%p : !Point) -> (!A, !V) {
+  %K = simit.alloc : !simit.ref<!A>
+  %f = simit.alloc : !simit.ref<!V>
+  %x = simit.elem_read %p["x"] : !Point -> tensor<3xf64>
+  %xx = simit.outer %x, %x : tensor<3xf64>, tensor<3xf64> -> tensor<3x3xf64>
+  %c = simit.elem_read %p["c"] : !Point -> i32
+  %zero = arith.constant 0 : i32
+  %free = arith.cmpi sle, %c, %zero : i32
+  scf.if %free {
+    %f0 = simit.load %f : !simit.ref<!V>
+    %f1 = simit.insert %x into %f0[%p] : tensor<3xf64> into !V, (!Point)
+    simit.store %f1, %f : !simit.ref<!V>
+    %K0 = simit.load %K : !simit.ref<!A>
+    %K1 = simit.insert %xx into %K0[%p, %p] : tensor<3x3xf64> into !A, (!Point, !Point)
+    simit.store %K1, %K : !simit.ref<!A>
+  }
+  %Kr = simit.load %K : !simit.ref<!A>
+  %fr = simit.load %f : !simit.ref<!V>
+  return %Kr, %fr : !A, !V
+}
+
+// CHECK-LABEL: func.func @step(
+// CHECK: simit.assemble @force_live_1()
+func.func @step() attributes {simit.export} {
+  %points = simit.get_set @points : !Points
+  %K, %f = simit.assemble @force() to %points reduce <add> : (!Points) -> (!A, !V)
+  simit.field_write %f, %points["x"] : !V, !Points
+  return
+}

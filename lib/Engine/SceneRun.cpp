@@ -197,16 +197,22 @@ static ProgramSpecialisation specialisationOf(const SceneRunOptions &options,
       for (const std::string &name : *names)
         if (!llvm::is_contained(specialisation.entryFunctions, name))
           specialisation.entryFunctions.push_back(name);
+  // Larger values would only bloat the code (and the cache key).
+  constexpr int64_t kMaxFoldedComponents = 64;
   if (options.foldConstantExterns)
     for (const auto &[name, tensor] : scene.externs)
-      if (tensor.constant)
+      if (tensor.constant &&
+          static_cast<int64_t>(tensor.values.size()) <= kMaxFoldedComponents)
         specialisation.constantExterns[name] = tensor.values;
   if (options.foldUniformFields)
     for (const SetSpec &set : scene.sets)
       for (const FieldSpec &field : set.fields) {
-        size_t blockSize = 1;
+        int64_t blockSize = 1;
         for (int dim : field.shape)
-          blockSize *= dim;
+          blockSize = std::min<int64_t>(blockSize * dim,
+                                        kMaxFoldedComponents + 1);
+        if (blockSize > kMaxFoldedComponents)
+          continue;
         if (field.init.kind == FieldInit::Constant)
           specialisation.uniformFields[set.name][field.name] =
               field.init.values;

@@ -71,7 +71,7 @@ struct SceneRunOptions {
   bool foldConstantExterns = true;
   /// fields the scene gives one value for the whole set (a constant, or no
   /// initialiser) are folded where no function writes them
-  /// (--no-fold-constants);
+  /// (--no-fold-constants); neither for more than 64 components;
   bool foldUniformFields = true;
   /// ProgramOptions::eliminateDeadAssemblies (--no-dead-assemblies).
   bool eliminateDeadAssemblies = true;

@@ -174,3 +174,31 @@ func.func @step() attributes {simit.export} {
   simit.field_write %f, %points["x"] : !V, !Points
   return
 }
+
+// -----
+
+// An assembly none of whose results is used, over a function that writes a
+// field, becomes a map run for that effect.
+
+!Point = !simit.element<"Point", {x : tensor<3xf64>, m : f64}>
+!V = !simit.tensor<["points"] x tensor<3xf64>>
+!Points = !simit.set<"points", !Point>
+simit.extern @points : !Points
+
+func.func @touch(%p : !Point) -> !V {
+  %x = simit.elem_read %p["x"] : !Point -> tensor<3xf64>
+  simit.elem_write %x, %p["x"] : tensor<3xf64>, !Point
+  %V0 = simit.zeros : !V
+  %V1 = simit.insert %x into %V0[%p] : tensor<3xf64> into !V, (!Point)
+  return %V1 : !V
+}
+
+// CHECK-LABEL: func.func @apply(
+// CHECK-NOT: simit.assemble
+// CHECK: simit.map @touch_live() to %{{.*}} : (!simit.set<"points", {{.*}}>) -> ()
+// CHECK-NOT: reduce
+func.func @apply() attributes {simit.export} {
+  %points = simit.get_set @points : !Points
+  %v = simit.assemble @touch() to %points reduce <add> : (!Points) -> !V
+  return
+}

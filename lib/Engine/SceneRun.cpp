@@ -225,10 +225,11 @@ static ProgramSpecialisation specialisationOf(const SceneRunOptions &options,
 
 /// The scene with only the fields that `functions` bind or an output
 /// names: the others are never built.
+using FunctionGroup = std::vector<SceneRunner::NamedFunction>;
+
 static SceneDescription
 withUsedFields(const SceneDescription &scene,
-               std::initializer_list<const std::vector<SceneRunner::NamedFunction> *>
-                   groups) {
+               std::initializer_list<const FunctionGroup *> groups) {
   std::set<std::pair<std::string, std::string>> used;
   for (const auto *group : groups)
     for (const SceneRunner::NamedFunction &named : *group)

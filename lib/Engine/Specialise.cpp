@@ -64,9 +64,10 @@ void simit::specialiseModule(mlir::ModuleOp module,
       continue;
     }
     auto constant = specialisation.constantExterns.find(name);
-    if (constant != specialisation.constantExterns.end())
-      if (mlir::TypedAttr value = constantOf(global.getType(), constant->second))
-        global->setAttr("simit.constant", value);
+    if (constant == specialisation.constantExterns.end())
+      continue;
+    if (mlir::TypedAttr value = constantOf(global.getType(), constant->second))
+      global->setAttr("simit.constant", value);
   }
 }
 

@@ -230,15 +230,17 @@ TEST(SpecialisationTest, ASceneBuildsOnlyTheFieldsItsFunctionsUse) {
 
 TEST(SpecialisationTest, AConstantMarkIsTrueOrFalse) {
   auto scene = parseScene(
-      R"json({"sets": {}, "externs": {"h": {"value": 0.5, "constant": "yes"}}})json",
+      R"json({"sets": {},
+               "externs": {"h": {"value": 0.5, "constant": "yes"}}})json",
       "marks.json", ".");
   ASSERT_FALSE(static_cast<bool>(scene));
   EXPECT_EQ(llvm::toString(scene.takeError()),
             "marks.json: externs.h.constant: expected true or false, found "
             "a string");
   auto marked = parseScene(
-      R"json({"sets": {}, "externs": {"h": {"value": 0.5, "constant": true},
-                          "g": 9.81}})json",
+      R"json({"sets": {},
+               "externs": {"h": {"value": 0.5, "constant": true},
+                           "g": 9.81}})json",
       "marks.json", ".");
   ASSERT_TRUE(static_cast<bool>(marked)) << llvm::toString(marked.takeError());
   ASSERT_EQ(marked->externs.size(), 2u);

@@ -183,7 +183,7 @@ GPUKernelTarget simit::gpuKernelTargetFor(int capability) {
 static void buildGpuPipeline(mlir::OpPassManager &pm,
                              const mlir::simit::SimitCpuPipelineOptions &cpu,
                              const GPUKernelTarget &gpu) {
-  pm.addPass(mlir::simit::createSimitInlineFunctions());
+  mlir::simit::buildSimitScenePasses(pm, cpu);
   if (cpu.shermanMorrison)
     pm.addPass(mlir::simit::createSimitShermanMorrison());
   if (cpu.timePhases)

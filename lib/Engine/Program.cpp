@@ -6,6 +6,7 @@
 #include "CompiledModule.h"
 #include "Lowering.h"
 #include "SimImport.h"
+#include "Specialise.h"
 #include "Stopwatch.h"
 
 #include "simit/Dialect/Simit/IR/Simit.h"
@@ -160,12 +161,14 @@ struct Program::Impl {
     if (llvm::Error err = requireModule())
       return err;
     mlir::OwningOpRef<mlir::ModuleOp> clone = module->clone();
+    specialiseModule(*clone, options.specialisation);
     LoweringResult result;
     mlir::simit::SimitCpuPipelineOptions pipelineOptions;
     pipelineOptions.timePhases = options.timePhases;
     pipelineOptions.checkNumerics = options.checkNumerics;
     pipelineOptions.openmp = openmp();
     pipelineOptions.shermanMorrison = options.shermanMorrison;
+    pipelineOptions.eliminateDeadAssemblies = options.eliminateDeadAssemblies;
     if (llvm::Error err =
             lowerToLLVM(*clone, result, pipelineOptions, kernelTarget()))
       return err;
@@ -199,6 +202,8 @@ struct Program::Impl {
        << targetName(options.target);
     if (std::optional<GPUKernelTarget> gpu = kernelTarget())
       os << " " << gpu->chip << " " << gpu->features;
+    os << "\ndead assemblies " << options.eliminateDeadAssemblies;
+    writeSpecialisationKey(os, options.specialisation);
     os << "\n"
        << (from.kind == Source::Kind::Sim ? "sim " : "mlir ") << from.name
        << "\n"

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <set>
 
 using namespace simit;
 
@@ -187,6 +188,71 @@ SceneTimeSummary SceneTimes::summarize() const {
   return summary;
 }
 
+/// What the scene promises the compiler, as far as `options` let it use it.
+static ProgramSpecialisation specialisationOf(const SceneRunOptions &options,
+                                              const SceneDescription &scene) {
+  ProgramSpecialisation specialisation;
+  if (options.skipUncalledFunctions)
+    for (const std::vector<std::string> *names : {&scene.init, &scene.step})
+      for (const std::string &name : *names)
+        if (!llvm::is_contained(specialisation.entryFunctions, name))
+          specialisation.entryFunctions.push_back(name);
+  // Larger values would only bloat the code (and the cache key).
+  constexpr int64_t kMaxFoldedComponents = 64;
+  if (options.foldConstantExterns)
+    for (const auto &[name, tensor] : scene.externs)
+      if (tensor.constant &&
+          static_cast<int64_t>(tensor.values.size()) <= kMaxFoldedComponents)
+        specialisation.constantExterns[name] = tensor.values;
+  if (options.foldUniformFields)
+    for (const SetSpec &set : scene.sets)
+      for (const FieldSpec &field : set.fields) {
+        int64_t blockSize = 1;
+        for (int dim : field.shape)
+          blockSize = std::min<int64_t>(blockSize * dim,
+                                        kMaxFoldedComponents + 1);
+        if (blockSize > kMaxFoldedComponents)
+          continue;
+        if (field.init.kind == FieldInit::Constant)
+          specialisation.uniformFields[set.name][field.name] =
+              field.init.values;
+        else if (field.init.kind == FieldInit::Zero)
+          specialisation.uniformFields[set.name][field.name] =
+              std::vector<double>(blockSize, 0.0);
+      }
+  return specialisation;
+}
+
+/// The scene with only the fields that `functions` bind or an output
+/// names: the others are never built.
+using FunctionGroup = std::vector<SceneRunner::NamedFunction>;
+
+static SceneDescription
+withUsedFields(const SceneDescription &scene,
+               std::initializer_list<const FunctionGroup *> groups) {
+  std::set<std::pair<std::string, std::string>> used;
+  for (const auto *group : groups)
+    for (const SceneRunner::NamedFunction &named : *group)
+      for (const ArgumentBinding &arg : named.function.signature().arguments)
+        if (arg.kind == ArgumentBinding::Kind::Field)
+          used.insert({arg.set, arg.field});
+  for (const OutputSpec &output : scene.outputs) {
+    for (const std::string &field : output.fields)
+      used.insert({output.set, field});
+    if (output.kind == OutputSpec::VTK)
+      used.insert({output.set, output.position});
+    for (const std::string &cells : output.cells)
+      for (const std::string &field : output.cellFields)
+        used.insert({cells, field});
+  }
+  SceneDescription kept = scene;
+  for (SetSpec &set : kept.sets)
+    llvm::erase_if(set.fields, [&](const FieldSpec &field) {
+      return !used.count({set.name, field.name});
+    });
+  return kept;
+}
+
 static ProgramOptions programOptionsOf(const SceneRunOptions &options,
                                        const SceneDescription &scene) {
   ProgramOptions program;
@@ -199,6 +265,8 @@ static ProgramOptions programOptionsOf(const SceneRunOptions &options,
   program.shermanMorrison = options.shermanMorrison;
   program.hostLibraries = options.hostLibraries;
   program.target = options.target;
+  program.eliminateDeadAssemblies = options.eliminateDeadAssemblies;
+  program.specialisation = specialisationOf(options, scene);
   llvm::append_range(program.hostLibraries, scene.libraries);
   return program;
 }
@@ -249,7 +317,12 @@ SceneRunner::create(SceneDescription scene, const SceneRunOptions &options) {
 
   Clock::time_point bindStart = Clock::now();
   SetRegistry &registry = runner->registry;
-  if (llvm::Error err = buildSets(desc, registry))
+  if (llvm::Error err =
+          options.skipUnusedFields
+              ? buildSets(withUsedFields(desc, {&runner->initFunctions,
+                                                &runner->stepFunctions}),
+                          registry)
+              : buildSets(desc, registry))
     return std::move(err);
   times.setsMs = millisecondsSince(bindStart);
   for (auto *group : {&runner->initFunctions, &runner->stepFunctions})

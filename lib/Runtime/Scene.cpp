@@ -805,8 +805,16 @@ llvm::Error SceneParser::parseExterns(const Json &value,
     ExternTensor tensor;
     const Json *constant = &it.value();
     if (it.value().is_object()) {
-      if (auto err = checkKeys(it.value(), path, {"type", "value"}))
+      if (auto err = checkKeys(it.value(), path, {"type", "value", "constant"}))
         return err;
+      if (it.value().contains("constant")) {
+        const Json &flag = it.value()["constant"];
+        if (!flag.is_boolean())
+          return error(child(path, "constant"),
+                       llvm::Twine("expected true or false, found ") +
+                           jsonKind(flag));
+        tensor.constant = flag.get<bool>();
+      }
       if (!it.value().contains("value"))
         return error(path, "expected a \"value\"");
       if (it.value().contains("type")) {

@@ -113,6 +113,11 @@ against `directory`, default the current directory). Outputs are written to
              options.timePhases = time;
              options.checkNumerics = checkNumerics;
              options.threads = threads;
+             // Python reads and writes the sets and externs between frames:
+             // every field is built, and no value is folded into the code.
+             options.skipUnusedFields = false;
+             options.foldConstantExterns = false;
+             options.foldUniformFields = false;
              auto runner = [&] {
                py::gil_scoped_release release;
                return SceneRunner::create(std::move(description), options);

@@ -63,6 +63,22 @@ def test_externs_written_between_frames_are_read_by_the_next_one():
                                rtol=1e-12)
 
 
+def test_externs_marked_constant_are_not_folded_in_python():
+    # Python may write any extern between frames: a Scene folds none
+    # (docs/scene-specialisation.md), not even those marked constant.
+    with open(PAIR) as f:
+        description = json.load(f)
+    description["externs"]["h"] = {"value": 0.1, "constant": True}
+    description["frames"] = 3
+    scene = simit.Scene(description, directory=RUN_INPUTS)
+    scene.step()
+    scene.externs["h"][()] = 0.05
+    scene.step(2)
+    v, y = pair_motion([0.1, 0.05, 0.05])
+    np.testing.assert_allclose(scene.sets["points"]["x"][:, 1], [y, y],
+                               rtol=1e-12)
+
+
 def test_time_splits_frames_into_assembly_and_solve():
     scene = simit.Scene(PAIR, time=True)
     times = scene.run()

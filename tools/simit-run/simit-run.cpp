@@ -4,6 +4,8 @@
 //             [--no-cache | --cache-dir DIR] [--threads N] [--stats]
 //             [--solver METHOD] [--tol T] [--max-iters N] [--solver-strict]
 //             [--no-warm-start] [--no-sherman-morrison]
+//             [--no-skip-uncalled] [--no-skip-unused-fields]
+//             [--no-fold-constants] [--no-dead-assemblies]
 //   simit-run --test FILE.sim
 //   simit-run FILE.sim --eval 'f(1.0, [1, 2]')'
 //   simit-run FILE.sim --emit=simit|loops|llvm
@@ -116,6 +118,21 @@ static cl::opt<bool> noShermanMorrison(
     cl::cat(runCategory), "no-sherman-morrison",
     cl::desc("Solve (A + u*v') \\ b as written instead of by "
              "Sherman-Morrison"));
+static cl::opt<bool> noSkipUncalled(
+    cl::cat(runCategory), "no-skip-uncalled",
+    cl::desc("Compile every exported function, not only the scene's init "
+             "and step functions"));
+static cl::opt<bool> noSkipUnusedFields(
+    cl::cat(runCategory), "no-skip-unused-fields",
+    cl::desc("Build every field the scene gives, also those no function "
+             "uses and no output names"));
+static cl::opt<bool> noFoldConstants(
+    cl::cat(runCategory), "no-fold-constants",
+    cl::desc("Bind the externs the scene marks constant and the fields it "
+             "gives one value instead of folding them into the code"));
+static cl::opt<bool> noDeadAssemblies(
+    cl::cat(runCategory), "no-dead-assemblies",
+    cl::desc("Assemble map results that nothing uses"));
 static cl::opt<Target> target(
     cl::cat(runCategory), "target",
     cl::desc("Where the program's set loops run (default: cpu)"),
@@ -287,6 +304,11 @@ static int runSceneFile(FloatPrecision precision,
   options.solver = *solver;
   options.shermanMorrison = !noShermanMorrison;
   options.target = target;
+  options.skipUncalledFunctions = !noSkipUncalled;
+  options.skipUnusedFields = !noSkipUnusedFields;
+  options.foldConstantExterns = !noFoldConstants;
+  options.foldUniformFields = !noFoldConstants;
+  options.eliminateDeadAssemblies = !noDeadAssemblies;
   auto runner = SceneRunner::create(std::move(*scene), options);
   if (!runner)
     return fail(runner.takeError());

@@ -40,6 +40,24 @@ enum class FloatPrecision { Double, Single };
 /// CUDA kernels on the process's first NVIDIA GPU (docs/gpu.md).
 enum class Target { CPU, GPU };
 
+/// What the host promises about the runs of a program, so that the
+/// compiler can skip what they do not need (docs/scene-specialisation.md).
+/// Every part is in the compile cache's key.
+struct ProgramSpecialisation {
+  /// The exported functions the host will call: the others are not
+  /// compiled (compile() of one is an unknown function). Empty: all.
+  std::vector<std::string> entryFunctions;
+  /// Extern tensors that keep these components (row-major; bools and
+  /// integers exactly) while the program runs: read as constants, and not
+  /// bound, by functions that do not write them.
+  std::map<std::string, std::vector<double>> constantExterns;
+  /// Fields with one value (one block, row-major) over their whole set,
+  /// by set and field: read as constants by element functions that only
+  /// ever see that set, unless a function writes the field.
+  std::map<std::string, std::map<std::string, std::vector<double>>>
+      uniformFields;
+};
+
 struct ProgramOptions {
   FloatPrecision precision = FloatPrecision::Double;
   /// Functions of a .sim program to compile with a host ABI although they
@@ -70,6 +88,11 @@ struct ProgramOptions {
   /// Solve `(A + u v^T) \ b` by Sherman–Morrison (simit-sherman-morrison);
   /// off, A + u v^T is formed and solved as it is.
   bool shermanMorrison = true;
+  /// Map and assembly results nothing uses are not computed
+  /// (simit-eliminate-dead-assemblies).
+  bool eliminateDeadAssemblies = true;
+  /// What the runs need, when the host knows (SceneRunner does).
+  ProgramSpecialisation specialisation;
   /// Shared libraries that define the C functions of the program's
   /// `extern func`s (docs/lowering.md, "Host functions"), loaded into the
   /// process when the Program is made.

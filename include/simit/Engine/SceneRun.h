@@ -60,6 +60,21 @@ struct SceneRunOptions {
   std::vector<std::string> hostLibraries;
   /// ProgramOptions::target (simit-run --target).
   Target target = Target::CPU;
+  /// What the scene lets the compiler skip (docs/scene-specialisation.md):
+  /// exported functions that are neither init nor step are not compiled
+  /// (simit-run --no-skip-uncalled);
+  bool skipUncalledFunctions = true;
+  /// scene fields that no init or step function binds and no output names
+  /// are not built (--no-skip-unused-fields);
+  bool skipUnusedFields = true;
+  /// externs the scene marks constant are folded (--no-fold-constants);
+  bool foldConstantExterns = true;
+  /// fields the scene gives one value for the whole set (a constant, or no
+  /// initialiser) are folded where no function writes them
+  /// (--no-fold-constants); neither for more than 64 components;
+  bool foldUniformFields = true;
+  /// ProgramOptions::eliminateDeadAssemblies (--no-dead-assemblies).
+  bool eliminateDeadAssemblies = true;
 };
 
 /// The medians of SceneTimes, as simit-run --time prints them.
@@ -122,11 +137,13 @@ public:
   /// The output files written so far.
   const std::vector<std::string> &writtenFiles() const;
 
-private:
+  /// An init or step function of the scene.
   struct NamedFunction {
     std::string name;
     Function function;
   };
+
+private:
   SceneRunner(SceneDescription scene, const SceneRunOptions &options);
   llvm::Error runAll(std::vector<NamedFunction> &group, int frame);
   /// Time runAll spent scanning the state with checkNumerics (ms).

@@ -90,6 +90,9 @@ struct ExternTensor {
   std::vector<int> shape;
   /// Components row-major, as doubles; data() holds them as `type`.
   std::vector<double> values;
+  /// The scene marks it `"constant": true`: it keeps its value while the
+  /// scene runs, so the program may be compiled with it folded in.
+  bool constant = false;
 
   /// Converts the stored components to `newType`; an error names the first
   /// value that does not fit (a fraction for int32, not 0/1 for bool).

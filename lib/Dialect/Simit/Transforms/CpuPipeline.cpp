@@ -24,9 +24,18 @@ namespace simit {
 using namespace mlir;
 using namespace mlir::simit;
 
-void mlir::simit::buildSimitCpuPipeline(
+void mlir::simit::buildSimitScenePasses(
     OpPassManager &pm, const SimitCpuPipelineOptions &options) {
   pm.addPass(createSimitInlineFunctions());
+  if (options.foldSceneConstants)
+    pm.addPass(createSimitFoldSceneConstants());
+  if (options.eliminateDeadAssemblies)
+    pm.addPass(createSimitEliminateDeadAssemblies());
+}
+
+void mlir::simit::buildSimitCpuPipeline(
+    OpPassManager &pm, const SimitCpuPipelineOptions &options) {
+  buildSimitScenePasses(pm, options);
   if (options.shermanMorrison)
     pm.addPass(createSimitShermanMorrison());
   if (options.timePhases)
@@ -98,8 +107,9 @@ namespace {
 struct CpuPipeline : public simit::impl::SimitCpuPipelineBase<CpuPipeline> {
   using Base::Base;
   SimitCpuPipelineOptions options() const {
-    return {timePhases, checkNumerics,  runtimeAllocator, shermanMorrison,
-            openmp,     reductionChunk, scatterChunk};
+    return {timePhases,     checkNumerics,      runtimeAllocator,
+            shermanMorrison, openmp,            reductionChunk,
+            scatterChunk,   foldSceneConstants, eliminateDeadAssemblies};
   }
   void getDependentDialects(DialectRegistry &registry) const override {
     OpPassManager pm(ModuleOp::getOperationName());

@@ -106,15 +106,20 @@ struct InlineFunctions
     }
 
     // Functions of the program that are neither exported nor referenced
-    // any more (by a map) are gone for good.
-    SmallVector<func::FuncOp> unused;
-    for (auto function : module.getOps<func::FuncOp>())
-      if (!isExportedFunction(function) && !function.isExternal() &&
-          usesSimitDialect(function) &&
-          SymbolTable::symbolKnownUseEmpty(function, module))
-        unused.push_back(function);
-    for (func::FuncOp function : unused)
-      function.erase();
+    // any more (by a map) are gone for good, and so, in turn, are the
+    // element functions only their maps referred to.
+    while (true) {
+      SmallVector<func::FuncOp> unused;
+      for (auto function : module.getOps<func::FuncOp>())
+        if (!isExportedFunction(function) && !function.isExternal() &&
+            usesSimitDialect(function) &&
+            SymbolTable::symbolKnownUseEmpty(function, module))
+          unused.push_back(function);
+      if (unused.empty())
+        break;
+      for (func::FuncOp function : unused)
+        function.erase();
+    }
   }
 };
 } // namespace

@@ -63,6 +63,38 @@ func.func @host(%a : f64) -> f64 {
 
 // -----
 
+// A function that is no longer exported (the engine's entry functions,
+// docs/scene-specialisation.md) is erased, and then the element function
+// only its map referred to.
+
+!Point = !simit.element<"Point", {m : f64}>
+!V = !simit.tensor<["points"] x f64>
+!Points = !simit.set<"points", !Point>
+simit.extern @points : !Points
+
+// CHECK-NOT: func.func @mass
+// CHECK-NOT: func.func @uncalled
+// CHECK-LABEL: func.func @called
+func.func @mass(%p : !Point) -> !V {
+  %m = simit.elem_read %p["m"] : !Point -> f64
+  %z = simit.zeros : !V
+  %r = simit.insert %m into %z[%p] : f64 into !V, (!Point)
+  return %r : !V
+}
+
+func.func @uncalled() {
+  %points = simit.get_set @points : !Points
+  %m = simit.assemble @mass() to %points reduce <add> : (!Points) -> !V
+  simit.field_write %m, %points["m"] : !V, !Points
+  return
+}
+
+func.func @called() attributes {simit.export} {
+  return
+}
+
+// -----
+
 // expected-error @below {{recursive calls cannot be inlined (Simit has no recursion)}}
 module {
   func.func @f(%a : f64) -> f64 {

@@ -51,6 +51,12 @@ bool usesSimitDialect(func::FuncOp function);
 /// inlined) together with func's, as a dialect extension.
 void registerSimitInlinerInterface(DialectRegistry &registry);
 
+/// Adds the passes that precede the lowering on both targets: inlining,
+/// then what the scene lets the compiler skip (folded constants, dead
+/// assemblies), as the options say.
+void buildSimitScenePasses(OpPassManager &pm,
+                           const SimitCpuPipelineOptions &options);
+
 /// Adds the passes from simit IR down to the LLVM dialect for the CPU:
 /// inlining, linear algebra to index expressions, fusion, loops, LLVM.
 void buildSimitCpuPipeline(OpPassManager &pm,

@@ -65,6 +65,54 @@ def SimitShermanMorrison : Pass<"simit-sherman-morrison", "::mlir::ModuleOp"> {
                            "::mlir::func::FuncDialect"];
 }
 
+def SimitFoldSceneConstants
+    : Pass<"simit-fold-scene-constants", "::mlir::ModuleOp"> {
+  let summary = "Folds externs a scene marks constant and uniform fields";
+  let description = [{
+    The host states what does not change while a scene runs by attributes on
+    the `simit.extern`s (docs/scene-specialisation.md):
+
+    ```mlir
+    simit.extern @h : f64 {simit.constant = 1.0e-02 : f64}
+    simit.extern @points : !Points {simit.uniform_fields = {m = 2.0 : f64}}
+    ```
+
+    A `simit.load` of the slot of an extern with `simit.constant` becomes an
+    `arith.constant` of the value, unless the module stores to that slot. A
+    `simit.elem_read` of a field named in `simit.uniform_fields` becomes a
+    constant when the element is the mapped element of its element function,
+    or an endpoint of it, and every map and assembly calling the function
+    runs over the set holding the field (or sets whose endpoints there are
+    that set); a field written anywhere in the module (by `simit.elem_write`
+    to an element of the set's element type, or `simit.field_write`) is
+    never folded. Then arith folds the constants on, and an `scf.if` whose
+    condition became constant keeps only the branch taken. Run it after
+    simit-inline-functions.
+  }];
+  let dependentDialects = ["::mlir::simit::SimitDialect",
+                           "::mlir::arith::ArithDialect",
+                           "::mlir::scf::SCFDialect"];
+}
+
+def SimitEliminateDeadAssemblies
+    : Pass<"simit-eliminate-dead-assemblies", "::mlir::ModuleOp"> {
+  let summary = "Drops the results of maps and assemblies that nothing uses";
+  let description = [{
+    A `simit.map` or `simit.assemble` result without uses is not computed:
+    the op is rebuilt with the used results only, calling a copy of its
+    element function that returns only those (named `<f>_live_<i>_<j>...`
+    after the kept result positions), so the writes into the dropped results
+    and whatever only they needed die with them. A map none of whose results
+    is used is erased when its element function writes no field and calls
+    nothing (writes into its own local variables do not count); otherwise it
+    stays, without results, for its effects. An element function no op
+    refers to any more is erased. Run it after simit-inline-functions, when
+    the uses of every assembly are in one function.
+  }];
+  let dependentDialects = ["::mlir::simit::SimitDialect",
+                           "::mlir::func::FuncDialect"];
+}
+
 def SimitAssignStorage : Pass<"simit-assign-storage", "::mlir::ModuleOp"> {
   let summary = "Gives every system matrix its storage encoding";
   let description = [{
@@ -335,8 +383,10 @@ def SimitCheckNumerics : Pass<"simit-check-numerics", "::mlir::ModuleOp"> {
 def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
   let summary = "Runs every Simit lowering down to the LLVM dialect";
   let description = [{
-    Inlines functions, solves sparse-plus-outer-product systems by
-    Sherman–Morrison, rewrites linear algebra as index expressions, fuses
+    Inlines functions, folds the constants the host marked
+    (simit-fold-scene-constants), drops unused map results
+    (simit-eliminate-dead-assemblies), solves sparse-plus-outer-product
+    systems by Sherman–Morrison, rewrites linear algebra as index expressions, fuses
     them, lowers to loops, unrolls the loops that index local tensors
     (simit-unroll-local-tensor-loops), marks the set loops that may run on all cores and
     makes their results independent of the number of threads
@@ -371,6 +421,14 @@ def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
     Option<"scatterChunk", "scatter-chunk", "int64_t", /*default=*/"8",
            "simit-parallel-loops: elements per coloured chunk of a scatter "
            "loop">,
+    Option<"foldSceneConstants", "fold-scene-constants", "bool",
+           /*default=*/"true",
+           "Fold the externs and uniform fields the host marked "
+           "(simit-fold-scene-constants)">,
+    Option<"eliminateDeadAssemblies", "eliminate-dead-assemblies", "bool",
+           /*default=*/"true",
+           "Drop map and assembly results nothing uses "
+           "(simit-eliminate-dead-assemblies)">,
   ];
 }
 

@@ -38,6 +38,7 @@ void mlir::simit::buildSimitCpuPipeline(
   pm.addPass(createSimitAssignStorage());
   ConvertSimitToLoopsOptions loopsOptions;
   loopsOptions.prefetchScatterBlocks = true;
+  loopsOptions.prefetchMatrixBytes = options.prefetchMatrixBytes;
   pm.addPass(createConvertSimitToLoops(loopsOptions));
   pm.addPass(createCanonicalizerPass());
   pm.addPass(createCSEPass());
@@ -98,8 +99,9 @@ namespace {
 struct CpuPipeline : public simit::impl::SimitCpuPipelineBase<CpuPipeline> {
   using Base::Base;
   SimitCpuPipelineOptions options() const {
-    return {timePhases, checkNumerics,  runtimeAllocator, shermanMorrison,
-            openmp,     reductionChunk, scatterChunk};
+    return {timePhases,     checkNumerics, runtimeAllocator,
+            shermanMorrison, openmp,        reductionChunk,
+            scatterChunk,    prefetchMatrixBytes};
   }
   void getDependentDialects(DialectRegistry &registry) const override {
     OpPassManager pm(ModuleOp::getOperationName());

@@ -214,6 +214,29 @@ SmallVector<Value> FunctionLowering::blockIndices(MemRefType type,
   return indices;
 }
 
+void FunctionLowering::prefetchBlock(Location loc, Value array, Value block,
+                                     bool isWrite) {
+  auto type = cast<MemRefType>(array.getType());
+  int64_t components = 1;
+  for (int64_t d = 1; d < type.getRank(); ++d)
+    components *= type.getDimSize(d);
+  Type component = type.getElementType();
+  int64_t bytes =
+      component.isIntOrFloat()
+          ? std::max<int64_t>(1, component.getIntOrFloatBitWidth() / 8)
+          : 16;
+  int64_t perLine = std::max<int64_t>(1, 64 / bytes);
+  SmallVector<int64_t> touched;
+  for (int64_t c = 0; c < components; c += perLine)
+    touched.push_back(c);
+  if (touched.back() != components - 1)
+    touched.push_back(components - 1);
+  for (int64_t c : touched)
+    memref::PrefetchOp::create(b, loc, array, blockIndices(type, {block}, c),
+                               isWrite, /*localityHint=*/3,
+                               /*isDataCache=*/true);
+}
+
 void FunctionLowering::fill(Location loc, Value array, Value scalar) {
   auto type = cast<MemRefType>(array.getType());
   SmallVector<Value> lbs, ubs, steps;
@@ -613,6 +636,7 @@ struct ConvertSimitToLoops
           builder.getFunctionType({}, {}));
       FunctionLowering lowering(module, lowered);
       lowering.prefetchScatterBlocks = prefetchScatterBlocks;
+      lowering.prefetchMatrixBytes = prefetchMatrixBytes;
       if (failed(lowering.run(original))) {
         lowered.erase();
         failedAny = true;

@@ -47,6 +47,7 @@ void mlir::simit::buildSimitCpuPipeline(
   pm.addPass(createSimitAssignStorage());
   ConvertSimitToLoopsOptions loopsOptions;
   loopsOptions.prefetchScatterBlocks = true;
+  loopsOptions.prefetchMatrixBytes = options.prefetchMatrixBytes;
   pm.addPass(createConvertSimitToLoops(loopsOptions));
   pm.addPass(createCanonicalizerPass());
   pm.addPass(createCSEPass());
@@ -100,16 +101,16 @@ void mlir::simit::buildSimitCpuPipeline(
   pm.addPass(createConvertFuncToLLVMPass());
   pm.addPass(createConvertControlFlowToLLVMPass());
   pm.addPass(createReconcileUnrealizedCastsPass());
-  pm.addPass(createCanonicalizerPass());
 }
 
 namespace {
 struct CpuPipeline : public simit::impl::SimitCpuPipelineBase<CpuPipeline> {
   using Base::Base;
   SimitCpuPipelineOptions options() const {
-    return {timePhases,     checkNumerics,      runtimeAllocator,
-            shermanMorrison, openmp,            reductionChunk,
-            scatterChunk,   foldSceneConstants, eliminateDeadAssemblies};
+    return {timePhases,      checkNumerics,      runtimeAllocator,
+            shermanMorrison, openmp,             reductionChunk,
+            scatterChunk,    foldSceneConstants, eliminateDeadAssemblies,
+            prefetchMatrixBytes};
   }
   void getDependentDialects(DialectRegistry &registry) const override {
     OpPassManager pm(ModuleOp::getOperationName());

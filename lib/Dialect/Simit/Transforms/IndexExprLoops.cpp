@@ -211,6 +211,27 @@ void IndexExprLowering::unbind(const Choice &choice) {
       }
 }
 
+void IndexExprLowering::prefetchAhead(unsigned i, Value position) {
+  // The rows' blocks lie one after the other: the hardware's prefetcher
+  // follows the stream, but a read that waits for each row's blocks (and
+  // the index loads before them) keeps fewer lines in flight than the
+  // memory allows.
+  Value values = l.lookup(op.getInputs()[i]);
+  auto type = cast<MemRefType>(values.getType());
+  int64_t blockBytes = type.getElementTypeBitWidth() / 8;
+  for (int64_t d = 1; d < type.getRank(); ++d)
+    blockBytes *= type.getDimSize(d);
+  int64_t distance = llvm::divideCeil(l.prefetchMatrixBytes,
+                                      std::max<int64_t>(1, blockBytes));
+  Value last = arith::SubIOp::create(
+      b, loc, memref::DimOp::create(b, loc, values, 0), l.indexConstant(1));
+  Value ahead = arith::MinSIOp::create(
+      b, loc,
+      arith::AddIOp::create(b, loc, position, l.indexConstant(distance)),
+      last);
+  l.prefetchBlock(loc, values, ahead, /*isWrite=*/false);
+}
+
 SmallVector<Value>
 IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
                             bool parallel,
@@ -293,6 +314,8 @@ IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
       Storage own = storageOf(o);
       if (!transposed && own == storage) {
         positions[o] = position;
+        if (rowPtr && o < op.getInputs().size() && l.prefetchMatrixBytes > 0)
+          prefetchAhead(o, position);
         continue;
       }
       // Another pattern or union over the same sets: its block at this
@@ -358,11 +381,6 @@ IndexExprLowering::sum(SmallVector<unsigned> vars,
     return body();
   Value zero = l.zeroOf(scalarType);
   bool failedBody = false;
-  auto accumulate = [&](Value acc, Value term) -> Value {
-    if (isa<FloatType>(scalarType))
-      return arith::AddFOp::create(b, loc, acc, term);
-    return arith::AddIOp::create(b, loc, acc, term);
-  };
   if (parallelTop && choice->coupledBy < 0 && isa<FloatType>(scalarType)) {
     SmallVector<Value> results = emitLoop(*choice, {zero}, true, [&](ValueRange) {
       FailureOr<Value> term = sum(vars, body, false);
@@ -382,7 +400,7 @@ IndexExprLowering::sum(SmallVector<unsigned> vars,
       failedBody = true;
       return SmallVector<Value>{args[0]};
     }
-    return SmallVector<Value>{accumulate(args[0], *term)};
+    return SmallVector<Value>{add(args[0], *term)};
   });
   if (failedBody)
     return failure();

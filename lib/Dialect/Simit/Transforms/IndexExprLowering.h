@@ -98,10 +98,27 @@ private:
   emitLoop(const Choice &choice, ValueRange inits, bool parallel,
            function_ref<SmallVector<Value>(ValueRange)> inner);
   void unbind(const Choice &choice);
+  /// Prefetches the block of matrix input `i` that lies
+  /// FunctionLowering::prefetchMatrixBytes after block `position`.
+  void prefetchAhead(unsigned i, Value position);
   /// The sum over `vars` of `body` (nested loops, loop-carried scalar).
   FailureOr<Value> sum(SmallVector<unsigned> vars,
                        function_ref<FailureOr<Value>()> body,
                        bool parallelTop);
+  /// lhs + rhs in the scalar type (addf or addi).
+  Value add(Value lhs, Value rhs);
+  /// The result variable whose row a sum over a set (y = A x) can
+  /// accumulate in loop-carried values: the only result variable over a
+  /// set, not the column of a matrix read transposed (`readsTransposed`),
+  /// with few enough static components per term to unroll.
+  std::optional<unsigned>
+  accumulatedRowVar(ArrayRef<unsigned> free, ArrayRef<unsigned> all,
+                    function_ref<bool(unsigned)> readsTransposed);
+  /// Inside the loop over `rowVar`'s set: sums the row's terms over the
+  /// other variables `all` in loop-carried values, static levels unrolled,
+  /// and stores each component of the row of `output` once.
+  LogicalResult accumulateRow(unsigned rowVar, ArrayRef<unsigned> all,
+                              Value output);
   /// Evaluates the body with the bound variables: the scalar it yields.
   FailureOr<Value> evaluate(Block &block);
   LogicalResult lowerLocal();

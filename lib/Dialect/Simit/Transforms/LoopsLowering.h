@@ -291,6 +291,9 @@ public:
   /// that `prefix` selects in an array of `type`.
   SmallVector<Value> blockIndices(MemRefType type, ArrayRef<Value> prefix,
                                   int64_t c);
+  /// Prefetches block `block` of the block array `array`: a component in
+  /// each cache line the block covers, and its last.
+  void prefetchBlock(Location loc, Value array, Value block, bool isWrite);
   /// Fills an array with a scalar.
   void fill(Location loc, Value array, Value scalar);
   /// The set of element value `original`, if known.
@@ -375,6 +378,10 @@ public:
   /// Whether element loops prefetch the BCSR blocks they accumulate into
   /// (convert-simit-to-loops{prefetch-scatter-blocks}).
   bool prefetchScatterBlocks = false;
+  /// How far ahead, in bytes, a loop over a BCSR row's blocks prefetches
+  /// the matrices it reads (convert-simit-to-loops{prefetch-matrix-bytes});
+  /// 0: not at all.
+  int64_t prefetchMatrixBytes = 0;
   /// Where memref.alloca of local variables go: the function entry, or the
   /// alloca scope of the set loop's body (so stack use does not grow with
   /// the set).

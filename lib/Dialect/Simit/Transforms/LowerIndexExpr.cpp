@@ -180,6 +180,134 @@ Value IndexExprLowering::inPlaceTarget() {
   return target;
 }
 
+Value IndexExprLowering::add(Value lhs, Value rhs) {
+  if (isa<FloatType>(scalarType))
+    return arith::AddFOp::create(b, loc, lhs, rhs);
+  return arith::AddIOp::create(b, loc, lhs, rhs);
+}
+
+std::optional<unsigned> IndexExprLowering::accumulatedRowVar(
+    ArrayRef<unsigned> free, ArrayRef<unsigned> all,
+    function_ref<bool(unsigned)> readsTransposed) {
+  // The one result variable over a set, not a transposed read's column:
+  // its loop comes first and every term of its row lands in that row.
+  std::optional<unsigned> row;
+  for (unsigned v : free) {
+    if (!isa<StringAttr>(level(v, 0)))
+      continue;
+    if (row || readsTransposed(v))
+      return std::nullopt;
+    row = v;
+  }
+  if (!row)
+    return std::nullopt;
+  // The static levels are unrolled inside the row; beyond this many terms
+  // per block the body would outgrow the registers it is meant to use.
+  constexpr int64_t kMaxUnrolledTerms = 256;
+  int64_t terms = 1;
+  for (unsigned v : all)
+    for (unsigned i = 0; i < numLevels(v); ++i)
+      if (auto size = dyn_cast<IntegerAttr>(level(v, i)))
+        terms *= size.getInt();
+  if (terms > kMaxUnrolledTerms)
+    return std::nullopt;
+  return row;
+}
+
+LogicalResult IndexExprLowering::accumulateRow(unsigned rowVar,
+                                               ArrayRef<unsigned> all,
+                                               Value output) {
+  // The row's components in level-major order of the result, less the
+  // row's own set level.
+  ArrayRef<int64_t> resultVars = op.getResultIndices();
+  SmallVector<std::pair<int64_t, unsigned>> componentLevels;
+  SmallVector<int64_t> componentExtents;
+  for (auto vl : levelMajorOrder(resultVars)) {
+    if (vl.first == rowVar && vl.second == 0)
+      continue;
+    componentLevels.push_back(vl);
+    componentExtents.push_back(
+        cast<IntegerAttr>(level(vl.first, vl.second)).getInt());
+  }
+  int64_t numComponents = 1;
+  for (int64_t size : componentExtents)
+    numComponents *= size;
+  auto componentOf = [&]() {
+    int64_t flat = 0;
+    for (auto [vl, size] : llvm::zip(componentLevels, componentExtents))
+      flat = flat * size + cast<arith::ConstantIndexOp>(
+                               bound[vl.first][vl.second].getDefiningOp())
+                               .value();
+    return flat;
+  };
+
+  // Sums in the order of the loop nest the terms would otherwise be added
+  // to memory in: set levels as loops carrying the sums, static levels
+  // unrolled (their positions become constants).
+  std::function<FailureOr<SmallVector<Value>>(SmallVector<Value>)> sumTerms =
+      [&](SmallVector<Value> sums) -> FailureOr<SmallVector<Value>> {
+    std::optional<Choice> choice = choose(all);
+    if (!choice) {
+      FailureOr<Value> term = evaluate(op.getBody().front());
+      if (failed(term))
+        return failure();
+      int64_t component = componentOf();
+      sums[component] = add(sums[component], *term);
+      return sums;
+    }
+    unsigned v = choice->var;
+    if (choice->coupledBy < 0 &&
+        isa<IntegerAttr>(level(v, choice->levelIndex))) {
+      if (!bound.count(v))
+        bound[v].assign(numLevels(v), Value());
+      int64_t size =
+          cast<IntegerAttr>(level(v, choice->levelIndex)).getInt();
+      for (int64_t k = 0; k < size; ++k) {
+        bound[v][choice->levelIndex] = l.indexConstant(k);
+        FailureOr<SmallVector<Value>> next = sumTerms(std::move(sums));
+        if (failed(next))
+          return failure();
+        sums = std::move(*next);
+      }
+      bound[v][choice->levelIndex] = Value();
+      return sums;
+    }
+    bool failedInner = false;
+    SmallVector<Value> results =
+        emitLoop(*choice, sums, /*parallel=*/false, [&](ValueRange args) {
+          FailureOr<SmallVector<Value>> next =
+              sumTerms(SmallVector<Value>(args));
+          if (failed(next)) {
+            failedInner = true;
+            return SmallVector<Value>(args);
+          }
+          return *next;
+        });
+    if (failedInner)
+      return failure();
+    return results;
+  };
+  FailureOr<SmallVector<Value>> sums =
+      sumTerms(SmallVector<Value>(numComponents, l.zeroOf(scalarType)));
+  if (failed(sums))
+    return failure();
+
+  // One store per component of the row.
+  for (int64_t component = 0; component < numComponents; ++component) {
+    int64_t rest = component;
+    for (int64_t i = componentLevels.size() - 1; i >= 0; --i) {
+      auto [v, lvl] = componentLevels[i];
+      bound[v][lvl] = l.indexConstant(rest % componentExtents[i]);
+      rest /= componentExtents[i];
+    }
+    memref::StoreOp::create(b, loc, (*sums)[component], output,
+                            levelMajor(resultVars));
+  }
+  for (auto [v, lvl] : componentLevels)
+    bound[v][lvl] = Value();
+  return success();
+}
+
 LogicalResult IndexExprLowering::lower() {
   op.walk([&](IndexSumOp nested) {
     for (int64_t v : nested.getVars())
@@ -268,14 +396,12 @@ LogicalResult IndexExprLowering::lower() {
       });
   // A sum over a set into a blocked vector (y = A x, y = A' x) runs each
   // row's blocks once: for the row, for its blocks, for the block's
-  // components, add into the (zeroed) result at the row, or at the block's
-  // column when A is read transposed. Otherwise every result component is
-  // written once by the loop nest.
-  Value output = inPlaceTarget();
-  if (output && sparseSum)
-    l.fill(loc, output, l.zeroOf(scalarType));
-  if (!output)
-    output = l.allocSystem(loc, type, resultStorage, sparseSum);
+  // components. Where the row is the result's own (y = A x), the row's
+  // components are summed in loop-carried values and stored once, so the
+  // result needs no zero fill (accumulateRows); where the column of a
+  // matrix read transposed is the result's (y = A' x), each term is added
+  // into the zeroed result at the block's column. Otherwise every result
+  // component is written once by the loop nest.
   if (sparseSum) {
     SmallVector<unsigned> all(free);
     llvm::append_range(all, summed);
@@ -292,6 +418,27 @@ LogicalResult IndexExprLowering::lower() {
       }
       return std::nullopt;
     };
+    std::optional<unsigned> rowVar = accumulatedRowVar(free, all, [&](
+                                         unsigned v) {
+      return transposedRow(v).has_value();
+    });
+    Value output = inPlaceTarget();
+    if (output && !rowVar)
+      l.fill(loc, output, l.zeroOf(scalarType));
+    if (!output)
+      output = l.allocSystem(loc, type, resultStorage, !rowVar);
+    if (rowVar) {
+      LogicalResult rows = success();
+      emitLoop(Choice{*rowVar, 0}, {}, /*parallel=*/true, [&](ValueRange) {
+        if (failed(accumulateRow(*rowVar, all, output)))
+          rows = failure();
+        return SmallVector<Value>{};
+      });
+      if (failed(rows))
+        return failure();
+      l.map(op, output);
+      return success();
+    }
     std::function<LogicalResult(bool)> loopAll =
         [&](bool outermost) -> LogicalResult {
       std::optional<Choice> choice;
@@ -309,10 +456,7 @@ LogicalResult IndexExprLowering::lower() {
           return failure();
         SmallVector<Value> indices = levelMajor(resultVars);
         Value old = memref::LoadOp::create(b, loc, output, indices);
-        Value sum = isa<FloatType>(scalarType)
-                        ? arith::AddFOp::create(b, loc, old, *value).getResult()
-                        : arith::AddIOp::create(b, loc, old, *value).getResult();
-        memref::StoreOp::create(b, loc, sum, output, indices);
+        memref::StoreOp::create(b, loc, add(old, *value), output, indices);
         return success();
       }
       bool parallel = outermost && choice->coupledBy < 0 &&
@@ -331,6 +475,9 @@ LogicalResult IndexExprLowering::lower() {
     return success();
   }
 
+  Value output = inPlaceTarget();
+  if (!output)
+    output = l.allocSystem(loc, type, resultStorage, false);
   // Loops over the result's levels, then the sum, then the store.
   unsigned resultOperand = op.getInputs().size();
   std::function<LogicalResult(bool)> loopFree =

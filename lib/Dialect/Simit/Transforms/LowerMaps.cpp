@@ -284,34 +284,15 @@ static void prefetchPatternBlocks(FunctionLowering &l,
   for (const auto &[r, written] : ctx.patternAccumulations) {
     const Storage &storage = ctx.outputStorages[r];
     Value output = ctx.outputs[r];
-    auto type = cast<MemRefType>(output.getType());
     Value locations =
         l.getPatternArray(BindingKind::PatternLocations, storage.edges,
                           storage.rows, storage.cols, c);
-    // One component per cache line of the block, and its last.
-    int64_t components = 1;
-    for (int64_t d = 1; d < type.getRank(); ++d)
-      components *= type.getDimSize(d);
-    Type component = type.getElementType();
-    int64_t bytes = component.isIntOrFloat()
-                        ? std::max<int64_t>(1, component.getIntOrFloatBitWidth() / 8)
-                        : 16;
-    int64_t perLine = std::max<int64_t>(1, 64 / bytes);
-    SmallVector<int64_t> touched;
-    for (int64_t component = 0; component < components; component += perLine)
-      touched.push_back(component);
-    if (touched.back() != components - 1)
-      touched.push_back(components - 1);
     for (int64_t k : written) {
       Value block = arith::IndexCastOp::create(
           b, loc, b.getIndexType(),
           memref::LoadOp::create(b, loc, locations,
                                  ValueRange{ctx.element, l.indexConstant(k)}));
-      for (int64_t component : touched)
-        memref::PrefetchOp::create(b, loc, output,
-                                   l.blockIndices(type, {block}, component),
-                                   /*isWrite=*/true,
-                                   /*localityHint=*/3, /*isDataCache=*/true);
+      l.prefetchBlock(loc, output, block, /*isWrite=*/true);
     }
   }
 }

@@ -29,16 +29,21 @@ simit.extern @springs : !Springs
 // CHECK:   %[[E21:.*]] = arith.addi %[[E2]], %c1
 // CHECK:   memref.store %{{.*}}, %[[DV]][%[[E21]]]
 // CHECK-NOT: simit.scatter
-// D x: row e, blocks e * 2 + k at columns ends[e, k].
-// CHECK: scf.parallel (%[[R:.*]]) = (%c0) to (%[[NS]])
-// CHECK:   scf.for %[[K:.*]] = %c0 to %c2 step %c1 {
+// D x: row e, blocks e * 2 + k at columns ends[e, k], summed in a
+// loop-carried value and stored once.
+// CHECK: %[[DX:.*]] = memref.alloc(%[[NS]]) : memref<?xf64>
+// CHECK-NEXT: scf.parallel (%[[R:.*]]) = (%c0) to (%[[NS]])
+// CHECK:   %[[SUM:.*]] = scf.for %[[K:.*]] = %c0 to %c2 step %c1 iter_args(%[[ACC:.*]] = %cst{{.*}}) -> (f64) {
 // CHECK:     %[[C32:.*]] = memref.load %[[ENDS]][%[[R]], %[[K]]]
 // CHECK:     %[[C:.*]] = arith.index_cast %[[C32]]
 // CHECK:     %[[R2:.*]] = arith.muli %[[R]], %c2
 // CHECK:     %[[POS:.*]] = arith.addi %[[R2]], %[[K]]
 // CHECK:     %[[DK:.*]] = memref.load %[[DV]][%[[POS]]]
 // CHECK:     %[[XC:.*]] = memref.load %[[X]][%[[C]]]
-// CHECK:     arith.mulf %[[DK]], %[[XC]]
+// CHECK:     %[[T:.*]] = arith.mulf %[[DK]], %[[XC]]
+// CHECK:     %[[NEXT:.*]] = arith.addf %[[ACC]], %[[T]]
+// CHECK:     scf.yield %[[NEXT]]
+// CHECK:   memref.store %[[SUM]], %[[DX]][%[[R]]]
 // D' g: the same walk, added into row c of the result.
 // CHECK: scf.for %[[R:.*]] = %c0 to %[[NS]] step %c1 {
 // CHECK:   scf.for %[[K:.*]] = %c0 to %c2 step %c1 {

@@ -29,29 +29,46 @@ func.func @stiffness(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> !K {
 }
 
 // A pattern matrix times a vector: each row's blocks (rowptr/colidx) are
-// visited once, their products added into the zeroed row of the result.
+// visited once; the row's three components are summed in loop-carried
+// values, term by term in the order (block, row of the block, column), and
+// stored once, so the result is not zero filled.
 // CHECK-LABEL: func.func @spmv(
 // CHECK-SAME: %[[NP:[^:]*]]: index, {{.*}}%[[X:[^:]*]]: memref<?x3xf64>, %{{[^:]*}}: memref<?xf64>, %[[ROWPTR:[^:]*]]: memref<?xi32>, %[[COLIDX:[^:]*]]: memref<?xi32>, %{{[^:]*}}: memref<?x4xi32>)
 // CHECK: %[[KV:.*]] = memref.alloc
 // CHECK: scf.parallel
 // CHECK: } {simit.scatter}
 // CHECK: %[[Y:.*]] = memref.alloc(%[[NP]]) : memref<?x3xf64>
-// CHECK: memref.store %cst, %[[Y]]
+// CHECK-NOT: memref.store %cst, %[[Y]]
 // CHECK: scf.parallel (%[[I:.*]]) = (%c0) to (%[[NP]])
 // CHECK:   %[[I1:.*]] = arith.addi %[[I]], %c1
 // CHECK:   %[[LO:.*]] = memref.load %[[ROWPTR]][%[[I]]]
 // CHECK:   %[[HI:.*]] = memref.load %[[ROWPTR]][%[[I1]]]
-// CHECK:   scf.for %[[K:.*]] = %{{.*}} to %{{.*}} step %c1 {
+// CHECK:   %[[ROW:.*]]:3 = scf.for %[[K:.*]] = %{{.*}} to %{{.*}} step %c1 iter_args(%[[S0:.*]] = %cst, %[[S1:.*]] = %cst, %[[S2:.*]] = %cst) -> (f64, f64, f64) {
 // CHECK:     %[[J32:.*]] = memref.load %[[COLIDX]][%[[K]]]
 // CHECK:     %[[J:.*]] = arith.index_cast %[[J32]]
-// CHECK:     scf.for %[[A:.*]] = %c0 to %c3 step %c1 {
-// CHECK:       scf.for %[[B:.*]] = %c0 to %c3 step %c1 {
-// CHECK:         %[[KAB:.*]] = memref.load %[[KV]][%[[K]], %[[A]], %[[B]]]
-// CHECK:         %[[XB:.*]] = memref.load %[[X]][%[[J]], %[[B]]]
-// CHECK:         %[[P:.*]] = arith.mulf %[[KAB]], %[[XB]]
-// CHECK:         %[[OLD:.*]] = memref.load %[[Y]][%[[I]], %[[A]]]
-// CHECK:         %[[NEW:.*]] = arith.addf %[[OLD]], %[[P]]
-// CHECK:         memref.store %[[NEW]], %[[Y]][%[[I]], %[[A]]]
+// CHECK:     %[[K00:.*]] = memref.load %[[KV]][%[[K]], %c0, %c0]
+// CHECK:     %[[X0:.*]] = memref.load %[[X]][%[[J]], %c0]
+// CHECK:     %[[P00:.*]] = arith.mulf %[[K00]], %[[X0]]
+// CHECK:     %[[T00:.*]] = arith.addf %[[S0]], %[[P00]]
+// CHECK:     %[[K01:.*]] = memref.load %[[KV]][%[[K]], %c0, %c1]
+// CHECK:     %[[X1:.*]] = memref.load %[[X]][%[[J]], %c1]
+// CHECK:     %[[P01:.*]] = arith.mulf %[[K01]], %[[X1]]
+// CHECK:     %[[T01:.*]] = arith.addf %[[T00]], %[[P01]]
+// CHECK:     %[[T02:.*]] = arith.addf %[[T01]], %{{.*}}
+// CHECK:     %[[K10:.*]] = memref.load %[[KV]][%[[K]], %c1, %c0]
+// CHECK:     %[[P10:.*]] = arith.mulf %[[K10]], %[[X0]]
+// CHECK:     %[[T10:.*]] = arith.addf %[[S1]], %[[P10]]
+// CHECK:     %[[T11:.*]] = arith.addf %[[T10]], %{{.*}}
+// CHECK:     %[[T12:.*]] = arith.addf %[[T11]], %{{.*}}
+// CHECK:     %[[T20:.*]] = arith.addf %[[S2]], %{{.*}}
+// CHECK:     %[[T21:.*]] = arith.addf %[[T20]], %{{.*}}
+// CHECK:     %[[T22:.*]] = arith.addf %[[T21]], %{{.*}}
+// CHECK:     scf.yield %[[T02]], %[[T12]], %[[T22]] : f64, f64, f64
+// CHECK-NOT: memref.store
+// CHECK:   }
+// CHECK:   memref.store %[[ROW]]#0, %[[Y]][%[[I]], %c0]
+// CHECK:   memref.store %[[ROW]]#1, %[[Y]][%[[I]], %c1]
+// CHECK:   memref.store %[[ROW]]#2, %[[Y]][%[[I]], %c2]
 // CHECK: return %[[Y]]
 func.func @spmv() -> !F attributes {simit.export} {
   %springs = simit.get_set @springs : !Springs

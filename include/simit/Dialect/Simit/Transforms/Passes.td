@@ -181,13 +181,21 @@ def ConvertSimitToLoops : Pass<"convert-simit-to-loops", "::mlir::ModuleOp"> {
     With `prefetch-scatter-blocks` (the CPU pipeline's setting), an element
     loop that accumulates into blocks of a BCSR matrix prefetches them
     (`memref.prefetch`) at the start of each element, from its location
-    table.
+    table. With `prefetch-matrix-bytes=N` (the CPU pipeline's setting), a
+    loop over the blocks of a BCSR row prefetches, at each block, the block
+    of each matrix it reads that lies N bytes further on in its value
+    array (the row's next blocks, then the next rows'), clamped to the
+    array's last block.
   }];
   let options = [
     Option<"prefetchScatterBlocks", "prefetch-scatter-blocks", "bool",
            /*default=*/"false",
            "Prefetch the BCSR blocks an element accumulates into at the "
            "start of the element">,
+    Option<"prefetchMatrixBytes", "prefetch-matrix-bytes", "int64_t",
+           /*default=*/"0",
+           "Loops over a BCSR row's blocks prefetch the matrices they read "
+           "this many bytes ahead (0: no prefetch)">,
   ];
   let dependentDialects = ["::mlir::func::FuncDialect",
                            "::mlir::scf::SCFDialect",
@@ -429,6 +437,11 @@ def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
            /*default=*/"true",
            "Drop map and assembly results nothing uses "
            "(simit-eliminate-dead-assemblies)">,
+    Option<"prefetchMatrixBytes", "prefetch-matrix-bytes", "int64_t",
+           /*default=*/"1024",
+           "convert-simit-to-loops: how far ahead, in bytes, loops over a "
+           "BCSR row's blocks prefetch the matrices they read (0: no "
+           "prefetch)">,
   ];
 }
 

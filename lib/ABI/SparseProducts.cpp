@@ -19,17 +19,25 @@ namespace {
 using IndexArray = MemRefDescriptor<int32_t, 1>;
 
 /// The BlockMatrixView of lowered arrays: BCSR (layout 0), block diagonal
-/// (layout 1, index arrays unused) or an incidence's rows (layout 2).
+/// (layout 1, index arrays unused), an incidence's rows (layout 2) or dense
+/// (layout 3, `cols` blocks a row, index arrays unused).
 template <typename T>
 simit::BlockMatrixView<T> blockMatrix(int32_t layout, IndexArray *rowptr,
                                       IndexArray *colidx, IndexArray *positions,
-                                      MemRefDescriptor<T, 3> *values) {
+                                      MemRefDescriptor<T, 3> *values,
+                                      int64_t cols) {
   simit::BlockMatrixView<T> view;
   view.blockRows = values->sizes[1];
   view.blockCols = values->sizes[2];
   view.values = values->data + values->offset;
+  view.cols = cols;
   if (layout == 1) {
-    view.rows = view.cols = values->sizes[0];
+    view.rows = values->sizes[0];
+    return view;
+  }
+  if (layout == 3) {
+    view.dense = true;
+    view.rows = cols ? values->sizes[0] / cols : 0;
     return view;
   }
   view.rows = rowptr->sizes[0] - 1;
@@ -56,14 +64,15 @@ bool multiplyMatrices(int32_t layoutA, IndexArray *rowptrA, IndexArray *colidxA,
     return fail(where, "value arrays must be contiguous");
   if (layoutC == 2)
     return fail(where, "the product's result must be BCSR or block diagonal");
-  simit::BlockMatrixView<T> left =
-      blockMatrix(layoutA, rowptrA, colidxA, positionsA, a);
+  // B's rows are A's columns; a dense B has `cols` blocks a row.
   simit::BlockMatrixView<T> right =
-      blockMatrix(layoutB, rowptrB, colidxB, positionsB, b);
+      blockMatrix(layoutB, rowptrB, colidxB, positionsB, b, cols);
   simit::BlockMatrixView<T> result =
-      blockMatrix(layoutC, rowptrC, colidxC, nullptr, c);
+      blockMatrix(layoutC, rowptrC, colidxC, nullptr, c, cols);
+  simit::BlockMatrixView<T> left = blockMatrix(
+      layoutA, rowptrA, colidxA, positionsA, a,
+      layoutA == 3 ? right.rows : 0);
   left.cols = right.rows;
-  right.cols = result.cols = cols;
   if (llvm::Error err = simit::multiplyInto(left, right, result))
     return fail(where, llvm::toString(std::move(err)));
   return true;

@@ -139,8 +139,9 @@ void _mlir_ciface_simit_rt_solve_diag_f32(
 
 /// C = A B for system matrices: each of A, B and C BCSR (layout 0: rowptr,
 /// colidx, values memref<?xBrxBcxT>) or block diagonal (layout 1: index
-/// arrays unused); A and B may also be incidences read row by row (layout
-/// 2: the rowptr, colidx and value positions of simit::IncidenceView).
+/// arrays unused) or dense (layout 3: every block row by row, index arrays
+/// unused); A and B may also be incidences read row by row (layout 2: the
+/// rowptr, colidx and value positions of simit::IncidenceView).
 /// C's pattern holds the product (simit::productPattern), `cols` is its
 /// number of block columns. A block of the product outside C's pattern
 /// ends the run with `where`.

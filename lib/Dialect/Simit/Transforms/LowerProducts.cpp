@@ -22,10 +22,11 @@ using namespace mlir::simit;
 using namespace mlir::simit::loops;
 
 /// Whether the runtime's product takes a factor stored as `s`: block
-/// diagonal, BCSR, or an incidence read row by row.
+/// diagonal, BCSR, dense, or an incidence read row by row.
 static bool isProductOperand(const Storage &s) {
   return s.kind == Storage::Kind::Diagonal || s.isBCSR() ||
-         s.kind == Storage::Kind::Incidence;
+         s.kind == Storage::Kind::Incidence ||
+         s.kind == Storage::Kind::DenseMatrix;
 }
 
 /// Whether `h` (over (V, E)) times `g` (over (E, V)) is an incidence's
@@ -188,7 +189,7 @@ LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
       return lowerScaledIncidence(op, b2, /*diagonalOnRight=*/false);
   }
   if (!isProductOperand(a) || !isProductOperand(b2) ||
-      !(storage.kind == Storage::Kind::Diagonal || storage.isBCSR()))
+      storage.kind == Storage::Kind::Incidence || !isProductOperand(storage))
     return op.emitError("products are supported of matrices assembled from "
                         "sets and their sums; these are stored as ")
            << a.describe() << " and " << b2.describe();
@@ -215,18 +216,21 @@ LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
     return op.emitError("@") << name << " is declared with another type";
 
   // Each matrix: its layout (0 BCSR, 1 block diagonal, 2 an incidence's
-  // rows), index arrays (the factors' with value positions) and values.
+  // rows, 3 dense), index arrays (the factors' with value positions) and
+  // values.
   SmallVector<Value> args;
   auto addMatrix = [&](const Storage &s, Value array, bool isFactor) {
-    int64_t layout = s.kind == Storage::Kind::Diagonal    ? 1
-                     : s.kind == Storage::Kind::Incidence ? 2
-                                                          : 0;
+    int64_t layout = s.kind == Storage::Kind::Diagonal      ? 1
+                     : s.kind == Storage::Kind::Incidence   ? 2
+                     : s.kind == Storage::Kind::DenseMatrix ? 3
+                                                            : 0;
     args.push_back(arith::ConstantIntOp::create(b, loc, i32, layout));
     if (layout == 2) {
       llvm::append_range(args, incidenceRows(s));
     } else {
-      args.push_back(layout == 1 ? emptyIndexArray() : rowPointers(s));
-      args.push_back(layout == 1 ? emptyIndexArray() : columnIndices(s));
+      bool indexed = layout == 0;
+      args.push_back(indexed ? rowPointers(s) : emptyIndexArray());
+      args.push_back(indexed ? columnIndices(s) : emptyIndexArray());
       if (isFactor)
         args.push_back(emptyIndexArray());
     }

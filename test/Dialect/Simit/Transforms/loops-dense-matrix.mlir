@@ -67,3 +67,24 @@ func.func @matsolve() attributes {simit.export} {
   simit.field_write %y, %points["y"] : !V, !Points
   return
 }
+
+// A product with a dense factor is dense: the runtime's product reads the
+// dense matrices row by row (layout 3, no index arrays).
+// CHECK-LABEL: func.func @dense_product(
+// CHECK: %[[DENSE:.*]] = arith.constant 3 : i32
+// CHECK: %[[BCSR:.*]] = arith.constant 0 : i32
+// CHECK: %[[RESULT:.*]] = arith.constant 3 : i32
+// CHECK: call @simit_rt_matmul_bcsr(%[[DENSE]], %[[NONE:[^,]*]], %[[NONE]], %[[NONE]], %{{[^,]*}}, %[[BCSR]], %{{[^,]*}}, %{{[^,]*}}, %[[NONE]], %{{[^,]*}}, %[[RESULT]], %[[NONE]], %[[NONE]],
+func.func @dense_product() attributes {simit.export} {
+  %springs = simit.get_set @springs : !Springs
+  %points = simit.get_set @points : !Points
+  %A = simit.assemble @link() to %springs reduce <add> : (!Springs) -> !A
+  %h = simit.factorize lu %A : !A
+  %X = simit.factor_solve lu %h, %A : !A -> !A
+  simit.factor_free lu %h
+  %XA = simit.matmul %X, %A : !A, !A -> !A
+  %x = simit.field_read %points["x"] : !Points -> !V
+  %y = simit.matvec %XA, %x : !A, !V -> !V
+  simit.field_write %y, %points["y"] : !V, !Points
+  return
+}

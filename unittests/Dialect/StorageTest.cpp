@@ -99,6 +99,11 @@ TEST_F(StorageTest, ProductDropsDiagonalsAndComposesIncidences) {
   EXPECT_EQ(kk.getKind(), StorageKind::Product);
   EXPECT_EQ(storage::product({kk, k}), storage::product({k, k, k}));
   EXPECT_EQ(storage::product({k, storage::empty(&ctx)}), storage::empty(&ctx));
+  // A dense factor (lumatsolve's solution) makes the product dense.
+  StorageAttr dense = storage::dense(&ctx);
+  EXPECT_EQ(storage::product({dense, k}), dense);
+  EXPECT_EQ(storage::product({storage::transpose(p), dense}), dense);
+  EXPECT_EQ(storage::transpose(dense), dense);
 }
 
 TEST_F(StorageTest, LowRankAccumulatesTerms) {

@@ -415,6 +415,7 @@ StorageAttr storage::transpose(StorageAttr x) {
     return x.getOperand();
   case StorageKind::Diag:
   case StorageKind::Empty:
+  case StorageKind::Dense:
     return x;
   case StorageKind::LowRank:
     return lowRank(transpose(x.getOperand()), x.getRank());
@@ -513,6 +514,11 @@ StorageAttr storage::product(ArrayRef<StorageAttr> factors) {
         return f.getKind() == StorageKind::Empty;
       }))
     return lowRank(empty(ctx), rank);
+  // A dense factor fills in every block (A^-1 B times anything).
+  if (llvm::any_of(flat, [](StorageAttr f) {
+        return f.getKind() == StorageKind::Dense;
+      }))
+    return lowRank(dense(ctx), rank);
   SmallVector<StorageAttr> kept;
   for (StorageAttr f : flat) {
     if (f.getKind() == StorageKind::Diag)

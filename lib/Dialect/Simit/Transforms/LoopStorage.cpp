@@ -267,14 +267,6 @@ struct EncodingReader {
     case StorageKind::Product: {
       if (e.getMembers().size() != 2)
         return std::nullopt;
-      // A dense factor fills in every block of the product.
-      auto isDense = [](StorageAttr member) {
-        if (member.getKind() == StorageKind::Transpose)
-          member = member.getOperand();
-        return member.getKind() == StorageKind::Dense;
-      };
-      if (isDense(e.getMember(0)) || isDense(e.getMember(1)))
-        return Storage::denseMatrix(rows, cols);
       std::optional<SmallVector<StringAttr, 2>> left =
           factorSets(e.getMember(0));
       std::optional<SmallVector<StringAttr, 2>> right =

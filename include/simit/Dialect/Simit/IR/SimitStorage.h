@@ -39,14 +39,15 @@ StorageAttr incidence(StringAttr edges, ArrayRef<int64_t> cols);
 /// sorted and made unique; offset 0 is added.
 StorageAttr stencil(StringAttr grid, ArrayRef<SmallVector<int64_t>> offsets);
 /// transpose(transpose(X)) = X, transpose(diag) = diag, transpose(empty) =
-/// empty, and rank-one terms stay outermost.
+/// empty, transpose(dense) = dense, and rank-one terms stay outermost.
 StorageAttr transpose(StorageAttr x);
 /// Flattened, sorted and without duplicates, empty members or members
 /// another contains; stencils of one grid merge; a member `dense` makes it
 /// `dense`. No member gives `empty`, one member is that member.
 StorageAttr unionOf(ArrayRef<StorageAttr> members);
-/// Flattened; diagonal factors drop out, an empty factor makes it empty,
-/// and transpose(incidence(E, P)) then incidence(E, Q) is pattern(E, P, Q).
+/// Flattened; diagonal factors drop out, an empty factor makes it empty, a
+/// dense one dense, and transpose(incidence(E, P)) then incidence(E, Q) is
+/// pattern(E, P, Q).
 StorageAttr product(ArrayRef<StorageAttr> factors);
 /// `x` plus `rank` rank-one terms; `lowrank(lowrank(X, a), b)` is
 /// `lowrank(X, a + b)`, and rank 0 is `x`.

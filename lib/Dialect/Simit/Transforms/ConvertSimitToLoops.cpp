@@ -153,6 +153,18 @@ LogicalResult FunctionLowering::checkStorages(func::FuncOp original) {
 // Helpers
 //===----------------------------------------------------------------------===//
 
+void FunctionLowering::forLoop(Location loc, Value upper,
+                               function_ref<void(Value)> body) {
+  scf::ForOp::create(
+      b, loc, indexConstant(0), upper, indexConstant(1), ValueRange{},
+      [&](OpBuilder &nb, Location, Value i, ValueRange) {
+        OpBuilder::InsertionGuard guard(b);
+        b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
+        body(i);
+        scf::YieldOp::create(b, loc);
+      });
+}
+
 Value FunctionLowering::indexConstant(int64_t value) {
   return arith::ConstantIndexOp::create(b, function.getLoc(), value);
 }

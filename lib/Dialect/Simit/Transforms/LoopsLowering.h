@@ -280,6 +280,8 @@ public:
   //===--- Helpers shared by the parts ----------------------------------===//
 
   Value indexConstant(int64_t value);
+  /// Emits `body(i)` in a sequential scf.for over [0, upper).
+  void forLoop(Location loc, Value upper, function_ref<void(Value)> body);
   Value zeroOf(Type scalarType);
   /// A fresh array for a system tensor of `type` stored as `storage`, zero
   /// filled unless the caller writes every component.

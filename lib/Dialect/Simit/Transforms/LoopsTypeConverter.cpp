@@ -2,7 +2,7 @@
 
 #include "simit/Dialect/Simit/Transforms/LoopsTypeConverter.h"
 
-#include "simit/Dialect/Simit/IR/Simit.h"
+#include "LoopsLowering.h"
 
 #include "mlir/Dialect/LLVMIR/LLVMTypes.h"
 
@@ -17,37 +17,10 @@ static Type storedNumberType(Type component) {
   return component;
 }
 
-/// The number of components of a local tensor (1 for a scalar).
-static int64_t numLocalComponents(Type type) {
-  if (auto tensor = dyn_cast<RankedTensorType>(type))
-    return tensor.getNumElements();
-  if (auto system = dyn_cast<SystemTensorType>(type)) {
-    int64_t n = numLocalComponents(system.getBlockType());
-    for (Attribute dim : system.getDims())
-      n *= cast<IntegerAttr>(dim).getInt();
-    return n;
-  }
-  return 1;
-}
-
 /// The length of the flat vector or slot that stores a local tensor.
 static int64_t storedLength(Type type) {
-  return numLocalComponents(type) *
+  return loops::numComponents(type) *
          (isa<ComplexType>(getComponentType(type)) ? 2 : 1);
-}
-
-/// The component shape of a local block: the builtin shape, or the integer
-/// dimensions of a `!simit.tensor` followed by its block's.
-static void appendBlockShape(Type type, SmallVectorImpl<int64_t> &shape) {
-  if (auto tensor = dyn_cast<RankedTensorType>(type)) {
-    llvm::append_range(shape, tensor.getShape());
-    return;
-  }
-  if (auto system = dyn_cast<SystemTensorType>(type)) {
-    for (Attribute dim : system.getDims())
-      shape.push_back(cast<IntegerAttr>(dim).getInt());
-    appendBlockShape(system.getBlockType(), shape);
-  }
 }
 
 /// The array of a system tensor: a dynamic number of blocks (a set's
@@ -69,7 +42,7 @@ static Type systemArrayType(SystemTensorType system) {
     return nullptr;
   if (hasSetDimension(system.getBlockType()))
     return nullptr;
-  appendBlockShape(system.getBlockType(), shape);
+  llvm::append_range(shape, loops::localShape(system.getBlockType()));
   return MemRefType::get(shape, component);
 }
 

@@ -81,18 +81,14 @@ static void emitBlockProduct(FunctionLowering &l, Location loc, bool blocked,
     }
 }
 
-/// Emits `body(e)` in a sequential loop over the edges of `edges`.
-static void forEachEdge(FunctionLowering &l, Location loc, StringAttr edges,
-                        function_ref<void(Value)> body) {
-  OpBuilder &b = l.b;
-  scf::ForOp::create(
-      b, loc, l.indexConstant(0), l.getSetSize(edges), l.indexConstant(1),
-      ValueRange{}, [&](OpBuilder &nb, Location, Value e, ValueRange) {
-        OpBuilder::InsertionGuard guard(b);
-        b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
-        body(e);
-        scf::YieldOp::create(b, loc);
-      });
+/// Whether a product's blocks are matrices (not scalars), and its (rows,
+/// mid, cols) block shape.
+static std::pair<bool, std::array<int64_t, 3>> productShape(MatMulOp op) {
+  bool blocked =
+      !cast<SystemTensorType>(op.getType()).getBlockShape().empty();
+  return {blocked,
+          {blockShape(op.getLhs()).first, blockShape(op.getLhs()).second,
+           blockShape(op.getRhs()).second}};
 }
 
 LogicalResult FunctionLowering::lowerIncidenceGram(MatMulOp op,
@@ -106,17 +102,14 @@ LogicalResult FunctionLowering::lowerIncidenceGram(MatMulOp op,
   // edge naming a vertex twice adds each of its blocks there.
   Location loc = op.getLoc();
   auto type = cast<SystemTensorType>(op.getType());
-  bool blocked = !type.getBlockShape().empty();
-  std::array<int64_t, 3> shape = {blockShape(op.getLhs()).first,
-                                  blockShape(op.getLhs()).second,
-                                  blockShape(op.getRhs()).second};
+  auto [blocked, shape] = productShape(op);
   int64_t c = g.cardinality;
   Value h = lookup(op.getLhs()), gArray = lookup(op.getRhs());
   Value out = allocSystem(loc, type, result, /*zeroFill=*/true);
   Value locations = getPatternArray(BindingKind::PatternLocations,
                                     result.edges, result.rows, result.cols, c);
   // Edges write shared blocks: the loop stays sequential.
-  forEachEdge(*this, loc, g.edges, [&](Value e) {
+  forLoop(loc, getSetSize(g.edges), [&](Value e) {
     Value first = arith::MulIOp::create(b, loc, e, indexConstant(c));
     for (int64_t i = 0; i < c; ++i) {
       Value hAt = arith::AddIOp::create(b, loc, first, indexConstant(i));
@@ -143,14 +136,11 @@ LogicalResult FunctionLowering::lowerScaledIncidence(MatMulOp op,
   // block at the column (on the right) or the row (on the left).
   Location loc = op.getLoc();
   auto type = cast<SystemTensorType>(op.getType());
-  bool blocked = !type.getBlockShape().empty();
-  std::array<int64_t, 3> shape = {blockShape(op.getLhs()).first,
-                                  blockShape(op.getLhs()).second,
-                                  blockShape(op.getRhs()).second};
+  auto [blocked, shape] = productShape(op);
   Value x = lookup(op.getLhs()), y = lookup(op.getRhs());
   Value out = allocSystem(loc, type, incidence, /*zeroFill=*/false);
   // Each block is written once, by its edge.
-  forEachEdge(*this, loc, incidence.edges, [&](Value e) {
+  forLoop(loc, getSetSize(incidence.edges), [&](Value e) {
     forEachEdgeBlock(loc, incidence, e, [&](Value endpoint, Value at) {
       Value row = incidence.transposed ? endpoint : e;
       Value col = incidence.transposed ? e : endpoint;

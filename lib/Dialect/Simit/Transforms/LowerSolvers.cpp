@@ -329,18 +329,8 @@ LogicalResult FunctionLowering::lowerFactorMatrixSolve(FactorSolveOp solve,
   Value x = allocSystem(loc, resultType, result, /*zeroFill=*/false);
   Value bValues = lookup(solve.getRhs());
   Value zero = zeroOf(b.getF64Type());
-  auto forEachRow = [&](Value rows, function_ref<void(Value)> body) {
-    scf::ForOp::create(
-        b, loc, indexConstant(0), rows, indexConstant(1), ValueRange{},
-        [&](OpBuilder &nb, Location, Value r, ValueRange) {
-          OpBuilder::InsertionGuard guard(b);
-          b.setInsertionPoint(nb.getInsertionBlock(), nb.getInsertionPoint());
-          body(r);
-          scf::YieldOp::create(b, loc);
-        });
-  };
-  forEachRow(cols, [&](Value j) {
-    forEachRow(rhsRows, [&](Value r) {
+  forLoop(loc, cols, [&](Value j) {
+    forLoop(loc, rhsRows, [&](Value r) {
       Value position = findBlock(loc, rhs, r, j);
       Value present = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::sge,
                                             position, indexConstant(0));
@@ -357,7 +347,7 @@ LogicalResult FunctionLowering::lowerFactorMatrixSolve(FactorSolveOp solve,
                                     asRuntimeBlocks(loc, solution,
                                                     runtimeVector),
                                     where});
-    forEachRow(resultRows, [&](Value r) {
+    forLoop(loc, resultRows, [&](Value r) {
       memref::StoreOp::create(b, loc,
                               memref::LoadOp::create(b, loc, solution, r), x,
                               findBlock(loc, result, r, j));

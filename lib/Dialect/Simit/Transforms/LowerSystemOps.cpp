@@ -194,6 +194,8 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
     auto type = cast<SystemTensorType>(extract.getTensor().getType());
     if (type.getOrder() != 1)
       return lowerMatrixBlockAccess(op);
+    // A block of an index expression waiting for this read (blockRead):
+    // mapped here when computed alone, else read from the whole result.
     if (auto expr = extract.getTensor().getDefiningOp<IndexExprOp>();
         expr && blockRead(expr) == extract) {
       if (failed(lowerIndexExpr(expr, extract)))

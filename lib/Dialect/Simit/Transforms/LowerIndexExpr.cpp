@@ -233,9 +233,9 @@ IndexExprLowering::rowSums(unsigned rowVar, ArrayRef<unsigned> all) {
   auto componentOf = [&]() {
     int64_t flat = 0;
     for (auto [v, lvl] : componentLevels)
-      flat = flat * cast<IntegerAttr>(level(v, lvl)).getInt() +
-             cast<arith::ConstantIndexOp>(bound[v][lvl].getDefiningOp())
-                 .value();
+      flat =
+          flat * cast<IntegerAttr>(level(v, lvl)).getInt() +
+          cast<arith::ConstantIndexOp>(bound[v][lvl].getDefiningOp()).value();
     return flat;
   };
 

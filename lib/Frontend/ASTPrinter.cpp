@@ -374,6 +374,7 @@ void Printer::expr(const Expr &e) {
     case BinaryExpr::MulKind::MatVec: os << " matvec"; break;
     case BinaryExpr::MulKind::VecMat: os << " vecmat"; break;
     case BinaryExpr::MulKind::MatMat: os << " matmat"; break;
+    case BinaryExpr::MulKind::BlockRowVec: os << " blockrowvec"; break;
     case BinaryExpr::MulKind::None: break;
     }
     os << ' ';

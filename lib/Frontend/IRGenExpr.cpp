@@ -270,7 +270,45 @@ Value IRGenerator::genProduct(const BinaryExpr &e, Value a, Value b) {
   return unsupported(e.loc, "this product", resultType);
 }
 
+/// `A(p,:) * x` of a blocked matrix A is block p of `A * x`, and
+/// `A(:,q)' * x` block q of `A' * x`: the slice, a vector of matrix blocks,
+/// has no IR type of its own, so it is never generated.
+Value IRGenerator::genBlockRowProduct(const BinaryExpr &e) {
+  mlir::Type resultType = convertType(e.type, e.loc);
+  auto *transpose = dyn_cast<TransposeExpr>(e.lhs.get());
+  auto *slice =
+      dyn_cast<ReadExpr>(transpose ? transpose->operand.get() : e.lhs.get());
+  // The row's position among the matrix's indices: 0 for A(p,:), 1 for
+  // A(:,q)'.
+  unsigned fixed = transpose ? 1 : 0;
+  if (!slice || !slice->base->type->isMatrix() || !slice->indices[fixed] ||
+      slice->indices[1 - fixed])
+    return unsupported(e.loc,
+                       "a product of a row of matrix blocks other than "
+                       "A(p,:) * x and A(:,q)' * x",
+                       resultType);
+  Value matrix = genExpr(*slice->base);
+  Value index = genIndex(*slice->indices[fixed]);
+  Value x = genExpr(*e.rhs);
+  Location l = loc(e.loc);
+  TypePtr matrixType = slice->base->type;
+  if (transpose) {
+    matrixType = transposed(matrixType);
+    matrix = dialect::TransposeOp::create(
+        builder, l, convertType(matrixType, e.loc), matrix);
+  }
+  // A * x: a vector over A's rows of blocks like the result.
+  TypePtr productType = frontend::Type::tensor(
+      e.type->component, {matrixType->dims[0]}, e.type, /*row=*/false);
+  Value product = dialect::MatVecOp::create(
+      builder, l, convertType(productType, e.loc), matrix, x);
+  return dialect::ExtractOp::create(builder, l, resultType, product,
+                                    ValueRange{index});
+}
+
 Value IRGenerator::genBinary(const BinaryExpr &e) {
+  if (e.mulKind == BinaryExpr::MulKind::BlockRowVec)
+    return genBlockRowProduct(e);
   Value a = genExpr(*e.lhs);
   Value b = genExpr(*e.rhs);
   Location l = loc(e.loc);
@@ -414,6 +452,10 @@ Value IRGenerator::genRead(const ReadExpr &e) {
     if (index)
       indices.push_back(genIndex(*index));
   }
+  // Its blocks keep every dimension: no IR type has that shape.
+  if (e.isSlice() && e.base->type->block)
+    return unsupported(e.loc, "a slice of a blocked tensor outside the "
+                              "products A(p,:) * x and A(:,q)' * x");
   mlir::Type resultType = convertType(e.type, e.loc);
   if (e.isSlice())
     return dialect::SliceOp::create(builder, loc(e.loc), resultType, base,

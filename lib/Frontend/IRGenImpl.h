@@ -120,6 +120,7 @@ private:
   mlir::Value genElementwise(BinaryExpr::Op op, mlir::Value a, mlir::Value b,
                              mlir::Type resultType, SMLoc where);
   mlir::Value genProduct(const BinaryExpr &e, mlir::Value a, mlir::Value b);
+  mlir::Value genBlockRowProduct(const BinaryExpr &e);
   mlir::Value genCompare(const CompareExpr &e);
   mlir::Value genScalarCompare(CompareExpr::Op op, mlir::Value a,
                                mlir::Value b, ScalarKind kind, SMLoc where);

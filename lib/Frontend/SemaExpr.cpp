@@ -731,6 +731,23 @@ TypePtr Sema::checkProduct(BinaryExpr &binary, const TypePtr &a,
   if (a->order() > 2 || b->order() > 2)
     return fail("'*' is not defined for tensors of order 3 or more");
   auto mismatch = [&] { return fail("dimension mismatch in '*'"); };
+  // A row of matrix blocks (A(p,:) of a blocked matrix, or A(:,q)') times a
+  // vector sums the products of its blocks with the vector's: a vector of
+  // the blocks' rows. Vectors of matrix blocks come only from slices.
+  auto hasMatrixBlocks = [](const TypePtr &t) {
+    return t->isVector() && t->block && t->block->isMatrix();
+  };
+  if (hasMatrixBlocks(a) || hasMatrixBlocks(b)) {
+    if (!a->isRowVector() || !b->isColumnVector() || hasMatrixBlocks(b))
+      return fail("a slice of a blocked matrix is multiplied only as "
+                  "A(p,:) * x or A(:,q)' * x");
+    std::vector<Dim> cols = a->block->hierarchy(1);
+    cols.insert(cols.begin(), a->dims[0]);
+    if (cols != b->hierarchy(0))
+      return mismatch();
+    binary.mulKind = MK::BlockRowVec;
+    return vectorOver(a->component, a->block->hierarchy(0), false);
+  }
   if (a->isRowVector() && b->isColumnVector()) {
     if (a->hierarchy(0) != b->hierarchy(0))
       return mismatch();

@@ -200,8 +200,13 @@ bool simit::frontend::typesEqual(const TypePtr &a, const TypePtr &b,
 TypePtr simit::frontend::transposed(const TypePtr &t) {
   if (!t->isTensor() || t->order() == 0)
     return t;
+  // A vector of matrix blocks (a column A(:,q) of a blocked matrix)
+  // transposes its blocks too: A(:,q)' is row q of A'.
   if (t->order() == 1)
-    return Type::tensor(t->component, t->dims, t->block, !t->row);
+    return Type::tensor(t->component, t->dims,
+                        t->block && t->block->isMatrix() ? transposed(t->block)
+                                                         : t->block,
+                        !t->row);
   std::vector<Dim> dims = {t->dims[1], t->dims[0]};
   TypePtr block = t->block ? transposed(t->block) : nullptr;
   return Type::tensor(t->component, dims, block, false);

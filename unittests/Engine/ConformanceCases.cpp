@@ -267,6 +267,13 @@ const std::vector<Operation> &simit::conformance::allOperations() {
        [](const DenseInputs &in) -> Eigen::MatrixXd {
          return in.operands[0] * in.xCols;
        }},
+      // A column transposed is a row of A' (its blocks transposed).
+      {"columnSlices", 1, M::Vector,
+       "  for q in $C0\n    $C0.y(q) = A(:,q)' * $R0.x;\n  end\n", "",
+       transposedShape,
+       [](const DenseInputs &in) -> Eigen::MatrixXd {
+         return in.operands[0].transpose() * in.xRows;
+       }},
       {"symmetricSolve", 1, M::Vector, "  $R0.y = (A + A' + S) \\ $R0.x;\n", "",
        squareOnVerts,
        [](const DenseInputs &in) -> Eigen::MatrixXd {

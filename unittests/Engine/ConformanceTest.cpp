@@ -4,8 +4,7 @@
 // tuple of matrix storages it is defined on (ConformanceCases.h), run by
 // the JIT on random sets and compared with a dense Eigen evaluation of the
 // same operation on the same data. docs/conformance.md describes the suite
-// and lists the cases left out here: those the compiler rejects, and those
-// it gets wrong.
+// and the cases it once left out.
 //
 //===----------------------------------------------------------------------===//
 
@@ -27,36 +26,6 @@ void PrintTo(const Case &c, std::ostream *os) { *os << c.name(); }
 } // namespace simit::conformance
 
 namespace {
-
-/// What the compiler does not run yet, by operation, source and block size
-/// (null or 0: any); docs/conformance.md quotes the error of each.
-struct NotYetRun {
-  const char *operation;
-  const char *source;
-  int blockSize = 0;
-};
-constexpr NotYetRun kNotYetRun[] = {
-    // Slices of blocked system matrices: the op verifier rejects them.
-    {"rowSlices", nullptr, 3},
-};
-
-bool isNotYetRun(const Case &c) {
-  return llvm::any_of(kNotYetRun, [&](const NotYetRun &rule) {
-    bool operation =
-        !rule.operation || llvm::StringRef(rule.operation) == c.operation->name;
-    bool source = !rule.source || llvm::any_of(c.sources, [&](const Source *s) {
-      return llvm::StringRef(rule.source) == s->name;
-    });
-    bool blocks = !rule.blockSize || rule.blockSize == c.blockSize;
-    return operation && source && blocks;
-  });
-}
-
-std::vector<Case> suiteCases() {
-  std::vector<Case> cases = allCases();
-  llvm::erase_if(cases, isNotYetRun);
-  return cases;
-}
 
 /// The two scenes, made once for the suite.
 struct Scenes {
@@ -154,7 +123,7 @@ TEST_P(ConformanceTest, MatchesDenseEigen) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Conformance, ConformanceTest,
-                         testing::ValuesIn(suiteCases()),
+                         testing::ValuesIn(allCases()),
                          [](const testing::TestParamInfo<Case> &info) {
                            return info.param.name();
                          });

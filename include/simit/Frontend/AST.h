@@ -379,8 +379,11 @@ public:
   static bool classof(const Expr *e) { return e->getKind() == Kind::Binary; }
   Op op;
   ExprPtr lhs, rhs;
-  /// Sema: for Mul, what kind of product this is.
-  enum class MulKind { None, Scale, Inner, Outer, MatVec, VecMat, MatMat };
+  /// Sema: for Mul, what kind of product this is. BlockRowVec: a row of
+  /// matrix blocks (`A(p,:)` of a blocked matrix) times a column vector.
+  enum class MulKind {
+    None, Scale, Inner, Outer, MatVec, VecMat, MatMat, BlockRowVec,
+  };
   MulKind mulKind = MulKind::None;
 };
 

@@ -23,7 +23,10 @@ public:
       : l(l), b(l.b), op(op), loc(op.getLoc()),
         scalarType(getComponentType(op.getType())) {}
 
-  LogicalResult lower();
+  /// Lowers the expression. With `at`, the read of the result's one block
+  /// (FunctionLowering::blockRead), maps `at` to that block alone where its
+  /// row's sums allow (y = A x), else lowers the whole result.
+  LogicalResult lower(ExtractOp at = nullptr);
 
 private:
   unsigned numLevels(unsigned v) { return op.getDomain(v).size(); }
@@ -114,9 +117,16 @@ private:
   std::optional<unsigned>
   accumulatedRowVar(ArrayRef<unsigned> free, ArrayRef<unsigned> all,
                     function_ref<bool(unsigned)> readsTransposed);
-  /// Inside the loop over `rowVar`'s set: sums the row's terms over the
+  /// The result's levels but `rowVar`'s set level, in level-major order:
+  /// those of a row's components.
+  SmallVector<std::pair<int64_t, unsigned>> rowComponentLevels(unsigned rowVar);
+  /// With `rowVar`'s set level bound: the sums of the row's terms over the
   /// other variables `all` in loop-carried values, static levels unrolled,
-  /// and stores each component of the row of `output` once.
+  /// one per component in rowComponentLevels' order.
+  FailureOr<SmallVector<Value>> rowSums(unsigned rowVar,
+                                        ArrayRef<unsigned> all);
+  /// Inside the loop over `rowVar`'s set: stores each component of the
+  /// row's sums into `output` once.
   LogicalResult accumulateRow(unsigned rowVar, ArrayRef<unsigned> all,
                               Value output);
   /// Evaluates the body with the bound variables: the scalar it yields.

@@ -362,7 +362,13 @@ public:
   LogicalResult scanForNonFinite(Operation *op);
 
   // Index expressions (LowerIndexExpr.cpp).
-  LogicalResult lowerIndexExpr(IndexExprOp op);
+  /// With `at` (blockRead), lowers `op` with its block read: the block
+  /// alone where it can (A(p,:) * x of a blocked A is (A x)(p)).
+  LogicalResult lowerIndexExpr(IndexExprOp op, ExtractOp at = nullptr);
+  /// The read of one block of `op`'s vector result when it is `op`'s only
+  /// use and the next operation (so nothing runs between them): lowering
+  /// `op` waits for it.
+  ExtractOp blockRead(IndexExprOp op);
 
   ModuleOp module;
   func::FuncOp function;

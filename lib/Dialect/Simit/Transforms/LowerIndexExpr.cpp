@@ -214,30 +214,28 @@ std::optional<unsigned> IndexExprLowering::accumulatedRowVar(
   return row;
 }
 
-LogicalResult IndexExprLowering::accumulateRow(unsigned rowVar,
-                                               ArrayRef<unsigned> all,
-                                               Value output) {
-  // The row's components in level-major order of the result, less the
-  // row's own set level.
-  ArrayRef<int64_t> resultVars = op.getResultIndices();
-  SmallVector<std::pair<int64_t, unsigned>> componentLevels;
-  SmallVector<int64_t> componentExtents;
-  for (auto vl : levelMajorOrder(resultVars)) {
-    if (vl.first == rowVar && vl.second == 0)
-      continue;
-    componentLevels.push_back(vl);
-    componentExtents.push_back(
-        cast<IntegerAttr>(level(vl.first, vl.second)).getInt());
-  }
+SmallVector<std::pair<int64_t, unsigned>>
+IndexExprLowering::rowComponentLevels(unsigned rowVar) {
+  SmallVector<std::pair<int64_t, unsigned>> levels;
+  for (auto vl : levelMajorOrder(op.getResultIndices()))
+    if (vl.first != rowVar || vl.second != 0)
+      levels.push_back(vl);
+  return levels;
+}
+
+FailureOr<SmallVector<Value>>
+IndexExprLowering::rowSums(unsigned rowVar, ArrayRef<unsigned> all) {
+  SmallVector<std::pair<int64_t, unsigned>> componentLevels =
+      rowComponentLevels(rowVar);
   int64_t numComponents = 1;
-  for (int64_t size : componentExtents)
-    numComponents *= size;
+  for (auto [v, lvl] : componentLevels)
+    numComponents *= cast<IntegerAttr>(level(v, lvl)).getInt();
   auto componentOf = [&]() {
     int64_t flat = 0;
-    for (auto [vl, size] : llvm::zip(componentLevels, componentExtents))
-      flat = flat * size + cast<arith::ConstantIndexOp>(
-                               bound[vl.first][vl.second].getDefiningOp())
-                               .value();
+    for (auto [v, lvl] : componentLevels)
+      flat =
+          flat * cast<IntegerAttr>(level(v, lvl)).getInt() +
+          cast<arith::ConstantIndexOp>(bound[v][lvl].getDefiningOp()).value();
     return flat;
   };
 
@@ -287,28 +285,34 @@ LogicalResult IndexExprLowering::accumulateRow(unsigned rowVar,
       return failure();
     return results;
   };
-  FailureOr<SmallVector<Value>> sums =
-      sumTerms(SmallVector<Value>(numComponents, l.zeroOf(scalarType)));
+  return sumTerms(SmallVector<Value>(numComponents, l.zeroOf(scalarType)));
+}
+
+LogicalResult IndexExprLowering::accumulateRow(unsigned rowVar,
+                                               ArrayRef<unsigned> all,
+                                               Value output) {
+  FailureOr<SmallVector<Value>> sums = rowSums(rowVar, all);
   if (failed(sums))
     return failure();
-
   // One store per component of the row.
-  for (int64_t component = 0; component < numComponents; ++component) {
+  SmallVector<std::pair<int64_t, unsigned>> componentLevels =
+      rowComponentLevels(rowVar);
+  for (auto [component, value] : llvm::enumerate(*sums)) {
     int64_t rest = component;
-    for (int64_t i = componentLevels.size() - 1; i >= 0; --i) {
-      auto [v, lvl] = componentLevels[i];
-      bound[v][lvl] = l.indexConstant(rest % componentExtents[i]);
-      rest /= componentExtents[i];
+    for (auto [v, lvl] : llvm::reverse(componentLevels)) {
+      int64_t size = cast<IntegerAttr>(level(v, lvl)).getInt();
+      bound[v][lvl] = l.indexConstant(rest % size);
+      rest /= size;
     }
-    memref::StoreOp::create(b, loc, (*sums)[component], output,
-                            levelMajor(resultVars));
+    memref::StoreOp::create(b, loc, value, output,
+                            levelMajor(op.getResultIndices()));
   }
   for (auto [v, lvl] : componentLevels)
     bound[v][lvl] = Value();
   return success();
 }
 
-LogicalResult IndexExprLowering::lower() {
+LogicalResult IndexExprLowering::lower(ExtractOp at) {
   op.walk([&](IndexSumOp nested) {
     for (int64_t v : nested.getVars())
       nestedVars.insert(v);
@@ -422,6 +426,18 @@ LogicalResult IndexExprLowering::lower() {
                                          unsigned v) {
       return transposedRow(v).has_value();
     });
+    // Block p alone of y = A x, read there and nowhere else: row p's sums.
+    if (rowVar && at) {
+      bound[*rowVar].assign(numLevels(*rowVar), Value());
+      bound[*rowVar][0] = l.lookup(at.getIndices()[0]);
+      FailureOr<SmallVector<Value>> sums = rowSums(*rowVar, all);
+      if (failed(sums))
+        return failure();
+      l.map(at, sums->size() == 1 && !isa<ShapedType>(at.getType())
+                    ? sums->front()
+                    : l.fromComponents(l.convertType(at.getType()), *sums));
+      return success();
+    }
     Value output = inPlaceTarget();
     if (output && !rowVar)
       l.fill(loc, output, l.zeroOf(scalarType));
@@ -526,10 +542,21 @@ LogicalResult IndexExprLowering::lower() {
   return success();
 }
 
-LogicalResult FunctionLowering::lowerIndexExpr(IndexExprOp op) {
+ExtractOp FunctionLowering::blockRead(IndexExprOp op) {
+  auto read = dyn_cast_or_null<ExtractOp>(op->getNextNode());
+  if (!read || !op->hasOneUse() || read.getTensor() != op.getResult() ||
+      !hasSetDimension(op.getType()) || getTensorOrder(op.getType()) != 1)
+    return nullptr;
+  return read;
+}
+
+LogicalResult FunctionLowering::lowerIndexExpr(IndexExprOp op, ExtractOp at) {
   // The loop nests sum with arith on floats and integers only.
   if (isa<ComplexType>(getComponentType(op.getType())))
     return op.emitError("index expressions on complex tensors are not "
                         "supported by the loop lowering yet");
-  return IndexExprLowering(*this, op).lower();
+  // Lowered with its block read, right after it (blockRead).
+  if (!at && blockRead(op))
+    return success();
+  return IndexExprLowering(*this, op).lower(at);
 }

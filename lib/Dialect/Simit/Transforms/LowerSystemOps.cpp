@@ -194,6 +194,15 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
     auto type = cast<SystemTensorType>(extract.getTensor().getType());
     if (type.getOrder() != 1)
       return lowerMatrixBlockAccess(op);
+    // A block of an index expression waiting for this read (blockRead):
+    // mapped here when computed alone, else read from the whole result.
+    if (auto expr = extract.getTensor().getDefiningOp<IndexExprOp>();
+        expr && blockRead(expr) == extract) {
+      if (failed(lowerIndexExpr(expr, extract)))
+        return failure();
+      if (values.contains(extract.getResult()))
+        return success();
+    }
     Value array = lookup(extract.getTensor());
     Value position = lookup(extract.getIndices()[0]);
     int64_t n = numComponents(extract.getType());

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 using namespace simit;
@@ -80,32 +81,6 @@ inverseDiagonalBlocks(const SquareBCSRView<T> &a) {
   return inverse;
 }
 
-/// out = D res for D block diagonal (`rows` blocks of `b` x `b`, row-major,
-/// one after the other); `StaticBlock` as in multiplyBlocks.
-template <int64_t StaticBlock, typename T>
-void multiplyDiagonalBlocks(const std::vector<T> &d, const std::vector<T> &res,
-                            std::vector<T> &out, int64_t rows,
-                            int64_t blockSize) {
-  int64_t b = StaticBlock ? StaticBlock : blockSize;
-  for (int64_t r = 0; r < rows; ++r)
-    for (int64_t i = 0; i < b; ++i) {
-      T sum = 0;
-      for (int64_t j = 0; j < b; ++j)
-        sum += d[(r * b + i) * b + j] * res[r * b + j];
-      out[r * b + i] = sum;
-    }
-}
-
-/// out = b - A x, returning its r.r.
-template <typename T>
-double trueResidual(const SquareBCSRView<T> &a, const T *b, const T *x,
-                    std::vector<T> &out) {
-  multiply(a, x, out.data());
-  for (size_t i = 0; i < out.size(); ++i)
-    out[i] = b[i] - out[i];
-  return dot(out, out);
-}
-
 } // namespace
 
 llvm::Expected<SquareBCSRView<double>> simit::squareView(const BCSRMatrix &a) {
@@ -125,14 +100,21 @@ llvm::Expected<SquareBCSRView<double>> simit::squareView(const BCSRMatrix &a) {
 }
 
 namespace {
-/// y = A x with blocks of `b` x `b`; `b` a compile-time constant where the
-/// caller knows it (the block loops then unroll), else `blockSize`.
+/// y = A x with blocks of `b` x `b`, and, when `dotWith` is given, returns
+/// dotWith . y (summed in row order, in double) from the same pass. `b` is a
+/// compile-time constant where the caller knows it: a block row's sums then
+/// stay in registers and the block loops unroll.
 template <int64_t StaticBlock, typename T>
-void multiplyBlocks(const SquareBCSRView<T> &a, const T *x, T *y) {
+double multiplyBlocks(const SquareBCSRView<T> &a, const T *__restrict x,
+                      T *__restrict y, const T *__restrict dotWith) {
+  constexpr int64_t kMaxStatic = StaticBlock ? StaticBlock : 1;
   int64_t b = StaticBlock ? StaticBlock : a.blockSize;
+  double dot = 0;
   for (int64_t r = 0; r < a.rows; ++r) {
     T *yr = y + r * b;
-    std::fill(yr, yr + b, T(0));
+    T local[kMaxStatic];
+    T *sums = StaticBlock ? local : yr;
+    std::fill(sums, sums + b, T(0));
     for (int32_t k = a.rowptr[r]; k < a.rowptr[r + 1]; ++k) {
       const T *block = a.values + static_cast<int64_t>(k) * b * b;
       const T *xc = x + static_cast<int64_t>(a.colidx[k]) * b;
@@ -140,25 +122,37 @@ void multiplyBlocks(const SquareBCSRView<T> &a, const T *x, T *y) {
         T sum = 0;
         for (int64_t j = 0; j < b; ++j)
           sum += block[i * b + j] * xc[j];
-        yr[i] += sum;
+        sums[i] += sum;
       }
     }
+    if (StaticBlock)
+      std::copy(sums, sums + b, yr);
+    if (dotWith)
+      for (int64_t i = 0; i < b; ++i)
+        dot += static_cast<double>(dotWith[r * b + i]) * yr[i];
+  }
+  return dot;
+}
+
+/// multiplyBlocks with the block size dispatched to a static one where it is
+/// 1 or 3 (points in space); the sums are the same, in the same order.
+template <typename T>
+double multiplyAndDot(const SquareBCSRView<T> &a, const T *x, T *y,
+                      const T *dotWith) {
+  switch (a.blockSize) {
+  case 1:
+    return multiplyBlocks<1>(a, x, y, dotWith);
+  case 3:
+    return multiplyBlocks<3>(a, x, y, dotWith);
+  default:
+    return multiplyBlocks<0>(a, x, y, dotWith);
   }
 }
 } // namespace
 
 template <typename T>
 void simit::multiply(const SquareBCSRView<T> &a, const T *x, T *y) {
-  // The same sums in the same order for every block size: 3 (points in
-  // space) and 1 only unroll.
-  switch (a.blockSize) {
-  case 1:
-    return multiplyBlocks<1>(a, x, y);
-  case 3:
-    return multiplyBlocks<3>(a, x, y);
-  default:
-    return multiplyBlocks<0>(a, x, y);
-  }
+  multiplyAndDot<T>(a, x, y, nullptr);
 }
 
 template <typename T>
@@ -189,15 +183,149 @@ bool simit::isSymmetric(const SquareBCSRView<T> &a, double relativeTolerance) {
   return true;
 }
 
+namespace {
+/// out = b - A x, returning its r.r.
+template <typename T>
+double trueResidual(const SquareBCSRView<T> &a, const T *b, const T *x,
+                    std::vector<T> &out) {
+  multiply(a, x, out.data());
+  for (size_t i = 0; i < out.size(); ++i)
+    out[i] = b[i] - out[i];
+  return dot(out, out);
+}
+
+/// z = D r for one block row, D its inverse diagonal block (row-major);
+/// `StaticBlock` as in multiplyBlocks.
+template <int64_t StaticBlock, typename T>
+void applyInverseBlock(const T *__restrict inverse, const T *__restrict r,
+                       T *__restrict z, int64_t blockSize) {
+  int64_t b = StaticBlock ? StaticBlock : blockSize;
+  for (int64_t i = 0; i < b; ++i) {
+    T sum = 0;
+    for (int64_t j = 0; j < b; ++j)
+      sum += inverse[i * b + j] * r[j];
+    z[i] = sum;
+  }
+}
+
+/// The preconditioned residual z = M^-1 r of CG, and the update of x and r
+/// fused with it: each is one pass over the vectors.
+template <typename T> class PreconditionedResidual {
+public:
+  PreconditionedResidual(const SquareBCSRView<T> &a,
+                         const SolverOptions &options, std::vector<T> inverse)
+      : n(static_cast<size_t>(a.size())), rows(a.rows), b(a.blockSize),
+        kind(options.preconditioner), apply(options.apply),
+        inverse(std::move(inverse)), z(kind == Preconditioner::None ? 0 : n) {}
+
+  /// z = M^-1 r (r itself without a preconditioner); returns r.z.
+  llvm::Expected<double> precondition(const std::vector<T> &r) {
+    if (kind == Preconditioner::Operator)
+      return applyOperator(r);
+    if (kind == Preconditioner::None)
+      return dot(r, r);
+    double rz = 0;
+    forEachRow(r, [&](int64_t) {}, rz);
+    return rz;
+  }
+
+  /// x += alpha dir, r -= alpha ad, then as precondition; returns
+  /// (r.r, r.z).
+  llvm::Expected<std::pair<double, double>>
+  update(T alpha, const std::vector<T> &dir, const std::vector<T> &ad,
+         T *x, std::vector<T> &r) {
+    double rr = 0, rz = 0;
+    T *rp = r.data();
+    auto step = [&](int64_t i) {
+      x[i] += alpha * dir[i];
+      rp[i] -= alpha * ad[i];
+      rr += static_cast<double>(rp[i]) * rp[i];
+    };
+    if (kind == Preconditioner::None || kind == Preconditioner::Operator) {
+      for (size_t i = 0; i < n; ++i)
+        step(static_cast<int64_t>(i));
+      if (kind == Preconditioner::None)
+        return std::make_pair(rr, rr);
+      llvm::Expected<double> applied = applyOperator(r);
+      if (!applied)
+        return applied.takeError();
+      return std::make_pair(rr, *applied);
+    }
+    forEachRow(r, step, rz);
+    return std::make_pair(rr, rz);
+  }
+
+  /// The preconditioned residual of the last call.
+  const std::vector<T> &residual(const std::vector<T> &r) const {
+    return kind == Preconditioner::None ? r : z;
+  }
+
+private:
+  /// For every block row: `before` on each of its scalar rows, then its z
+  /// (Jacobi: scalar by scalar), adding r.z to `rz`.
+  template <typename Before>
+  void forEachRow(const std::vector<T> &r, Before before, double &rz) {
+    if (kind == Preconditioner::Jacobi) {
+      for (size_t i = 0; i < n; ++i) {
+        before(static_cast<int64_t>(i));
+        z[i] = inverse[i] * r[i];
+        rz += static_cast<double>(r[i]) * z[i];
+      }
+      return;
+    }
+    if (b == 3)
+      return blockRows<3>(r, before, rz);
+    blockRows<0>(r, before, rz);
+  }
+
+  template <int64_t StaticBlock, typename Before>
+  void blockRows(const std::vector<T> &r, Before before, double &rz) {
+    int64_t bs = StaticBlock ? StaticBlock : b;
+    for (int64_t row = 0; row < rows; ++row) {
+      int64_t first = row * bs;
+      for (int64_t i = 0; i < bs; ++i)
+        before(first + i);
+      applyInverseBlock<StaticBlock>(inverse.data() + first * bs,
+                                     r.data() + first, z.data() + first, bs);
+      for (int64_t i = 0; i < bs; ++i)
+        rz += static_cast<double>(r[first + i]) * z[first + i];
+    }
+  }
+
+  llvm::Expected<double> applyOperator(const std::vector<T> &r) {
+    if constexpr (std::is_same_v<T, double>) {
+      if (llvm::Error err = apply(r.data(), z.data()))
+        return std::move(err);
+    } else {
+      wideResidual.assign(r.begin(), r.end());
+      wideZ.resize(n);
+      if (llvm::Error err = apply(wideResidual.data(), wideZ.data()))
+        return std::move(err);
+      std::transform(wideZ.begin(), wideZ.end(), z.begin(),
+                     [](double value) { return static_cast<T>(value); });
+    }
+    return dot(r, z);
+  }
+
+  size_t n;
+  int64_t rows, b;
+  Preconditioner kind;
+  const PreconditionerOperator &apply;
+  std::vector<T> inverse, z;
+  /// Operator on float vectors: r and z in double.
+  std::vector<double> wideResidual, wideZ;
+};
+} // namespace
+
 template <typename T>
 llvm::Expected<SolverResult>
 simit::conjugateGradient(const SquareBCSRView<T> &a, const T *bIn, T *x,
                          const SolverOptions &options) {
   size_t n = static_cast<size_t>(a.size());
-  int64_t bs = a.blockSize;
   // Diagonal (Jacobi) or block diagonal (block-Jacobi) inverse.
   std::vector<T> inverse;
-  if (options.preconditioner != Preconditioner::None) {
+  if (options.preconditioner == Preconditioner::Jacobi ||
+      options.preconditioner == Preconditioner::BlockJacobi) {
     auto d = options.preconditioner == Preconditioner::Jacobi
                  ? inverseDiagonal(a)
                  : inverseDiagonalBlocks(a);
@@ -205,34 +333,24 @@ simit::conjugateGradient(const SquareBCSRView<T> &a, const T *bIn, T *x,
       return d.takeError();
     inverse = std::move(*d);
   }
-  auto precondition = [&](const std::vector<T> &res, std::vector<T> &out) {
-    switch (options.preconditioner) {
-    case Preconditioner::None:
-      out = res;
-      return;
-    case Preconditioner::Jacobi:
-      for (size_t i = 0; i < n; ++i)
-        out[i] = inverse[i] * res[i];
-      return;
-    case Preconditioner::BlockJacobi:
-      if (bs == 3)
-        return multiplyDiagonalBlocks<3>(inverse, res, out, a.rows, bs);
-      return multiplyDiagonalBlocks<0>(inverse, res, out, a.rows, bs);
-    }
-  };
+  PreconditionedResidual<T> preconditioned(a, options, std::move(inverse));
 
-  std::vector<T> r(n), z(n), dir(n), ad(n);
+  std::vector<T> r(n), dir(n), ad(n);
   SolverResult result;
   result.residualNormSquared = trueResidual(a, bIn, x, r);
   // Whether r is b - A x computed anew rather than updated.
   bool exact = true;
   double rz = 0;
-  auto restart = [&] {
-    precondition(r, z);
-    dir = z;
-    rz = dot(r, z);
+  auto restart = [&]() -> llvm::Error {
+    llvm::Expected<double> next = preconditioned.precondition(r);
+    if (!next)
+      return next.takeError();
+    rz = *next;
+    dir = preconditioned.residual(r);
+    return llvm::Error::success();
   };
-  restart();
+  if (llvm::Error err = restart())
+    return std::move(err);
   while (true) {
     if (result.residualNormSquared <= options.tolerance) {
       if (exact)
@@ -241,30 +359,29 @@ simit::conjugateGradient(const SquareBCSRView<T> &a, const T *bIn, T *x,
       exact = true;
       if (result.residualNormSquared <= options.tolerance)
         break;
-      restart();
+      if (llvm::Error err = restart())
+        return std::move(err);
     }
     if (result.iterations >= options.maxIterations)
       break;
-    multiply(a, dir.data(), ad.data());
-    double curvature = dot(dir, ad);
+    double curvature = multiplyAndDot(a, dir.data(), ad.data(), dir.data());
     if (!(curvature > 0))
       return llvm::createStringError(
           "conjugate gradients: p.Ap = " + llvm::formatv("{0:g}", curvature) +
           " at iteration " + llvm::Twine(result.iterations) +
           "; the matrix is not positive definite");
     T alpha = static_cast<T>(rz / curvature);
-    for (size_t i = 0; i < n; ++i) {
-      x[i] += alpha * dir[i];
-      r[i] -= alpha * ad[i];
-    }
-    precondition(r, z);
-    double rzNext = dot(r, z);
+    auto dots = preconditioned.update(alpha, dir, ad, x, r);
+    if (!dots)
+      return dots.takeError();
+    auto [rr, rzNext] = *dots;
     T beta = static_cast<T>(rzNext / rz);
     rz = rzNext;
+    const std::vector<T> &z = preconditioned.residual(r);
     for (size_t i = 0; i < n; ++i)
       dir[i] = z[i] + beta * dir[i];
     ++result.iterations;
-    result.residualNormSquared = dot(r, r);
+    result.residualNormSquared = rr;
     exact = false;
   }
   result.converged = exact && result.residualNormSquared <= options.tolerance;

@@ -143,8 +143,8 @@ INSTANTIATE_TEST_SUITE_P(
     SolveSession, EveryMethod,
     ::testing::Values(SolveMethod::Auto, SolveMethod::ConjugateGradient,
                       SolveMethod::JacobiCG, SolveMethod::BlockJacobiCG,
-                      SolveMethod::Cholesky, SolveMethod::LDLT,
-                      SolveMethod::LU),
+                      SolveMethod::CholeskyCG, SolveMethod::Cholesky,
+                      SolveMethod::LDLT, SolveMethod::LU),
     [](const ::testing::TestParamInfo<SolveMethod> &info) {
       std::string name = solveMethodName(info.param).str();
       std::replace(name.begin(), name.end(), '-', '_');
@@ -199,7 +199,8 @@ TEST(SolveSession, Float32SymmetryAllowsRounding) {
 TEST(SolveSession, SymmetricMethodsRefuseNonSymmetricMatrices) {
   for (SolveMethod method :
        {SolveMethod::ConjugateGradient, SolveMethod::JacobiCG,
-        SolveMethod::BlockJacobiCG, SolveMethod::Cholesky, SolveMethod::LDLT})
+        SolveMethod::BlockJacobiCG, SolveMethod::CholeskyCG,
+        SolveMethod::Cholesky, SolveMethod::LDLT})
     EXPECT_THAT(solveError<double>(settingsOf(method), nonSymmetric(3, 2), 3),
                 HasSubstr("not symmetric"))
         << solveMethodName(method).str();
@@ -327,6 +328,58 @@ TEST(SolveSession, WarmStartBeginsAtTheStatementsPreviousAnswer) {
   SolveSession coldSmall(settings);
   EXPECT_EQ(iterationsOf(warm, smaller, small, "s"),
             iterationsOf(coldSmall, smaller, small, "s"));
+}
+
+// pcg-cholesky keeps the first matrix's factorisation as the preconditioner
+// of the statement's later solves: exact for the same matrix (one
+// iteration), a few iterations for a nearby one, and a solve that needs
+// more than refactorIterations factorises its own matrix.
+TEST(SolveSession, CholeskyCGPreconditionsWithAnEarlierFactorisation) {
+  SolveSettings settings = settingsOf(SolveMethod::CholeskyCG);
+  settings.tolerance = 1e-10;
+  settings.warmStart = false;
+  SolveSession session(settings);
+  Eigen::MatrixXd a = spd(3, 12);
+  BandSystem<double> first(kBlocks, 3, a);
+  Eigen::VectorXd rhs = randomVector(kBlocks * 3, 13);
+  EXPECT_EQ(iterationsOf(session, first, rhs, "s"), 1);
+  EXPECT_EQ(session.factorisationCounts().factorisations, 1);
+
+  // A 1% change of every entry (symmetric, still SPD): the old factor is
+  // a good preconditioner, not an exact one.
+  Eigen::MatrixXd change = randomBand(kBlocks, 3, 31);
+  BandSystem<double> nearby(kBlocks, 3,
+                            a + 0.01 * (change + change.transpose()));
+  int lagged = iterationsOf(session, nearby, rhs, "s");
+  EXPECT_GT(lagged, 1);
+  EXPECT_LE(lagged, 8);
+  EXPECT_EQ(session.factorisationCounts().factorisations, 1);
+
+  // A threshold below that: the solve factorises `nearby` and converges
+  // with it in a step or two more.
+  settings.refactorIterations = 1;
+  session.setSettings(settings);
+  BandSystem<double> farther(kBlocks, 3,
+                             a + 0.05 * (change + change.transpose()));
+  int refactorised = iterationsOf(session, farther, rhs, "s");
+  EXPECT_GE(refactorised, 2);
+  EXPECT_LE(refactorised, 3);
+  EXPECT_EQ(session.factorisationCounts().factorisations, 2);
+
+  // Another statement has a preconditioner of its own.
+  EXPECT_EQ(iterationsOf(session, first, rhs, "t"), 1);
+  EXPECT_EQ(session.factorisationCounts().factorisations, 3);
+  auto stats = session.statistics();
+  ASSERT_EQ(stats.size(), 2u);
+  EXPECT_EQ(stats[0].factorisations, 2);
+}
+
+// The preconditioner of a matrix that is not positive definite cannot be
+// factorised: the error names it as cholesky's does.
+TEST(SolveSession, CholeskyCGRefusesIndefiniteMatrices) {
+  EXPECT_THAT(solveError<double>(settingsOf(SolveMethod::CholeskyCG),
+                                 indefinite(3, 3), 3),
+              HasSubstr("not positive definite"));
 }
 
 TEST(SolveSession, FactorisationIsReusedForTheSameValues) {
@@ -607,13 +660,18 @@ TEST(SolveSession, MethodNamesRoundTrip) {
   for (SolveMethod method :
        {SolveMethod::Auto, SolveMethod::ConjugateGradient,
         SolveMethod::JacobiCG, SolveMethod::BlockJacobiCG,
-        SolveMethod::Cholesky, SolveMethod::LDLT, SolveMethod::LU})
+        SolveMethod::CholeskyCG, SolveMethod::Cholesky, SolveMethod::LDLT,
+        SolveMethod::LU})
     EXPECT_EQ(parseSolveMethod(solveMethodName(method)), method);
   EXPECT_EQ(parseSolveMethod("qr"), std::nullopt);
   SolveSettings bad;
   bad.tolerance = 2.0;
   EXPECT_THAT(errorOf(checkSolveSettings(bad, "--tol")),
               HasSubstr("--tol: the tolerance must lie between 0 and 1"));
+  SolveSettings never;
+  never.refactorIterations = 0;
+  EXPECT_THAT(errorOf(checkSolveSettings(never, "--refactor-iters")),
+              HasSubstr("the refactorisation threshold must be at least 1"));
 }
 
 TEST(IsSymmetric, MissingMirrorBlockCountsAsZero) {

@@ -7,6 +7,8 @@
 
 #include "simit/Runtime/Solvers.h"
 
+#include "SimdKernels.h"
+
 #include "llvm/Support/FormatVariadic.h"
 
 #include <Eigen/LU>
@@ -52,13 +54,14 @@ llvm::Expected<std::vector<T>> inverseDiagonal(const SquareBCSRView<T> &a) {
 }
 
 /// The inverse of every diagonal block, row-major, block row after block
-/// row; computed in double.
-template <typename T>
+/// row; computed in double, in `Block` (fixed 3x3 for points in space: no
+/// allocation per block).
+template <typename Block, typename T>
 llvm::Expected<std::vector<T>>
-inverseDiagonalBlocks(const SquareBCSRView<T> &a) {
+inverseDiagonalBlocksAs(const SquareBCSRView<T> &a) {
   int64_t b = a.blockSize;
   std::vector<T> inverse(static_cast<size_t>(a.rows * b * b), T(0));
-  Eigen::MatrixXd block(b, b);
+  Block block(b, b);
   for (int64_t r = 0; r < a.rows; ++r) {
     const int32_t *begin = a.colidx + a.rowptr[r];
     const int32_t *end = a.colidx + a.rowptr[r + 1];
@@ -68,17 +71,25 @@ inverseDiagonalBlocks(const SquareBCSRView<T> &a) {
       for (int64_t i = 0; i < b; ++i)
         for (int64_t j = 0; j < b; ++j)
           block(i, j) = a.values[((k - a.colidx) * b + i) * b + j];
-    Eigen::FullPivLU<Eigen::MatrixXd> lu(block);
+    Eigen::FullPivLU<Block> lu(block);
     if (!lu.isInvertible())
       return llvm::createStringError(
           "block-Jacobi preconditioner: the diagonal block of block row " +
           llvm::Twine(r) + " is singular");
-    Eigen::MatrixXd blockInverse = lu.inverse();
+    Block blockInverse = lu.inverse();
     for (int64_t i = 0; i < b; ++i)
       for (int64_t j = 0; j < b; ++j)
         inverse[(r * b + i) * b + j] = static_cast<T>(blockInverse(i, j));
   }
   return inverse;
+}
+
+template <typename T>
+llvm::Expected<std::vector<T>>
+inverseDiagonalBlocks(const SquareBCSRView<T> &a) {
+  if (a.blockSize == 3)
+    return inverseDiagonalBlocksAs<Eigen::Matrix3d>(a);
+  return inverseDiagonalBlocksAs<Eigen::MatrixXd>(a);
 }
 
 } // namespace
@@ -135,7 +146,8 @@ double multiplyBlocks(const SquareBCSRView<T> &a, const T *__restrict x,
 }
 
 /// multiplyBlocks with the block size dispatched to a static one where it is
-/// 1 or 3 (points in space); the sums are the same, in the same order.
+/// 1 or 3 (points in space); 3x3 blocks of doubles take the host's vector
+/// unit where the runtime has a kernel for it (SimdKernels.h).
 template <typename T>
 double multiplyAndDot(const SquareBCSRView<T> &a, const T *x, T *y,
                       const T *dotWith) {
@@ -143,6 +155,12 @@ double multiplyAndDot(const SquareBCSRView<T> &a, const T *x, T *y,
   case 1:
     return multiplyBlocks<1>(a, x, y, dotWith);
   case 3:
+    if constexpr (std::is_same_v<T, double>) {
+      double dot = 0;
+      if (simd::multiplyBlocks3(a.rows, a.rowptr, a.colidx, a.values, x, y,
+                                dotWith, &dot))
+        return dot;
+    }
     return multiplyBlocks<3>(a, x, y, dotWith);
   default:
     return multiplyBlocks<0>(a, x, y, dotWith);
@@ -157,30 +175,47 @@ void simit::multiply(const SquareBCSRView<T> &a, const T *x, T *y) {
 
 template <typename T>
 bool simit::isSymmetric(const SquareBCSRView<T> &a, double relativeTolerance) {
-  int64_t b = a.blockSize, blocks = a.rows ? a.rowptr[a.rows] : 0;
-  double largest = 0;
-  for (int64_t i = 0; i < blocks * b * b; ++i)
-    largest = std::max(largest, std::abs(static_cast<double>(a.values[i])));
-  double tolerance = relativeTolerance * largest;
-  auto block = [&](int64_t k) { return a.values + k * b * b; };
-  for (int64_t r = 0; r < a.rows; ++r) {
+  int64_t b = a.blockSize, bb = b * b;
+  auto block = [&](int64_t k) { return a.values + k * bb; };
+  auto mirrorOf = [&](int64_t r, int64_t c) -> int64_t {
+    const int32_t *begin = a.colidx + a.rowptr[c];
+    const int32_t *end = a.colidx + a.rowptr[c + 1];
+    const int32_t *mirror = std::lower_bound(begin, end, r);
+    return mirror != end && *mirror == r ? mirror - a.colidx : -1;
+  };
+  // One pass: A's largest magnitude, and the largest difference between
+  // a block above the diagonal (or on it) and its mirror, a missing mirror
+  // counting as zero. Blocks below the diagonal are only counted: when as
+  // many have a mirror above as there are, every one of them was compared.
+  double largest = 0, worst = 0;
+  int64_t below = 0, mirroredAbove = 0;
+  for (int64_t r = 0; r < a.rows; ++r)
     for (int32_t k = a.rowptr[r]; k < a.rowptr[r + 1]; ++k) {
-      int64_t c = a.colidx[k];
-      const int32_t *begin = a.colidx + a.rowptr[c];
-      const int32_t *end = a.colidx + a.rowptr[c + 1];
-      const int32_t *mirror = std::lower_bound(begin, end, r);
-      bool present = mirror != end && *mirror == r;
       const T *rc = block(k);
-      const T *cr = present ? block(mirror - a.colidx) : nullptr;
+      for (int64_t i = 0; i < bb; ++i)
+        largest = std::max(largest, std::abs(static_cast<double>(rc[i])));
+      int64_t c = a.colidx[k];
+      if (c < r) {
+        ++below;
+        continue;
+      }
+      int64_t mirror = c == r ? k : mirrorOf(r, c);
+      mirroredAbove += c != r && mirror >= 0;
+      const T *cr = mirror >= 0 ? block(mirror) : nullptr;
       for (int64_t i = 0; i < b; ++i)
         for (int64_t j = 0; j < b; ++j) {
-          double other = present ? cr[j * b + i] : 0.0;
-          if (std::abs(rc[i * b + j] - other) > tolerance)
-            return false;
+          double other = cr ? cr[j * b + i] : 0.0;
+          worst = std::max(worst, std::abs(rc[i * b + j] - other));
         }
     }
-  }
-  return true;
+  if (below != mirroredAbove)
+    // Blocks below the diagonal without a mirror: they must be zero.
+    for (int64_t r = 0; r < a.rows; ++r)
+      for (int32_t k = a.rowptr[r]; k < a.rowptr[r + 1]; ++k)
+        if (a.colidx[k] < r && mirrorOf(r, a.colidx[k]) < 0)
+          for (int64_t i = 0; i < bb; ++i)
+            worst = std::max(worst, std::abs(static_cast<double>(block(k)[i])));
+  return worst <= relativeTolerance * largest;
 }
 
 namespace {
@@ -194,18 +229,68 @@ double trueResidual(const SquareBCSRView<T> &a, const T *b, const T *x,
   return dot(out, out);
 }
 
-/// z = D r for one block row, D its inverse diagonal block (row-major);
-/// `StaticBlock` as in multiplyBlocks.
-template <int64_t StaticBlock, typename T>
-void applyInverseBlock(const T *__restrict inverse, const T *__restrict r,
-                       T *__restrict z, int64_t blockSize) {
+/// The sums of one pass of CG over its vectors.
+struct ResidualDots {
+  double rr = 0, rz = 0;
+};
+
+/// x += alpha dir and r -= alpha ad, element i; adds r_i^2 to `rr`.
+template <typename T>
+inline void updateElement(int64_t i, T alpha, const T *__restrict dir,
+                          const T *__restrict ad, T *__restrict x,
+                          T *__restrict r, double &rr) {
+  x[i] += alpha * dir[i];
+  r[i] -= alpha * ad[i];
+  rr += static_cast<double>(r[i]) * r[i];
+}
+
+/// With `Update`, x += alpha dir and r -= alpha ad; then z = D r for D
+/// block diagonal (`rows` inverse blocks of `b` x `b`, row-major, one after
+/// the other), block row by block row. `StaticBlock` as in multiplyBlocks.
+/// The sums are local so that no store through x, r or z can touch them.
+template <bool Update, int64_t StaticBlock, typename T>
+ResidualDots blockJacobiPass(int64_t rows, int64_t blockSize, T alpha,
+                             const T *__restrict dir, const T *__restrict ad,
+                             const T *__restrict inverse, T *__restrict x,
+                             T *__restrict r, T *__restrict z) {
   int64_t b = StaticBlock ? StaticBlock : blockSize;
-  for (int64_t i = 0; i < b; ++i) {
-    T sum = 0;
-    for (int64_t j = 0; j < b; ++j)
-      sum += inverse[i * b + j] * r[j];
-    z[i] = sum;
+  double rr = 0, rz = 0;
+  for (int64_t row = 0; row < rows; ++row) {
+    int64_t first = row * b;
+    if (Update)
+      for (int64_t i = first; i < first + b; ++i)
+        updateElement(i, alpha, dir, ad, x, r, rr);
+    const T *d = inverse + first * b;
+    for (int64_t i = 0; i < b; ++i) {
+      T sum = 0;
+      for (int64_t j = 0; j < b; ++j)
+        sum += d[i * b + j] * r[first + j];
+      z[first + i] = sum;
+    }
+    for (int64_t i = first; i < first + b; ++i)
+      rz += static_cast<double>(r[i]) * z[i];
   }
+  return {rr, rz};
+}
+
+/// The same for Jacobi (z = D r, D diagonal), or, without `inverse`, for
+/// no preconditioner (z is r: r.z = r.r).
+template <bool Update, typename T>
+ResidualDots diagonalPass(int64_t n, T alpha, const T *__restrict dir,
+                          const T *__restrict ad, const T *__restrict inverse,
+                          T *__restrict x, T *__restrict r, T *__restrict z) {
+  double rr = 0, rz = 0;
+  for (int64_t i = 0; i < n; ++i) {
+    if (Update)
+      updateElement(i, alpha, dir, ad, x, r, rr);
+    if (inverse) {
+      z[i] = inverse[i] * r[i];
+      rz += static_cast<double>(r[i]) * z[i];
+    }
+  }
+  if (!inverse)
+    rz = rr;
+  return {rr, rz};
 }
 
 /// The preconditioned residual z = M^-1 r of CG, and the update of x and r
@@ -214,45 +299,33 @@ template <typename T> class PreconditionedResidual {
 public:
   PreconditionedResidual(const SquareBCSRView<T> &a,
                          const SolverOptions &options, std::vector<T> inverse)
-      : n(static_cast<size_t>(a.size())), rows(a.rows), b(a.blockSize),
+      : n(a.size()), rows(a.rows), b(a.blockSize),
         kind(options.preconditioner), apply(options.apply),
-        inverse(std::move(inverse)), z(kind == Preconditioner::None ? 0 : n) {}
+        inverse(std::move(inverse)),
+        z(kind == Preconditioner::None ? 0 : static_cast<size_t>(n)) {}
 
   /// z = M^-1 r (r itself without a preconditioner); returns r.z.
-  llvm::Expected<double> precondition(const std::vector<T> &r) {
-    if (kind == Preconditioner::Operator)
-      return applyOperator(r);
+  llvm::Expected<double> precondition(std::vector<T> &r) {
     if (kind == Preconditioner::None)
       return dot(r, r);
-    double rz = 0;
-    forEachRow(r, [&](int64_t) {}, rz);
-    return rz;
+    if (kind == Preconditioner::Operator)
+      return applyOperator(r);
+    return pass<false>(T(0), nullptr, nullptr, nullptr, r).rz;
   }
 
-  /// x += alpha dir, r -= alpha ad, then as precondition; returns
-  /// (r.r, r.z).
-  llvm::Expected<std::pair<double, double>>
-  update(T alpha, const std::vector<T> &dir, const std::vector<T> &ad,
-         T *x, std::vector<T> &r) {
-    double rr = 0, rz = 0;
-    T *rp = r.data();
-    auto step = [&](int64_t i) {
-      x[i] += alpha * dir[i];
-      rp[i] -= alpha * ad[i];
-      rr += static_cast<double>(rp[i]) * rp[i];
-    };
-    if (kind == Preconditioner::None || kind == Preconditioner::Operator) {
-      for (size_t i = 0; i < n; ++i)
-        step(static_cast<int64_t>(i));
-      if (kind == Preconditioner::None)
-        return std::make_pair(rr, rr);
-      llvm::Expected<double> applied = applyOperator(r);
-      if (!applied)
-        return applied.takeError();
-      return std::make_pair(rr, *applied);
+  /// x += alpha dir, r -= alpha ad, then as precondition; returns r.r and
+  /// r.z.
+  llvm::Expected<ResidualDots> update(T alpha, const std::vector<T> &dir,
+                                      const std::vector<T> &ad, T *x,
+                                      std::vector<T> &r) {
+    ResidualDots dots = pass<true>(alpha, dir.data(), ad.data(), x, r);
+    if (kind == Preconditioner::Operator) {
+      llvm::Expected<double> rz = applyOperator(r);
+      if (!rz)
+        return rz.takeError();
+      dots.rz = *rz;
     }
-    forEachRow(r, step, rz);
-    return std::make_pair(rr, rz);
+    return dots;
   }
 
   /// The preconditioned residual of the last call.
@@ -261,35 +334,27 @@ public:
   }
 
 private:
-  /// For every block row: `before` on each of its scalar rows, then its z
-  /// (Jacobi: scalar by scalar), adding r.z to `rz`.
-  template <typename Before>
-  void forEachRow(const std::vector<T> &r, Before before, double &rz) {
-    if (kind == Preconditioner::Jacobi) {
-      for (size_t i = 0; i < n; ++i) {
-        before(static_cast<int64_t>(i));
-        z[i] = inverse[i] * r[i];
-        rz += static_cast<double>(r[i]) * z[i];
-      }
-      return;
+  template <bool Update>
+  ResidualDots pass(T alpha, const T *dir, const T *ad, T *x,
+                    std::vector<T> &r) {
+    switch (kind) {
+    case Preconditioner::BlockJacobi:
+      if (b == 3)
+        return blockJacobiPass<Update, 3>(rows, b, alpha, dir, ad,
+                                          inverse.data(), x, r.data(),
+                                          z.data());
+      return blockJacobiPass<Update, 0>(rows, b, alpha, dir, ad,
+                                        inverse.data(), x, r.data(), z.data());
+    case Preconditioner::Jacobi:
+      return diagonalPass<Update>(n, alpha, dir, ad, inverse.data(), x,
+                                  r.data(), z.data());
+    case Preconditioner::None:
+    case Preconditioner::Operator:
+      // The operator runs after the pass.
+      return diagonalPass<Update, T>(n, alpha, dir, ad, nullptr, x, r.data(),
+                                     nullptr);
     }
-    if (b == 3)
-      return blockRows<3>(r, before, rz);
-    blockRows<0>(r, before, rz);
-  }
-
-  template <int64_t StaticBlock, typename Before>
-  void blockRows(const std::vector<T> &r, Before before, double &rz) {
-    int64_t bs = StaticBlock ? StaticBlock : b;
-    for (int64_t row = 0; row < rows; ++row) {
-      int64_t first = row * bs;
-      for (int64_t i = 0; i < bs; ++i)
-        before(first + i);
-      applyInverseBlock<StaticBlock>(inverse.data() + first * bs,
-                                     r.data() + first, z.data() + first, bs);
-      for (int64_t i = 0; i < bs; ++i)
-        rz += static_cast<double>(r[first + i]) * z[first + i];
-    }
+    return {};
   }
 
   llvm::Expected<double> applyOperator(const std::vector<T> &r) {
@@ -298,7 +363,7 @@ private:
         return std::move(err);
     } else {
       wideResidual.assign(r.begin(), r.end());
-      wideZ.resize(n);
+      wideZ.resize(static_cast<size_t>(n));
       if (llvm::Error err = apply(wideResidual.data(), wideZ.data()))
         return std::move(err);
       std::transform(wideZ.begin(), wideZ.end(), z.begin(),
@@ -307,8 +372,7 @@ private:
     return dot(r, z);
   }
 
-  size_t n;
-  int64_t rows, b;
+  int64_t n, rows, b;
   Preconditioner kind;
   const PreconditionerOperator &apply;
   std::vector<T> inverse, z;
@@ -371,17 +435,17 @@ simit::conjugateGradient(const SquareBCSRView<T> &a, const T *bIn, T *x,
           " at iteration " + llvm::Twine(result.iterations) +
           "; the matrix is not positive definite");
     T alpha = static_cast<T>(rz / curvature);
-    auto dots = preconditioned.update(alpha, dir, ad, x, r);
+    llvm::Expected<ResidualDots> dots =
+        preconditioned.update(alpha, dir, ad, x, r);
     if (!dots)
       return dots.takeError();
-    auto [rr, rzNext] = *dots;
-    T beta = static_cast<T>(rzNext / rz);
-    rz = rzNext;
+    T beta = static_cast<T>(dots->rz / rz);
+    rz = dots->rz;
     const std::vector<T> &z = preconditioned.residual(r);
     for (size_t i = 0; i < n; ++i)
       dir[i] = z[i] + beta * dir[i];
     ++result.iterations;
-    result.residualNormSquared = rr;
+    result.residualNormSquared = dots->rr;
     exact = false;
   }
   result.converged = exact && result.residualNormSquared <= options.tolerance;

@@ -686,6 +686,16 @@ TEST(IsSymmetric, MissingMirrorBlockCountsAsZero) {
   EXPECT_TRUE(isSymmetric(view, 1e-12));
   values[1] = 1e-3;
   EXPECT_FALSE(isSymmetric(view, 1e-12));
+
+  // The same below the diagonal: (0, 0), (1, 0), (1, 1).
+  std::vector<int32_t> lowerRowptr{0, 1, 3}, lowerColidx{0, 0, 1};
+  std::vector<double> lowerValues{2.0, 0.0, 3.0};
+  view.rowptr = lowerRowptr.data();
+  view.colidx = lowerColidx.data();
+  view.values = lowerValues.data();
+  EXPECT_TRUE(isSymmetric(view, 1e-12));
+  lowerValues[1] = 1e-3;
+  EXPECT_FALSE(isSymmetric(view, 1e-12));
 }
 
 TEST(IsSymmetric, BlocksMustBeTransposes) {
@@ -694,6 +704,14 @@ TEST(IsSymmetric, BlocksMustBeTransposes) {
   // A symmetric block pattern whose off-diagonal blocks are not transposed.
   a(0, 4) += 1.0;
   EXPECT_FALSE(isSymmetric(BandSystem<double>(kBlocks, 3, a).view, 1e-12));
+  // A diagonal block that is not symmetric itself, and one below the
+  // diagonal that is not its mirror's transpose.
+  Eigen::MatrixXd inBlock = spd(3, 7), below = spd(3, 7);
+  inBlock(4, 5) += 1.0;
+  below(7, 4) += 1.0;
+  EXPECT_FALSE(
+      isSymmetric(BandSystem<double>(kBlocks, 3, inBlock).view, 1e-12));
+  EXPECT_FALSE(isSymmetric(BandSystem<double>(kBlocks, 3, below).view, 1e-12));
 }
 
 } // namespace

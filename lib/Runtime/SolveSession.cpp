@@ -233,19 +233,36 @@ SolveSession::direct(FactorKind kind, const SquareBCSRView<T> &a, const T *b,
   return report;
 }
 
+CholeskyPreconditioner::CholeskyPreconditioner() = default;
+CholeskyPreconditioner::~CholeskyPreconditioner() = default;
+CholeskyPreconditioner::CholeskyPreconditioner(CholeskyPreconditioner &&) =
+    default;
+CholeskyPreconditioner &
+CholeskyPreconditioner::operator=(CholeskyPreconditioner &&) = default;
+
+llvm::Error CholeskyPreconditioner::apply(const double *r, double *z) {
+  if (!single)
+    return factor->solve(r, z);
+  single->solve(r, z, scratch);
+  return llvm::Error::success();
+}
+
 template <typename T>
 llvm::Expected<SolverResult> SolveSession::factorPreconditioned(
     const SquareBCSRView<T> &a, const T *b, T *x, SolverOptions options,
     llvm::StringRef statement, SolveReport &report) {
   auto held = preconditionerFactors.find(statement);
   if (held == preconditionerFactors.end())
-    held = preconditionerFactors.emplace(statement.str(), nullptr).first;
-  std::shared_ptr<const SparseFactorisation> &factor = held->second;
+    held = preconditionerFactors.emplace(statement.str(),
+                                         CholeskyPreconditioner())
+               .first;
+  CholeskyPreconditioner &preconditioner = held->second;
   auto factoriseA = [&]() -> llvm::Error {
     auto lookup = cache->factorise(FactorKind::Cholesky, a);
     if (!lookup)
       return lookup.takeError();
-    factor = lookup->factor;
+    preconditioner.factor = lookup->factor;
+    preconditioner.single = SingleCholeskyFactor::of(*lookup->factor);
     report.analysed |= lookup->analysed;
     report.factorised |= lookup->factorised;
     report.reused |= !lookup->factorised;
@@ -256,13 +273,14 @@ llvm::Expected<SolverResult> SolveSession::factorPreconditioned(
   // Any symmetric positive definite M is a valid preconditioner, so an
   // earlier matrix's factor (even of another pattern) only costs
   // iterations; one of another size cannot be applied.
-  bool fresh = !factor || factor->size() != a.size();
+  bool fresh = !preconditioner.factor ||
+               preconditioner.factor->size() != a.size();
   if (fresh)
     if (llvm::Error err = factoriseA())
       return std::move(err);
   options.preconditioner = Preconditioner::Operator;
   options.apply = [&](const double *r, double *z) {
-    return factor->solve(r, z);
+    return preconditioner.apply(r, z);
   };
   int cap = options.maxIterations;
   if (!fresh)

@@ -331,9 +331,10 @@ TEST(SolveSession, WarmStartBeginsAtTheStatementsPreviousAnswer) {
 }
 
 // pcg-cholesky keeps the first matrix's factorisation as the preconditioner
-// of the statement's later solves: exact for the same matrix (one
-// iteration), a few iterations for a nearby one, and a solve that needs
-// more than refactorIterations factorises its own matrix.
+// of the statement's later solves: exact for the same matrix but for the
+// factor's rounding to float (two iterations to 1e-10), a few iterations
+// for a nearby one, and a solve that needs more than refactorIterations
+// factorises its own matrix.
 TEST(SolveSession, CholeskyCGPreconditionsWithAnEarlierFactorisation) {
   SolveSettings settings = settingsOf(SolveMethod::CholeskyCG);
   settings.tolerance = 1e-10;
@@ -342,7 +343,7 @@ TEST(SolveSession, CholeskyCGPreconditionsWithAnEarlierFactorisation) {
   Eigen::MatrixXd a = spd(3, 12);
   BandSystem<double> first(kBlocks, 3, a);
   Eigen::VectorXd rhs = randomVector(kBlocks * 3, 13);
-  EXPECT_EQ(iterationsOf(session, first, rhs, "s"), 1);
+  EXPECT_EQ(iterationsOf(session, first, rhs, "s"), 2);
   EXPECT_EQ(session.factorisationCounts().factorisations, 1);
 
   // A 1% change of every entry (symmetric, still SPD): the old factor is
@@ -355,19 +356,19 @@ TEST(SolveSession, CholeskyCGPreconditionsWithAnEarlierFactorisation) {
   EXPECT_LE(lagged, 8);
   EXPECT_EQ(session.factorisationCounts().factorisations, 1);
 
-  // A threshold below that: the solve factorises `nearby` and converges
-  // with it in a step or two more.
+  // A threshold below that: the solve factorises `farther` and converges
+  // with it in two or three steps more.
   settings.refactorIterations = 1;
   session.setSettings(settings);
   BandSystem<double> farther(kBlocks, 3,
                              a + 0.05 * (change + change.transpose()));
   int refactorised = iterationsOf(session, farther, rhs, "s");
   EXPECT_GE(refactorised, 2);
-  EXPECT_LE(refactorised, 3);
+  EXPECT_LE(refactorised, 4);
   EXPECT_EQ(session.factorisationCounts().factorisations, 2);
 
   // Another statement has a preconditioner of its own.
-  EXPECT_EQ(iterationsOf(session, first, rhs, "t"), 1);
+  EXPECT_EQ(iterationsOf(session, first, rhs, "t"), 2);
   EXPECT_EQ(session.factorisationCounts().factorisations, 3);
   auto stats = session.statistics();
   ASSERT_EQ(stats.size(), 2u);

@@ -375,6 +375,62 @@ TEST(SolveSession, CholeskyCGPreconditionsWithAnEarlierFactorisation) {
   EXPECT_EQ(stats[0].factorisations, 2);
 }
 
+// The float factor's triangular solves on supernodes of many shapes: a
+// random sparse SPD matrix of 80 blocks (fill, wide and narrow
+// supernodes), solved twice with the same matrix; the second solve is
+// preconditioned by the first one's factor and needs two iterations.
+TEST(SolveSession, CholeskyCGOnARandomPattern) {
+  constexpr int n = 80, b = 3;
+  std::mt19937 rng(41);
+  std::uniform_real_distribution<double> value(-1, 1);
+  std::uniform_int_distribution<int> column(0, n - 1);
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n * b, n * b);
+  for (int r = 0; r < n; ++r)
+    for (int k = 0; k < 3; ++k) {
+      int c = column(rng);
+      for (int i = 0; i < b; ++i)
+        for (int j = 0; j < b; ++j)
+          m(r * b + i, c * b + j) = value(rng);
+    }
+  Eigen::MatrixXd a = m * m.transpose() +
+                      Eigen::MatrixXd::Identity(n * b, n * b);
+  std::vector<int32_t> rowptr{0}, colidx;
+  std::vector<double> values;
+  for (int r = 0; r < n; ++r) {
+    for (int c = 0; c < n; ++c) {
+      Eigen::MatrixXd block = a.block(r * b, c * b, b, b);
+      if (block.isZero(0))
+        continue;
+      colidx.push_back(c);
+      for (int i = 0; i < b; ++i)
+        for (int j = 0; j < b; ++j)
+          values.push_back(block(i, j));
+    }
+    rowptr.push_back(static_cast<int32_t>(colidx.size()));
+  }
+  SquareBCSRView<double> view;
+  view.rows = n;
+  view.blockSize = b;
+  view.rowptr = rowptr.data();
+  view.colidx = colidx.data();
+  view.values = values.data();
+  SolveSettings settings = settingsOf(SolveMethod::CholeskyCG);
+  settings.tolerance = 1e-10;
+  settings.warmStart = false;
+  SolveSession session(settings);
+  Eigen::VectorXd rhs = randomVector(n * b, 43);
+  Eigen::VectorXd exact = a.llt().solve(rhs);
+  for (int round = 0; round < 2; ++round) {
+    std::vector<double> x(n * b);
+    auto report = session.solve(view, rhs.data(), x.data(), "random");
+    ASSERT_TRUE(bool(report)) << llvm::toString(report.takeError());
+    EXPECT_EQ(report->iterations, 2);
+    for (int i = 0; i < n * b; ++i)
+      EXPECT_NEAR(x[i], exact[i], 1e-9 * exact.norm()) << i;
+  }
+  EXPECT_EQ(session.factorisationCounts().factorisations, 1);
+}
+
 // The preconditioner of a matrix that is not positive definite cannot be
 // factorised: the error names it as cholesky's does.
 TEST(SolveSession, CholeskyCGRefusesIndefiniteMatrices) {

@@ -293,7 +293,7 @@ void SingleCholeskyFactor::solve(const double *b, double *x,
       double solved[kColumnGroup] = {};
       const float *column[kColumnGroup];
       for (int64_t g = 0; g < kColumnGroup; ++g) {
-        // Missing columns of the last group repeat the first with zero.
+        // A short last group repeats its last column, times zero.
         column[g] = panel + (j + std::min(g, group - 1)) * height;
         solved[g] = g < group ? y[k1 + j + g] : 0.0;
       }

@@ -945,7 +945,7 @@ llvm::Error SceneParser::parseOutput(const Json &value,
 }
 
 /// "solver": "method", or {"method": ..., "tol": ..., "maxIters": ...,
-/// "strict": ..., "warmStart": ...}.
+/// "strict": ..., "warmStart": ..., "refactorIters": ...}.
 llvm::Error SceneParser::parseSolver(const Json &value,
                                      SolveSettings &settings) {
   auto method = [&](const Json &name, const std::string &path) -> llvm::Error {
@@ -966,7 +966,7 @@ llvm::Error SceneParser::parseSolver(const Json &value,
     return err;
   if (auto err = checkKeys(value, "solver",
                            {"method", "tol", "maxIters", "strict",
-                            "warmStart"}))
+                            "warmStart", "refactorIters"}))
     return err;
   if (value.contains("method"))
     if (auto err = method(value["method"], "solver.method"))
@@ -985,6 +985,13 @@ llvm::Error SceneParser::parseSolver(const Json &value,
     if (!cap)
       return cap.takeError();
     settings.maxIterations = *cap;
+  }
+  if (value.contains("refactorIters")) {
+    auto threshold =
+        getInt(value["refactorIters"], "solver.refactorIters", 1);
+    if (!threshold)
+      return threshold.takeError();
+    settings.refactorIterations = *threshold;
   }
   if (value.contains("strict")) {
     if (!value["strict"].is_boolean())

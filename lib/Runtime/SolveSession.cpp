@@ -51,6 +51,7 @@ const std::pair<SolveMethod, llvm::StringRef> kMethodNames[] = {
     {SolveMethod::ConjugateGradient, "cg"},
     {SolveMethod::JacobiCG, "pcg-jacobi"},
     {SolveMethod::BlockJacobiCG, "pcg-block-jacobi"},
+    {SolveMethod::CholeskyCG, "pcg-cholesky"},
     {SolveMethod::Cholesky, "cholesky"},
     {SolveMethod::LDLT, "ldlt"},
     {SolveMethod::LU, "lu"},
@@ -131,7 +132,8 @@ std::optional<SolveMethod> simit::parseSolveMethod(llvm::StringRef name) {
 }
 
 llvm::StringRef simit::solveMethodNames() {
-  return "auto, cg, pcg-jacobi, pcg-block-jacobi, cholesky, ldlt, lu";
+  return "auto, cg, pcg-jacobi, pcg-block-jacobi, pcg-cholesky, cholesky, "
+         "ldlt, lu";
 }
 
 SolveSettings SolveSettingsOverride::appliedTo(SolveSettings settings) const {
@@ -145,6 +147,8 @@ SolveSettings SolveSettingsOverride::appliedTo(SolveSettings settings) const {
     settings.strict = *strict;
   if (warmStart)
     settings.warmStart = *warmStart;
+  if (refactorIterations)
+    settings.refactorIterations = refactorIterations;
   return settings;
 }
 
@@ -160,6 +164,10 @@ llvm::Error simit::checkSolveSettings(const SolveSettings &settings,
     return llvm::createStringError(
         where + ": the iteration cap must be at least 1, found " +
         llvm::Twine(*settings.maxIterations));
+  if (settings.refactorIterations && *settings.refactorIterations < 1)
+    return llvm::createStringError(
+        where + ": the refactorisation threshold must be at least 1, found " +
+        llvm::Twine(*settings.refactorIterations));
   return llvm::Error::success();
 }
 
@@ -225,6 +233,74 @@ SolveSession::direct(FactorKind kind, const SquareBCSRView<T> &a, const T *b,
   return report;
 }
 
+CholeskyPreconditioner::CholeskyPreconditioner() = default;
+CholeskyPreconditioner::~CholeskyPreconditioner() = default;
+CholeskyPreconditioner::CholeskyPreconditioner(CholeskyPreconditioner &&) =
+    default;
+CholeskyPreconditioner &
+CholeskyPreconditioner::operator=(CholeskyPreconditioner &&) = default;
+
+llvm::Error CholeskyPreconditioner::apply(const double *r, double *z) {
+  if (!single)
+    return factor->solve(r, z);
+  single->solve(r, z, scratch);
+  return llvm::Error::success();
+}
+
+template <typename T>
+llvm::Expected<SolverResult> SolveSession::factorPreconditioned(
+    const SquareBCSRView<T> &a, const T *b, T *x, SolverOptions options,
+    llvm::StringRef statement, SolveReport &report) {
+  auto held = preconditionerFactors.find(statement);
+  if (held == preconditionerFactors.end())
+    held = preconditionerFactors.emplace(statement.str(),
+                                         CholeskyPreconditioner())
+               .first;
+  CholeskyPreconditioner &preconditioner = held->second;
+  auto factoriseA = [&]() -> llvm::Error {
+    auto lookup = cache->factorise(FactorKind::Cholesky, a);
+    if (!lookup)
+      return lookup.takeError();
+    preconditioner.factor = lookup->factor;
+    preconditioner.single = SingleCholeskyFactor::of(*lookup->factor);
+    report.analysed |= lookup->analysed;
+    report.factorised |= lookup->factorised;
+    report.reused |= !lookup->factorised;
+    report.analysisMs += lookup->analysisMs;
+    report.factorisationMs += lookup->factorisationMs;
+    return llvm::Error::success();
+  };
+  // Any symmetric positive definite M is a valid preconditioner, so an
+  // earlier matrix's factor (even of another pattern) only costs
+  // iterations; one of another size cannot be applied.
+  bool fresh = !preconditioner.factor ||
+               preconditioner.factor->size() != a.size();
+  if (fresh)
+    if (llvm::Error err = factoriseA())
+      return std::move(err);
+  options.preconditioner = Preconditioner::Operator;
+  options.apply = [&](const double *r, double *z) {
+    return preconditioner.apply(r, z);
+  };
+  int cap = options.maxIterations;
+  if (!fresh)
+    options.maxIterations = static_cast<int>(std::min<int64_t>(
+        cap,
+        current.refactorIterations.value_or(kDefaultRefactorIterations)));
+  llvm::Expected<SolverResult> lagged = conjugateGradient(a, b, x, options);
+  if (!lagged || fresh || lagged->converged || lagged->iterations >= cap)
+    return lagged;
+  // The factor no longer describes A well enough: factorise A itself and go
+  // on from the iterate reached.
+  if (llvm::Error err = factoriseA())
+    return std::move(err);
+  options.maxIterations = cap - lagged->iterations;
+  llvm::Expected<SolverResult> refreshed = conjugateGradient(a, b, x, options);
+  if (refreshed)
+    refreshed->iterations += lagged->iterations;
+  return refreshed;
+}
+
 template <typename T>
 llvm::Expected<SolveReport>
 SolveSession::iterative(const SquareBCSRView<T> &a, const T *b, T *x,
@@ -246,14 +322,19 @@ SolveSession::iterative(const SquareBCSRView<T> &a, const T *b, T *x,
       std::transform(previous->second.begin(), previous->second.end(), x,
                      [](double value) { return static_cast<T>(value); });
   }
-  llvm::Expected<SolverResult> cg = conjugateGradient(a, b, x, options);
+  SolveReport report;
+  llvm::Expected<SolverResult> cg =
+      method == SolveMethod::CholeskyCG
+          ? factorPreconditioned(a, b, x, options, stats.statement, report)
+          : conjugateGradient(a, b, x, options);
   if (!cg)
     return cg.takeError();
-  SolveReport report;
   report.method = automatic ? SolveMethod::ConjugateGradient : method;
   report.iterations = cg->iterations;
   report.converged = cg->converged;
-  report.solveMs = millisecondsSince(start);
+  // pcg-cholesky's factorisations are counted apart, as a direct solve's.
+  report.solveMs = millisecondsSince(start) - report.analysisMs -
+                   report.factorisationMs;
   if (report.converged || automatic) {
     report.relativeResidual = std::sqrt(cg->residualNormSquared) / bNorm;
     return report;

@@ -7,12 +7,15 @@
 
 #include "simit/Runtime/Solvers.h"
 
+#include "SimdKernels.h"
+
 #include "llvm/Support/FormatVariadic.h"
 
 #include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 using namespace simit;
@@ -51,13 +54,14 @@ llvm::Expected<std::vector<T>> inverseDiagonal(const SquareBCSRView<T> &a) {
 }
 
 /// The inverse of every diagonal block, row-major, block row after block
-/// row; computed in double.
-template <typename T>
+/// row; computed in double, in `Block` (fixed 3x3 for points in space: no
+/// allocation per block).
+template <typename Block, typename T>
 llvm::Expected<std::vector<T>>
-inverseDiagonalBlocks(const SquareBCSRView<T> &a) {
+inverseDiagonalBlocksAs(const SquareBCSRView<T> &a) {
   int64_t b = a.blockSize;
   std::vector<T> inverse(static_cast<size_t>(a.rows * b * b), T(0));
-  Eigen::MatrixXd block(b, b);
+  Block block(b, b);
   for (int64_t r = 0; r < a.rows; ++r) {
     const int32_t *begin = a.colidx + a.rowptr[r];
     const int32_t *end = a.colidx + a.rowptr[r + 1];
@@ -67,12 +71,12 @@ inverseDiagonalBlocks(const SquareBCSRView<T> &a) {
       for (int64_t i = 0; i < b; ++i)
         for (int64_t j = 0; j < b; ++j)
           block(i, j) = a.values[((k - a.colidx) * b + i) * b + j];
-    Eigen::FullPivLU<Eigen::MatrixXd> lu(block);
+    Eigen::FullPivLU<Block> lu(block);
     if (!lu.isInvertible())
       return llvm::createStringError(
           "block-Jacobi preconditioner: the diagonal block of block row " +
           llvm::Twine(r) + " is singular");
-    Eigen::MatrixXd blockInverse = lu.inverse();
+    Block blockInverse = lu.inverse();
     for (int64_t i = 0; i < b; ++i)
       for (int64_t j = 0; j < b; ++j)
         inverse[(r * b + i) * b + j] = static_cast<T>(blockInverse(i, j));
@@ -80,30 +84,12 @@ inverseDiagonalBlocks(const SquareBCSRView<T> &a) {
   return inverse;
 }
 
-/// out = D res for D block diagonal (`rows` blocks of `b` x `b`, row-major,
-/// one after the other); `StaticBlock` as in multiplyBlocks.
-template <int64_t StaticBlock, typename T>
-void multiplyDiagonalBlocks(const std::vector<T> &d, const std::vector<T> &res,
-                            std::vector<T> &out, int64_t rows,
-                            int64_t blockSize) {
-  int64_t b = StaticBlock ? StaticBlock : blockSize;
-  for (int64_t r = 0; r < rows; ++r)
-    for (int64_t i = 0; i < b; ++i) {
-      T sum = 0;
-      for (int64_t j = 0; j < b; ++j)
-        sum += d[(r * b + i) * b + j] * res[r * b + j];
-      out[r * b + i] = sum;
-    }
-}
-
-/// out = b - A x, returning its r.r.
 template <typename T>
-double trueResidual(const SquareBCSRView<T> &a, const T *b, const T *x,
-                    std::vector<T> &out) {
-  multiply(a, x, out.data());
-  for (size_t i = 0; i < out.size(); ++i)
-    out[i] = b[i] - out[i];
-  return dot(out, out);
+llvm::Expected<std::vector<T>>
+inverseDiagonalBlocks(const SquareBCSRView<T> &a) {
+  if (a.blockSize == 3)
+    return inverseDiagonalBlocksAs<Eigen::Matrix3d>(a);
+  return inverseDiagonalBlocksAs<Eigen::MatrixXd>(a);
 }
 
 } // namespace
@@ -125,14 +111,21 @@ llvm::Expected<SquareBCSRView<double>> simit::squareView(const BCSRMatrix &a) {
 }
 
 namespace {
-/// y = A x with blocks of `b` x `b`; `b` a compile-time constant where the
-/// caller knows it (the block loops then unroll), else `blockSize`.
+/// y = A x with blocks of `b` x `b`, and, when `dotWith` is given, returns
+/// dotWith . y (summed in row order, in double) from the same pass. `b` is a
+/// compile-time constant where the caller knows it: a block row's sums then
+/// stay in registers and the block loops unroll.
 template <int64_t StaticBlock, typename T>
-void multiplyBlocks(const SquareBCSRView<T> &a, const T *x, T *y) {
+double multiplyBlocks(const SquareBCSRView<T> &a, const T *__restrict x,
+                      T *__restrict y, const T *__restrict dotWith) {
+  constexpr int64_t kMaxStatic = StaticBlock ? StaticBlock : 1;
   int64_t b = StaticBlock ? StaticBlock : a.blockSize;
+  double dot = 0;
   for (int64_t r = 0; r < a.rows; ++r) {
     T *yr = y + r * b;
-    std::fill(yr, yr + b, T(0));
+    T local[kMaxStatic];
+    T *sums = StaticBlock ? local : yr;
+    std::fill(sums, sums + b, T(0));
     for (int32_t k = a.rowptr[r]; k < a.rowptr[r + 1]; ++k) {
       const T *block = a.values + static_cast<int64_t>(k) * b * b;
       const T *xc = x + static_cast<int64_t>(a.colidx[k]) * b;
@@ -140,64 +133,263 @@ void multiplyBlocks(const SquareBCSRView<T> &a, const T *x, T *y) {
         T sum = 0;
         for (int64_t j = 0; j < b; ++j)
           sum += block[i * b + j] * xc[j];
-        yr[i] += sum;
+        sums[i] += sum;
       }
     }
+    if (StaticBlock)
+      std::copy(sums, sums + b, yr);
+    if (dotWith)
+      for (int64_t i = 0; i < b; ++i)
+        dot += static_cast<double>(dotWith[r * b + i]) * yr[i];
+  }
+  return dot;
+}
+
+/// multiplyBlocks with the block size dispatched to a static one where it is
+/// 1 or 3 (points in space); 3x3 blocks of doubles take the host's vector
+/// unit where the runtime has a kernel for it (SimdKernels.h).
+template <typename T>
+double multiplyAndDot(const SquareBCSRView<T> &a, const T *x, T *y,
+                      const T *dotWith) {
+  switch (a.blockSize) {
+  case 1:
+    return multiplyBlocks<1>(a, x, y, dotWith);
+  case 3:
+    if constexpr (std::is_same_v<T, double>) {
+      double dot = 0;
+      if (simd::multiplyBlocks3(a.rows, a.rowptr, a.colidx, a.values, x, y,
+                                dotWith, &dot))
+        return dot;
+    }
+    return multiplyBlocks<3>(a, x, y, dotWith);
+  default:
+    return multiplyBlocks<0>(a, x, y, dotWith);
   }
 }
 } // namespace
 
 template <typename T>
 void simit::multiply(const SquareBCSRView<T> &a, const T *x, T *y) {
-  // The same sums in the same order for every block size: 3 (points in
-  // space) and 1 only unroll.
-  switch (a.blockSize) {
-  case 1:
-    return multiplyBlocks<1>(a, x, y);
-  case 3:
-    return multiplyBlocks<3>(a, x, y);
-  default:
-    return multiplyBlocks<0>(a, x, y);
-  }
+  multiplyAndDot<T>(a, x, y, nullptr);
 }
 
 template <typename T>
 bool simit::isSymmetric(const SquareBCSRView<T> &a, double relativeTolerance) {
-  int64_t b = a.blockSize, blocks = a.rows ? a.rowptr[a.rows] : 0;
-  double largest = 0;
-  for (int64_t i = 0; i < blocks * b * b; ++i)
-    largest = std::max(largest, std::abs(static_cast<double>(a.values[i])));
-  double tolerance = relativeTolerance * largest;
-  auto block = [&](int64_t k) { return a.values + k * b * b; };
-  for (int64_t r = 0; r < a.rows; ++r) {
+  int64_t b = a.blockSize, bb = b * b;
+  auto block = [&](int64_t k) { return a.values + k * bb; };
+  auto mirrorOf = [&](int64_t r, int64_t c) -> int64_t {
+    const int32_t *begin = a.colidx + a.rowptr[c];
+    const int32_t *end = a.colidx + a.rowptr[c + 1];
+    const int32_t *mirror = std::lower_bound(begin, end, r);
+    return mirror != end && *mirror == r ? mirror - a.colidx : -1;
+  };
+  // One pass: A's largest magnitude, and the largest difference between
+  // a block above the diagonal (or on it) and its mirror, a missing mirror
+  // counting as zero. Blocks below the diagonal are only counted: when as
+  // many have a mirror above as there are, every one of them was compared.
+  double largest = 0, worst = 0;
+  int64_t below = 0, mirroredAbove = 0;
+  for (int64_t r = 0; r < a.rows; ++r)
     for (int32_t k = a.rowptr[r]; k < a.rowptr[r + 1]; ++k) {
-      int64_t c = a.colidx[k];
-      const int32_t *begin = a.colidx + a.rowptr[c];
-      const int32_t *end = a.colidx + a.rowptr[c + 1];
-      const int32_t *mirror = std::lower_bound(begin, end, r);
-      bool present = mirror != end && *mirror == r;
       const T *rc = block(k);
-      const T *cr = present ? block(mirror - a.colidx) : nullptr;
+      for (int64_t i = 0; i < bb; ++i)
+        largest = std::max(largest, std::abs(static_cast<double>(rc[i])));
+      int64_t c = a.colidx[k];
+      if (c < r) {
+        ++below;
+        continue;
+      }
+      int64_t mirror = c == r ? k : mirrorOf(r, c);
+      mirroredAbove += c != r && mirror >= 0;
+      const T *cr = mirror >= 0 ? block(mirror) : nullptr;
       for (int64_t i = 0; i < b; ++i)
         for (int64_t j = 0; j < b; ++j) {
-          double other = present ? cr[j * b + i] : 0.0;
-          if (std::abs(rc[i * b + j] - other) > tolerance)
-            return false;
+          double other = cr ? cr[j * b + i] : 0.0;
+          worst = std::max(worst, std::abs(rc[i * b + j] - other));
         }
     }
-  }
-  return true;
+  if (below != mirroredAbove)
+    // Blocks below the diagonal without a mirror: they must be zero.
+    for (int64_t r = 0; r < a.rows; ++r)
+      for (int32_t k = a.rowptr[r]; k < a.rowptr[r + 1]; ++k)
+        if (a.colidx[k] < r && mirrorOf(r, a.colidx[k]) < 0)
+          for (int64_t i = 0; i < bb; ++i)
+            worst = std::max(worst, std::abs(static_cast<double>(block(k)[i])));
+  return worst <= relativeTolerance * largest;
 }
+
+namespace {
+/// out = b - A x, returning its r.r.
+template <typename T>
+double trueResidual(const SquareBCSRView<T> &a, const T *b, const T *x,
+                    std::vector<T> &out) {
+  multiply(a, x, out.data());
+  for (size_t i = 0; i < out.size(); ++i)
+    out[i] = b[i] - out[i];
+  return dot(out, out);
+}
+
+/// The sums of one pass of CG over its vectors.
+struct ResidualDots {
+  double rr = 0, rz = 0;
+};
+
+/// x += alpha dir and r -= alpha ad, element i; adds r_i^2 to `rr`.
+template <typename T>
+inline void updateElement(int64_t i, T alpha, const T *__restrict dir,
+                          const T *__restrict ad, T *__restrict x,
+                          T *__restrict r, double &rr) {
+  x[i] += alpha * dir[i];
+  r[i] -= alpha * ad[i];
+  rr += static_cast<double>(r[i]) * r[i];
+}
+
+/// With `Update`, x += alpha dir and r -= alpha ad; then z = D r for D
+/// block diagonal (`rows` inverse blocks of `b` x `b`, row-major, one after
+/// the other), block row by block row. `StaticBlock` as in multiplyBlocks.
+/// The sums are local so that no store through x, r or z can touch them.
+template <bool Update, int64_t StaticBlock, typename T>
+ResidualDots blockJacobiPass(int64_t rows, int64_t blockSize, T alpha,
+                             const T *__restrict dir, const T *__restrict ad,
+                             const T *__restrict inverse, T *__restrict x,
+                             T *__restrict r, T *__restrict z) {
+  int64_t b = StaticBlock ? StaticBlock : blockSize;
+  double rr = 0, rz = 0;
+  for (int64_t row = 0; row < rows; ++row) {
+    int64_t first = row * b;
+    if (Update)
+      for (int64_t i = first; i < first + b; ++i)
+        updateElement(i, alpha, dir, ad, x, r, rr);
+    const T *d = inverse + first * b;
+    for (int64_t i = 0; i < b; ++i) {
+      T sum = 0;
+      for (int64_t j = 0; j < b; ++j)
+        sum += d[i * b + j] * r[first + j];
+      z[first + i] = sum;
+    }
+    for (int64_t i = first; i < first + b; ++i)
+      rz += static_cast<double>(r[i]) * z[i];
+  }
+  return {rr, rz};
+}
+
+/// The same for Jacobi (z = D r, D diagonal), or, without `inverse`, for
+/// no preconditioner (z is r: r.z = r.r).
+template <bool Update, typename T>
+ResidualDots diagonalPass(int64_t n, T alpha, const T *__restrict dir,
+                          const T *__restrict ad, const T *__restrict inverse,
+                          T *__restrict x, T *__restrict r, T *__restrict z) {
+  double rr = 0, rz = 0;
+  for (int64_t i = 0; i < n; ++i) {
+    if (Update)
+      updateElement(i, alpha, dir, ad, x, r, rr);
+    if (inverse) {
+      z[i] = inverse[i] * r[i];
+      rz += static_cast<double>(r[i]) * z[i];
+    }
+  }
+  if (!inverse)
+    rz = rr;
+  return {rr, rz};
+}
+
+/// The preconditioned residual z = M^-1 r of CG, and the update of x and r
+/// fused with it: each is one pass over the vectors.
+template <typename T> class PreconditionedResidual {
+public:
+  PreconditionedResidual(const SquareBCSRView<T> &a,
+                         const SolverOptions &options, std::vector<T> inverse)
+      : n(a.size()), rows(a.rows), b(a.blockSize),
+        kind(options.preconditioner), apply(options.apply),
+        inverse(std::move(inverse)),
+        z(kind == Preconditioner::None ? 0 : static_cast<size_t>(n)) {}
+
+  /// z = M^-1 r (r itself without a preconditioner); returns r.z.
+  llvm::Expected<double> precondition(std::vector<T> &r) {
+    if (kind == Preconditioner::None)
+      return dot(r, r);
+    if (kind == Preconditioner::Operator)
+      return applyOperator(r);
+    return pass<false>(T(0), nullptr, nullptr, nullptr, r).rz;
+  }
+
+  /// x += alpha dir, r -= alpha ad, then as precondition; returns r.r and
+  /// r.z.
+  llvm::Expected<ResidualDots> update(T alpha, const std::vector<T> &dir,
+                                      const std::vector<T> &ad, T *x,
+                                      std::vector<T> &r) {
+    ResidualDots dots = pass<true>(alpha, dir.data(), ad.data(), x, r);
+    if (kind == Preconditioner::Operator) {
+      llvm::Expected<double> rz = applyOperator(r);
+      if (!rz)
+        return rz.takeError();
+      dots.rz = *rz;
+    }
+    return dots;
+  }
+
+  /// The preconditioned residual of the last call.
+  const std::vector<T> &residual(const std::vector<T> &r) const {
+    return kind == Preconditioner::None ? r : z;
+  }
+
+private:
+  template <bool Update>
+  ResidualDots pass(T alpha, const T *dir, const T *ad, T *x,
+                    std::vector<T> &r) {
+    switch (kind) {
+    case Preconditioner::BlockJacobi:
+      if (b == 3)
+        return blockJacobiPass<Update, 3>(rows, b, alpha, dir, ad,
+                                          inverse.data(), x, r.data(),
+                                          z.data());
+      return blockJacobiPass<Update, 0>(rows, b, alpha, dir, ad,
+                                        inverse.data(), x, r.data(), z.data());
+    case Preconditioner::Jacobi:
+      return diagonalPass<Update>(n, alpha, dir, ad, inverse.data(), x,
+                                  r.data(), z.data());
+    case Preconditioner::None:
+    case Preconditioner::Operator:
+      // The operator runs after the pass.
+      return diagonalPass<Update, T>(n, alpha, dir, ad, nullptr, x, r.data(),
+                                     nullptr);
+    }
+    return {};
+  }
+
+  llvm::Expected<double> applyOperator(const std::vector<T> &r) {
+    if constexpr (std::is_same_v<T, double>) {
+      if (llvm::Error err = apply(r.data(), z.data()))
+        return std::move(err);
+    } else {
+      wideResidual.assign(r.begin(), r.end());
+      wideZ.resize(static_cast<size_t>(n));
+      if (llvm::Error err = apply(wideResidual.data(), wideZ.data()))
+        return std::move(err);
+      std::transform(wideZ.begin(), wideZ.end(), z.begin(),
+                     [](double value) { return static_cast<T>(value); });
+    }
+    return dot(r, z);
+  }
+
+  int64_t n, rows, b;
+  Preconditioner kind;
+  const PreconditionerOperator &apply;
+  std::vector<T> inverse, z;
+  /// Operator on float vectors: r and z in double.
+  std::vector<double> wideResidual, wideZ;
+};
+} // namespace
 
 template <typename T>
 llvm::Expected<SolverResult>
 simit::conjugateGradient(const SquareBCSRView<T> &a, const T *bIn, T *x,
                          const SolverOptions &options) {
   size_t n = static_cast<size_t>(a.size());
-  int64_t bs = a.blockSize;
   // Diagonal (Jacobi) or block diagonal (block-Jacobi) inverse.
   std::vector<T> inverse;
-  if (options.preconditioner != Preconditioner::None) {
+  if (options.preconditioner == Preconditioner::Jacobi ||
+      options.preconditioner == Preconditioner::BlockJacobi) {
     auto d = options.preconditioner == Preconditioner::Jacobi
                  ? inverseDiagonal(a)
                  : inverseDiagonalBlocks(a);
@@ -205,34 +397,24 @@ simit::conjugateGradient(const SquareBCSRView<T> &a, const T *bIn, T *x,
       return d.takeError();
     inverse = std::move(*d);
   }
-  auto precondition = [&](const std::vector<T> &res, std::vector<T> &out) {
-    switch (options.preconditioner) {
-    case Preconditioner::None:
-      out = res;
-      return;
-    case Preconditioner::Jacobi:
-      for (size_t i = 0; i < n; ++i)
-        out[i] = inverse[i] * res[i];
-      return;
-    case Preconditioner::BlockJacobi:
-      if (bs == 3)
-        return multiplyDiagonalBlocks<3>(inverse, res, out, a.rows, bs);
-      return multiplyDiagonalBlocks<0>(inverse, res, out, a.rows, bs);
-    }
-  };
+  PreconditionedResidual<T> preconditioned(a, options, std::move(inverse));
 
-  std::vector<T> r(n), z(n), dir(n), ad(n);
+  std::vector<T> r(n), dir(n), ad(n);
   SolverResult result;
   result.residualNormSquared = trueResidual(a, bIn, x, r);
   // Whether r is b - A x computed anew rather than updated.
   bool exact = true;
   double rz = 0;
-  auto restart = [&] {
-    precondition(r, z);
-    dir = z;
-    rz = dot(r, z);
+  auto restart = [&]() -> llvm::Error {
+    llvm::Expected<double> next = preconditioned.precondition(r);
+    if (!next)
+      return next.takeError();
+    rz = *next;
+    dir = preconditioned.residual(r);
+    return llvm::Error::success();
   };
-  restart();
+  if (llvm::Error err = restart())
+    return std::move(err);
   while (true) {
     if (result.residualNormSquared <= options.tolerance) {
       if (exact)
@@ -241,30 +423,29 @@ simit::conjugateGradient(const SquareBCSRView<T> &a, const T *bIn, T *x,
       exact = true;
       if (result.residualNormSquared <= options.tolerance)
         break;
-      restart();
+      if (llvm::Error err = restart())
+        return std::move(err);
     }
     if (result.iterations >= options.maxIterations)
       break;
-    multiply(a, dir.data(), ad.data());
-    double curvature = dot(dir, ad);
+    double curvature = multiplyAndDot(a, dir.data(), ad.data(), dir.data());
     if (!(curvature > 0))
       return llvm::createStringError(
           "conjugate gradients: p.Ap = " + llvm::formatv("{0:g}", curvature) +
           " at iteration " + llvm::Twine(result.iterations) +
           "; the matrix is not positive definite");
     T alpha = static_cast<T>(rz / curvature);
-    for (size_t i = 0; i < n; ++i) {
-      x[i] += alpha * dir[i];
-      r[i] -= alpha * ad[i];
-    }
-    precondition(r, z);
-    double rzNext = dot(r, z);
-    T beta = static_cast<T>(rzNext / rz);
-    rz = rzNext;
+    llvm::Expected<ResidualDots> dots =
+        preconditioned.update(alpha, dir, ad, x, r);
+    if (!dots)
+      return dots.takeError();
+    T beta = static_cast<T>(dots->rz / rz);
+    rz = dots->rz;
+    const std::vector<T> &z = preconditioned.residual(r);
     for (size_t i = 0; i < n; ++i)
       dir[i] = z[i] + beta * dir[i];
     ++result.iterations;
-    result.residualNormSquared = dot(r, r);
+    result.residualNormSquared = dots->rr;
     exact = false;
   }
   result.converged = exact && result.residualNormSquared <= options.tolerance;

@@ -12,9 +12,11 @@
 
 #include "llvm/Support/FormatVariadic.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 extern "C" {
 #include <suitesparse/cholmod.h>
@@ -227,6 +229,111 @@ llvm::Error SparseFactorisation::solve(const double *b, double *x) const {
   std::memcpy(x, solution->x, static_cast<size_t>(n) * sizeof(double));
   cholmod_l_free_dense(&solution, &c);
   return llvm::Error::success();
+}
+
+std::unique_ptr<SingleCholeskyFactor>
+SingleCholeskyFactor::of(const SparseFactorisation &factor) {
+  const auto *l = static_cast<const cholmod_factor *>(factor.cholmodFactor);
+  if (!l || !l->is_super || !l->is_ll || l->xtype != CHOLMOD_REAL ||
+      l->itype != CHOLMOD_LONG)
+    return nullptr;
+  std::unique_ptr<SingleCholeskyFactor> single(new SingleCholeskyFactor());
+  single->n = static_cast<int64_t>(l->n);
+  auto copy = [](const void *from, size_t count) {
+    const auto *begin = static_cast<const SuiteSparse_long *>(from);
+    return std::vector<int64_t>(begin, begin + count);
+  };
+  single->permutation = copy(l->Perm, l->n);
+  single->first = copy(l->super, l->nsuper + 1);
+  single->rowStart = copy(l->pi, l->nsuper + 1);
+  single->valueStart = copy(l->px, l->nsuper + 1);
+  single->rows = copy(l->s, l->ssize);
+  const auto *x = static_cast<const double *>(l->x);
+  single->values.resize(l->xsize);
+  for (size_t i = 0; i < l->xsize; ++i) {
+    double value = std::abs(x[i]);
+    if (value != 0 && !(value >= std::numeric_limits<float>::min() &&
+                        value <= std::numeric_limits<float>::max()))
+      return nullptr;
+    single->values[i] = static_cast<float>(x[i]);
+  }
+  return single;
+}
+
+namespace {
+/// Columns of a panel taken together below the diagonal block, so that
+/// each row of the solution is loaded and stored once per group, and the
+/// backward sums are independent chains.
+constexpr int64_t kColumnGroup = 4;
+} // namespace
+
+void SingleCholeskyFactor::solve(const double *b, double *x,
+                                 std::vector<double> &scratch) const {
+  scratch.resize(static_cast<size_t>(n));
+  double *y = scratch.data();
+  for (int64_t k = 0; k < n; ++k)
+    y[k] = b[permutation[k]];
+  int64_t supernodes = static_cast<int64_t>(first.size()) - 1;
+  // L y' = y, supernode by supernode: the diagonal block's forward
+  // substitution, then the rows below take the panel times its solution.
+  for (int64_t s = 0; s < supernodes; ++s) {
+    int64_t k1 = first[s], columns = first[s + 1] - k1;
+    int64_t height = rowStart[s + 1] - rowStart[s];
+    const int64_t *panelRows = rows.data() + rowStart[s];
+    const float *panel = values.data() + valueStart[s];
+    for (int64_t j = 0; j < columns; ++j) {
+      const float *column = panel + j * height;
+      double yj = y[k1 + j] / column[j];
+      y[k1 + j] = yj;
+      for (int64_t i = j + 1; i < columns; ++i)
+        y[k1 + i] -= column[i] * yj;
+    }
+    for (int64_t j = 0; j < columns; j += kColumnGroup) {
+      int64_t group = std::min(kColumnGroup, columns - j);
+      double solved[kColumnGroup] = {};
+      const float *column[kColumnGroup];
+      for (int64_t g = 0; g < kColumnGroup; ++g) {
+        // A short last group repeats its last column, times zero.
+        column[g] = panel + (j + std::min(g, group - 1)) * height;
+        solved[g] = g < group ? y[k1 + j + g] : 0.0;
+      }
+      for (int64_t i = columns; i < height; ++i)
+        y[panelRows[i]] -= column[0][i] * solved[0] + column[1][i] * solved[1] +
+                           column[2][i] * solved[2] + column[3][i] * solved[3];
+    }
+  }
+  // L^T x' = y', in reverse: each column subtracts the dot product of its
+  // panel rows with the solution below, then the diagonal block's back
+  // substitution.
+  for (int64_t s = supernodes; s-- > 0;) {
+    int64_t k1 = first[s], columns = first[s + 1] - k1;
+    int64_t height = rowStart[s + 1] - rowStart[s];
+    const int64_t *panelRows = rows.data() + rowStart[s];
+    const float *panel = values.data() + valueStart[s];
+    for (int64_t j = 0; j < columns; j += kColumnGroup) {
+      int64_t group = std::min(kColumnGroup, columns - j);
+      const float *column[kColumnGroup];
+      for (int64_t g = 0; g < kColumnGroup; ++g)
+        column[g] = panel + (j + std::min(g, group - 1)) * height;
+      double sums[kColumnGroup] = {};
+      for (int64_t i = columns; i < height; ++i) {
+        double below = y[panelRows[i]];
+        for (int64_t g = 0; g < kColumnGroup; ++g)
+          sums[g] += column[g][i] * below;
+      }
+      for (int64_t g = 0; g < group; ++g)
+        y[k1 + j + g] -= sums[g];
+    }
+    for (int64_t j = columns; j-- > 0;) {
+      const float *column = panel + j * height;
+      double sum = y[k1 + j];
+      for (int64_t i = j + 1; i < columns; ++i)
+        sum -= column[i] * y[k1 + i];
+      y[k1 + j] = sum / column[j];
+    }
+  }
+  for (int64_t k = 0; k < n; ++k)
+    x[permutation[k]] = y[k];
 }
 
 double SparseFactorisation::relativeResidual(const double *b,

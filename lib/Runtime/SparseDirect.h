@@ -50,6 +50,7 @@ public:
 
 private:
   friend class FactorCache;
+  friend class SingleCholeskyFactor;
   SparseFactorisation() = default;
   /// Whether `values` (as T) is the value this factorises.
   template <typename T> bool holds(const SquareBCSRView<T> &a) const;
@@ -63,6 +64,34 @@ private:
   std::vector<double> columnValues;
   void *cholmodFactor = nullptr; // cholmod_factor, Cholesky and LDLT
   void *umfpackNumeric = nullptr; // LU
+};
+
+/// The supernodal Cholesky factor L of a SparseFactorisation, with its
+/// fill-reducing permutation P, its values rounded to float: pcg-cholesky's
+/// preconditioner step (P^T L L^T P)^-1 r. A triangular solve with one
+/// right-hand side reads every value of L once, so it runs at memory speed,
+/// and float halves the bytes; CG corrects the rounding, as it corrects an
+/// earlier frame's factor.
+class SingleCholeskyFactor {
+public:
+  /// Null unless `factor` is a supernodal Cholesky factorisation whose
+  /// values of L all lie in float's normal range (or are zero).
+  static std::unique_ptr<SingleCholeskyFactor>
+  of(const SparseFactorisation &factor);
+
+  int64_t size() const { return n; }
+  /// x = (P^T L L^T P)^-1 b, summed in double; `scratch` is reused storage.
+  void solve(const double *b, double *x, std::vector<double> &scratch) const;
+
+private:
+  SingleCholeskyFactor() = default;
+  int64_t n = 0;
+  /// CHOLMOD's supernodal layout: supernode s holds columns [first[s],
+  /// first[s + 1]), its row indices at rows[rowStart[s] ..
+  /// rowStart[s + 1]) (the first ones its own columns), and its values as
+  /// a column-major panel of those rows at values[valueStart[s] ..].
+  std::vector<int64_t> permutation, first, rowStart, valueStart, rows;
+  std::vector<float> values;
 };
 
 /// What FactorCache::factorise did.

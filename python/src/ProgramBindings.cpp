@@ -353,25 +353,29 @@ binds externs for all of them at once.
           "set_solver",
           [](PyProgram &self, const std::string &method,
              std::optional<double> tol, std::optional<int64_t> maxIters,
-             bool strict, bool warmStart) {
+             bool strict, bool warmStart,
+             std::optional<int64_t> refactorIters) {
             std::optional<SolveMethod> parsed = parseSolveMethod(method);
             if (!parsed)
               throw py::value_error("the solver method must be one of " +
                                     solveMethodNames().str() + ", not '" +
                                     method + "'");
-            SolveSettings settings{*parsed, tol, maxIters, strict, warmStart};
+            SolveSettings settings{*parsed,  tol,       maxIters,
+                                   strict,   warmStart, refactorIters};
             if (llvm::Error err = checkSolveSettings(settings, "set_solver"))
               throw py::value_error(llvm::toString(std::move(err)));
             self.program.solver().setSettings(settings);
           },
           R"doc(How `x = A \ b` and chol/lu on system matrices solve from the
 next call on (docs/solvers.md): method auto, cg, pcg-jacobi,
-pcg-block-jacobi, cholesky, ldlt or lu; tol and max_iters for the iterative
-methods; strict makes a solve stopped by the cap an error; warm_start starts
-iterative solves from the statement's previous answer.)doc",
+pcg-block-jacobi, pcg-cholesky, cholesky, ldlt or lu; tol and max_iters for
+the iterative methods; strict makes a solve stopped by the cap an error;
+warm_start starts iterative solves from the statement's previous answer;
+refactor_iters is the iterations after which a pcg-cholesky solve
+factorises its own matrix.)doc",
           py::arg("method"), py::kw_only(), py::arg("tol") = py::none(),
           py::arg("max_iters") = py::none(), py::arg("strict") = false,
-          py::arg("warm_start") = true)
+          py::arg("warm_start") = true, py::arg("refactor_iters") = py::none())
       .def(
           "solver_stats",
           [](PyProgram &self) {

@@ -135,6 +135,31 @@ def test_set_solver_chooses_how_the_step_solves(net):
     assert stats["last_relative_residual"] < 1e-12
 
 
+def test_pcg_cholesky_factorises_once_then_preconditions(net):
+    """pcg-cholesky factorises the first frame's matrix and preconditions
+    the later frames' CG with it; refactor_iters=1 makes every frame that
+    needs more than one iteration factorise its own matrix."""
+    program, points, springs, edges = net
+    program.bind(runtimeSolve=1)
+    program.set_solver("pcg-cholesky", tol=1e-12)
+    x, v = points["x"].copy(), points["v"].copy()
+    m, c, l0 = points["m"].copy(), points["c"].copy(), springs["l0"].copy()
+    for _ in range(3):
+        x, v = numpy_step(x, v, m, c, edges, l0)
+        program.step()
+        np.testing.assert_allclose(points["v"], v, rtol=0, atol=1e-10)
+    (stats,) = program.solver_stats()
+    assert stats["methods"] == ["pcg-cholesky"]
+    assert stats["factorisations"] == 1
+    assert stats["iterations"] > 3
+    program.set_solver("pcg-cholesky", tol=1e-12, refactor_iters=1)
+    program.step()
+    (stats,) = program.solver_stats()
+    assert stats["factorisations"] == 2
+    with pytest.raises(ValueError, match="refactorisation threshold"):
+        program.set_solver("pcg-cholesky", refactor_iters=0)
+
+
 def test_a_strict_capped_solve_raises(net):
     program, *_ = net
     program.bind(runtimeSolve=1)

@@ -3,6 +3,7 @@
 //   simit-run PROGRAM --scene SCENE.json [--output-dir DIR] [--time]
 //             [--no-cache | --cache-dir DIR] [--threads N] [--stats]
 //             [--solver METHOD] [--tol T] [--max-iters N] [--solver-strict]
+//             [--refactor-iters N]
 //             [--no-warm-start] [--no-sherman-morrison]
 //             [--no-skip-uncalled] [--no-skip-unused-fields]
 //             [--no-fold-constants] [--no-dead-assemblies]
@@ -96,8 +97,8 @@ static cl::list<std::string>
 static cl::opt<std::string> solverMethod(
     cl::cat(runCategory), "solver",
     cl::desc("How `x = A \\ b` solves: auto, cg, pcg-jacobi, "
-             "pcg-block-jacobi, cholesky, ldlt or lu (overrides the scene's "
-             "\"solver\")"),
+             "pcg-block-jacobi, pcg-cholesky, cholesky, ldlt or lu "
+             "(overrides the scene's \"solver\")"),
     cl::value_desc("method"));
 static cl::opt<double> solverTolerance(
     cl::cat(runCategory), "tol",
@@ -106,6 +107,11 @@ static cl::opt<double> solverTolerance(
 static cl::opt<int64_t> solverMaxIterations(
     cl::cat(runCategory), "max-iters",
     cl::desc("The iteration cap of iterative solves"), cl::value_desc("n"));
+static cl::opt<int64_t> solverRefactorIterations(
+    cl::cat(runCategory), "refactor-iters",
+    cl::desc("pcg-cholesky: a solve not converged after n iterations "
+             "factorises its matrix anew (default 20)"),
+    cl::value_desc("n"));
 static cl::opt<bool> solverStrict(
     cl::cat(runCategory), "solver-strict",
     cl::desc("An iterative solve stopped by the cap is an error, not a "
@@ -226,12 +232,15 @@ static llvm::Expected<SolveSettingsOverride> solverOverride() {
     settings.tolerance = solverTolerance;
   if (solverMaxIterations.getNumOccurrences())
     settings.maxIterations = solverMaxIterations;
+  if (solverRefactorIterations.getNumOccurrences())
+    settings.refactorIterations = solverRefactorIterations;
   if (solverStrict)
     settings.strict = true;
   if (noWarmStart)
     settings.warmStart = false;
   if (llvm::Error err = checkSolveSettings(settings.appliedTo({}),
-                                           "--tol/--max-iters"))
+                                           "--tol/--max-iters/"
+                                           "--refactor-iters"))
     return std::move(err);
   return settings;
 }
@@ -245,6 +254,8 @@ static void printSolveStats(const SolveSession &solver) {
     os << llvm::format(", tol %g", *settings.tolerance);
   if (settings.maxIterations)
     os << ", max-iters " << *settings.maxIterations;
+  if (settings.refactorIterations)
+    os << ", refactor-iters " << *settings.refactorIterations;
   if (settings.strict)
     os << ", strict";
   if (!settings.warmStart)

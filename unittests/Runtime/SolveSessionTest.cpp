@@ -143,8 +143,8 @@ INSTANTIATE_TEST_SUITE_P(
     SolveSession, EveryMethod,
     ::testing::Values(SolveMethod::Auto, SolveMethod::ConjugateGradient,
                       SolveMethod::JacobiCG, SolveMethod::BlockJacobiCG,
-                      SolveMethod::Cholesky, SolveMethod::LDLT,
-                      SolveMethod::LU),
+                      SolveMethod::CholeskyCG, SolveMethod::Cholesky,
+                      SolveMethod::LDLT, SolveMethod::LU),
     [](const ::testing::TestParamInfo<SolveMethod> &info) {
       std::string name = solveMethodName(info.param).str();
       std::replace(name.begin(), name.end(), '-', '_');
@@ -199,7 +199,8 @@ TEST(SolveSession, Float32SymmetryAllowsRounding) {
 TEST(SolveSession, SymmetricMethodsRefuseNonSymmetricMatrices) {
   for (SolveMethod method :
        {SolveMethod::ConjugateGradient, SolveMethod::JacobiCG,
-        SolveMethod::BlockJacobiCG, SolveMethod::Cholesky, SolveMethod::LDLT})
+        SolveMethod::BlockJacobiCG, SolveMethod::CholeskyCG,
+        SolveMethod::Cholesky, SolveMethod::LDLT})
     EXPECT_THAT(solveError<double>(settingsOf(method), nonSymmetric(3, 2), 3),
                 HasSubstr("not symmetric"))
         << solveMethodName(method).str();
@@ -327,6 +328,115 @@ TEST(SolveSession, WarmStartBeginsAtTheStatementsPreviousAnswer) {
   SolveSession coldSmall(settings);
   EXPECT_EQ(iterationsOf(warm, smaller, small, "s"),
             iterationsOf(coldSmall, smaller, small, "s"));
+}
+
+// pcg-cholesky keeps the first matrix's factorisation as the preconditioner
+// of the statement's later solves: exact for the same matrix but for the
+// factor's rounding to float (two iterations to 1e-10), a few iterations
+// for a nearby one, and a solve that needs more than refactorIterations
+// factorises its own matrix.
+TEST(SolveSession, CholeskyCGPreconditionsWithAnEarlierFactorisation) {
+  SolveSettings settings = settingsOf(SolveMethod::CholeskyCG);
+  settings.tolerance = 1e-10;
+  settings.warmStart = false;
+  SolveSession session(settings);
+  Eigen::MatrixXd a = spd(3, 12);
+  BandSystem<double> first(kBlocks, 3, a);
+  Eigen::VectorXd rhs = randomVector(kBlocks * 3, 13);
+  EXPECT_EQ(iterationsOf(session, first, rhs, "s"), 2);
+  EXPECT_EQ(session.factorisationCounts().factorisations, 1);
+
+  // A 1% change of every entry (symmetric, still SPD): the old factor is
+  // a good preconditioner, not an exact one.
+  Eigen::MatrixXd change = randomBand(kBlocks, 3, 31);
+  BandSystem<double> nearby(kBlocks, 3,
+                            a + 0.01 * (change + change.transpose()));
+  int lagged = iterationsOf(session, nearby, rhs, "s");
+  EXPECT_GT(lagged, 1);
+  EXPECT_LE(lagged, 8);
+  EXPECT_EQ(session.factorisationCounts().factorisations, 1);
+
+  // A threshold below that: the solve factorises `farther` and converges
+  // with it in two or three steps more.
+  settings.refactorIterations = 1;
+  session.setSettings(settings);
+  BandSystem<double> farther(kBlocks, 3,
+                             a + 0.05 * (change + change.transpose()));
+  int refactorised = iterationsOf(session, farther, rhs, "s");
+  EXPECT_GE(refactorised, 2);
+  EXPECT_LE(refactorised, 4);
+  EXPECT_EQ(session.factorisationCounts().factorisations, 2);
+
+  // Another statement has a preconditioner of its own.
+  EXPECT_EQ(iterationsOf(session, first, rhs, "t"), 2);
+  EXPECT_EQ(session.factorisationCounts().factorisations, 3);
+  auto stats = session.statistics();
+  ASSERT_EQ(stats.size(), 2u);
+  EXPECT_EQ(stats[0].factorisations, 2);
+}
+
+// The float factor's triangular solves on supernodes of many shapes: a
+// random sparse SPD matrix of 80 blocks (fill, wide and narrow
+// supernodes), solved twice with the same matrix; the second solve is
+// preconditioned by the first one's factor and needs two iterations.
+TEST(SolveSession, CholeskyCGOnARandomPattern) {
+  constexpr int n = 80, b = 3;
+  std::mt19937 rng(41);
+  std::uniform_real_distribution<double> value(-1, 1);
+  std::uniform_int_distribution<int> column(0, n - 1);
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n * b, n * b);
+  for (int r = 0; r < n; ++r)
+    for (int k = 0; k < 3; ++k) {
+      int c = column(rng);
+      for (int i = 0; i < b; ++i)
+        for (int j = 0; j < b; ++j)
+          m(r * b + i, c * b + j) = value(rng);
+    }
+  Eigen::MatrixXd a = m * m.transpose() +
+                      Eigen::MatrixXd::Identity(n * b, n * b);
+  std::vector<int32_t> rowptr{0}, colidx;
+  std::vector<double> values;
+  for (int r = 0; r < n; ++r) {
+    for (int c = 0; c < n; ++c) {
+      Eigen::MatrixXd block = a.block(r * b, c * b, b, b);
+      if (block.isZero(0))
+        continue;
+      colidx.push_back(c);
+      for (int i = 0; i < b; ++i)
+        for (int j = 0; j < b; ++j)
+          values.push_back(block(i, j));
+    }
+    rowptr.push_back(static_cast<int32_t>(colidx.size()));
+  }
+  SquareBCSRView<double> view;
+  view.rows = n;
+  view.blockSize = b;
+  view.rowptr = rowptr.data();
+  view.colidx = colidx.data();
+  view.values = values.data();
+  SolveSettings settings = settingsOf(SolveMethod::CholeskyCG);
+  settings.tolerance = 1e-10;
+  settings.warmStart = false;
+  SolveSession session(settings);
+  Eigen::VectorXd rhs = randomVector(n * b, 43);
+  Eigen::VectorXd exact = a.llt().solve(rhs);
+  for (int round = 0; round < 2; ++round) {
+    std::vector<double> x(n * b);
+    auto report = session.solve(view, rhs.data(), x.data(), "random");
+    ASSERT_TRUE(bool(report)) << llvm::toString(report.takeError());
+    EXPECT_EQ(report->iterations, 2);
+    for (int i = 0; i < n * b; ++i)
+      EXPECT_NEAR(x[i], exact[i], 1e-9 * exact.norm()) << i;
+  }
+  EXPECT_EQ(session.factorisationCounts().factorisations, 1);
+}
+
+// The preconditioner of a matrix that is not positive definite cannot be
+// factorised: the error names it as cholesky's does.
+TEST(SolveSession, CholeskyCGRefusesIndefiniteMatrices) {
+  EXPECT_THAT(solveError<double>(settingsOf(SolveMethod::CholeskyCG),
+                                 indefinite(3, 3), 3),
+              HasSubstr("not positive definite"));
 }
 
 TEST(SolveSession, FactorisationIsReusedForTheSameValues) {
@@ -607,13 +717,18 @@ TEST(SolveSession, MethodNamesRoundTrip) {
   for (SolveMethod method :
        {SolveMethod::Auto, SolveMethod::ConjugateGradient,
         SolveMethod::JacobiCG, SolveMethod::BlockJacobiCG,
-        SolveMethod::Cholesky, SolveMethod::LDLT, SolveMethod::LU})
+        SolveMethod::CholeskyCG, SolveMethod::Cholesky, SolveMethod::LDLT,
+        SolveMethod::LU})
     EXPECT_EQ(parseSolveMethod(solveMethodName(method)), method);
   EXPECT_EQ(parseSolveMethod("qr"), std::nullopt);
   SolveSettings bad;
   bad.tolerance = 2.0;
   EXPECT_THAT(errorOf(checkSolveSettings(bad, "--tol")),
               HasSubstr("--tol: the tolerance must lie between 0 and 1"));
+  SolveSettings never;
+  never.refactorIterations = 0;
+  EXPECT_THAT(errorOf(checkSolveSettings(never, "--refactor-iters")),
+              HasSubstr("the refactorisation threshold must be at least 1"));
 }
 
 TEST(IsSymmetric, MissingMirrorBlockCountsAsZero) {
@@ -628,6 +743,16 @@ TEST(IsSymmetric, MissingMirrorBlockCountsAsZero) {
   EXPECT_TRUE(isSymmetric(view, 1e-12));
   values[1] = 1e-3;
   EXPECT_FALSE(isSymmetric(view, 1e-12));
+
+  // The same below the diagonal: (0, 0), (1, 0), (1, 1).
+  std::vector<int32_t> lowerRowptr{0, 1, 3}, lowerColidx{0, 0, 1};
+  std::vector<double> lowerValues{2.0, 0.0, 3.0};
+  view.rowptr = lowerRowptr.data();
+  view.colidx = lowerColidx.data();
+  view.values = lowerValues.data();
+  EXPECT_TRUE(isSymmetric(view, 1e-12));
+  lowerValues[1] = 1e-3;
+  EXPECT_FALSE(isSymmetric(view, 1e-12));
 }
 
 TEST(IsSymmetric, BlocksMustBeTransposes) {
@@ -636,6 +761,14 @@ TEST(IsSymmetric, BlocksMustBeTransposes) {
   // A symmetric block pattern whose off-diagonal blocks are not transposed.
   a(0, 4) += 1.0;
   EXPECT_FALSE(isSymmetric(BandSystem<double>(kBlocks, 3, a).view, 1e-12));
+  // A diagonal block that is not symmetric itself, and one below the
+  // diagonal that is not its mirror's transpose.
+  Eigen::MatrixXd inBlock = spd(3, 7), below = spd(3, 7);
+  inBlock(4, 5) += 1.0;
+  below(7, 4) += 1.0;
+  EXPECT_FALSE(
+      isSymmetric(BandSystem<double>(kBlocks, 3, inBlock).view, 1e-12));
+  EXPECT_FALSE(isSymmetric(BandSystem<double>(kBlocks, 3, below).view, 1e-12));
 }
 
 } // namespace

@@ -112,6 +112,41 @@ TEST(ConjugateGradient, BlockJacobiSystemMatchesEigen) {
   expectSolves(system, Preconditioner::BlockJacobi);
 }
 
+// The caller's preconditioner: with M = A exactly (a dense LLT of A), CG
+// converges in one step; an error of the operator ends the solve.
+TEST(ConjugateGradient, OperatorPreconditioner) {
+  RandomSystem system(30, 3, 70, 0.05, 7);
+  Eigen::LLT<Eigen::MatrixXd> llt(system.dense);
+  std::vector<double> x(system.b.size(), 0.0);
+  SolverOptions options;
+  options.tolerance = 1e-20;
+  options.preconditioner = Preconditioner::Operator;
+  int applied = 0;
+  options.apply = [&](const double *r, double *z) {
+    ++applied;
+    Eigen::Map<Eigen::VectorXd>(z, system.b.size()) =
+        llt.solve(Eigen::Map<const Eigen::VectorXd>(r, system.b.size()));
+    return llvm::Error::success();
+  };
+  auto result = conjugateGradient(system.a, system.b.data(), x.data(),
+                                  options);
+  ASSERT_TRUE(bool(result)) << llvm::toString(result.takeError());
+  EXPECT_TRUE(result->converged);
+  EXPECT_EQ(result->iterations, 1);
+  EXPECT_EQ(applied, 2);
+  Eigen::VectorXd exact = llt.solve(system.b);
+  for (int i = 0; i < system.b.size(); ++i)
+    EXPECT_NEAR(x[i], exact[i], 1e-10 * exact.norm()) << i;
+
+  options.apply = [](const double *, double *) {
+    return llvm::createStringError("the factor is gone");
+  };
+  std::fill(x.begin(), x.end(), 0.0);
+  EXPECT_THAT(errorOf(conjugateGradient(system.a, system.b.data(), x.data(),
+                                        options)),
+              HasSubstr("the factor is gone"));
+}
+
 TEST(ConjugateGradient, JacobiHelpsABadlyScaledSystem) {
   // Scale rows and columns by very different factors: D A D stays SPD but
   // its condition number explodes; Jacobi undoes the scaling.

@@ -40,6 +40,10 @@ enum class SolveMethod {
   ConjugateGradient,
   JacobiCG,
   BlockJacobiCG,
+  /// CG preconditioned by the Cholesky factorisation of an earlier matrix
+  /// of the same statement, factorised anew when a solve needs more than
+  /// SolveSettings::refactorIterations iterations.
+  CholeskyCG,
   Cholesky,
   LDLT,
   LU,
@@ -49,8 +53,9 @@ enum class SolveMethod {
   BorderedLU,
 };
 
-/// "auto", "cg", "pcg-jacobi", "pcg-block-jacobi", "cholesky", "ldlt", "lu"
-/// (the methods a user chooses), "sherman-morrison", "bordered-lu".
+/// "auto", "cg", "pcg-jacobi", "pcg-block-jacobi", "pcg-cholesky",
+/// "cholesky", "ldlt", "lu" (the methods a user chooses),
+/// "sherman-morrison", "bordered-lu".
 llvm::StringRef solveMethodName(SolveMethod method);
 std::optional<SolveMethod> parseSolveMethod(llvm::StringRef name);
 /// The names above, comma separated, for messages.
@@ -68,7 +73,13 @@ struct SolveSettings {
   /// Iterative methods: start from the previous answer of the same
   /// statement (when it has the same size) instead of from zero.
   bool warmStart = true;
+  /// pcg-cholesky: a solve not converged after this many iterations with
+  /// the statement's factorisation factorises its own matrix and goes on
+  /// with that. Default kDefaultRefactorIterations.
+  std::optional<int64_t> refactorIterations;
 };
+
+constexpr int64_t kDefaultRefactorIterations = 20;
 
 /// Settings given on top of others (the command line over a scene's).
 struct SolveSettingsOverride {
@@ -77,11 +88,13 @@ struct SolveSettingsOverride {
   std::optional<int64_t> maxIterations;
   std::optional<bool> strict;
   std::optional<bool> warmStart;
+  std::optional<int64_t> refactorIterations;
 
   SolveSettings appliedTo(SolveSettings settings) const;
 };
 
-/// A settings error (tolerance not in (0, 1), cap below 1), naming `where`.
+/// A settings error (tolerance not in (0, 1), cap or refactorisation
+/// threshold below 1), naming `where`.
 llvm::Error checkSolveSettings(const SolveSettings &settings,
                                llvm::StringRef where);
 
@@ -117,6 +130,23 @@ struct SolveStatementStats {
 
 class FactorCache;
 class SparseFactorisation;
+class SingleCholeskyFactor;
+
+/// pcg-cholesky's preconditioner of one statement: a factorisation of an
+/// earlier matrix, in float where its values fit (SparseDirect.h).
+struct CholeskyPreconditioner {
+  CholeskyPreconditioner();
+  ~CholeskyPreconditioner();
+  CholeskyPreconditioner(CholeskyPreconditioner &&);
+  CholeskyPreconditioner &operator=(CholeskyPreconditioner &&);
+
+  std::shared_ptr<const SparseFactorisation> factor;
+  std::unique_ptr<SingleCholeskyFactor> single;
+  std::vector<double> scratch;
+
+  /// z = M^-1 r.
+  llvm::Error apply(const double *r, double *z);
+};
 
 /// A system `(A + u v^T) x = b` as the Sherman–Morrison rewrite hands it to
 /// the runtime; the pointers live only during the observer's call.
@@ -207,6 +237,14 @@ private:
   llvm::Expected<SolveReport> iterative(const SquareBCSRView<T> &a,
                                         const T *b, T *x, double bNorm,
                                         SolveStatementStats &stats);
+  /// pcg-cholesky (SolveMethod::CholeskyCG): CG from x with `options`,
+  /// preconditioned by the statement's factorisation; the factorisations
+  /// it makes are added to `report`.
+  template <typename T>
+  llvm::Expected<SolverResult>
+  factorPreconditioned(const SquareBCSRView<T> &a, const T *b, T *x,
+                       SolverOptions options, llvm::StringRef statement,
+                       SolveReport &report);
   template <typename T>
   llvm::Expected<SolveReport> direct(FactorKind kind,
                                      const SquareBCSRView<T> &a, const T *b,
@@ -221,6 +259,9 @@ private:
   /// The latest answer of each statement solved iteratively, the starting
   /// point of its next solve (SolveSettings::warmStart).
   std::map<std::string, std::vector<double>, std::less<>> previousAnswers;
+  /// The preconditioner of each statement solved by pcg-cholesky.
+  std::map<std::string, CholeskyPreconditioner, std::less<>>
+      preconditionerFactors;
   RankOneSystemObserver rankOneObserver;
 };
 

@@ -2,9 +2,9 @@
 //
 // The solvers of the runtime, on square block sparse matrices whose arrays
 // belong to a BCSRMatrix or to lowered code (SquareBCSRView):
-//  - conjugateGradient: plain, Jacobi- or block-Jacobi-preconditioned CG
-//    from the given x, stopping after maxIterations or once the true
-//    residual's r.r <= tolerance;
+//  - conjugateGradient: plain, Jacobi-, block-Jacobi- or caller-
+//    preconditioned CG from the given x, stopping after maxIterations or
+//    once the true residual's r.r <= tolerance;
 //  - solveLowerTriangular: forward substitution.
 // `x = A \ b` of the language chooses among these and the sparse direct
 // solvers in a SolveSession (SolveSession.h).
@@ -19,6 +19,7 @@
 #include "llvm/Support/Error.h"
 
 #include <cstdint>
+#include <functional>
 
 namespace simit {
 
@@ -52,8 +53,13 @@ bool isSymmetric(const SquareBCSRView<T> &a, double relativeTolerance);
 
 /// Jacobi scales by 1 / A(i, i); block-Jacobi multiplies by the inverse of
 /// each blockSize x blockSize diagonal block (3x3 for the usual vectors of
-/// points), which also undoes the coupling of a point's components.
-enum class Preconditioner { None, Jacobi, BlockJacobi };
+/// points), which also undoes the coupling of a point's components;
+/// Operator is the caller's (SolverOptions::apply).
+enum class Preconditioner { None, Jacobi, BlockJacobi, Operator };
+
+/// z = M^-1 r for a symmetric positive definite M, in double.
+using PreconditionerOperator =
+    std::function<llvm::Error(const double *r, double *z)>;
 
 struct SolverOptions {
   int maxIterations = 50;
@@ -63,6 +69,9 @@ struct SolverOptions {
   /// the iteration restarts from there (within maxIterations).
   double tolerance = 1e-12;
   Preconditioner preconditioner = Preconditioner::None;
+  /// The preconditioner when `preconditioner` is Operator; its errors end
+  /// the solve.
+  PreconditionerOperator apply;
 };
 
 struct SolverResult {

@@ -116,18 +116,25 @@ def test_an_extern_array_is_shared_with_the_program(net):
         program.step.bind(h=np.array(0.01, dtype=np.float32))
 
 
-def test_set_solver_chooses_how_the_step_solves(net):
-    """runtimeSolve=1 solves with `A \\ b`; Cholesky through set_solver
-    matches the dense NumPy solve, and solver_stats says what it did."""
+def steps_match_numpy(net, steps):
+    """Runs `steps` steps of the program; after each, v equals the dense
+    NumPy step's to 1e-10."""
     program, points, springs, edges = net
-    program.bind(runtimeSolve=1)
-    program.set_solver("cholesky")
     x, v = points["x"].copy(), points["v"].copy()
     m, c, l0 = points["m"].copy(), points["c"].copy(), springs["l0"].copy()
-    for _ in range(3):
+    for _ in range(steps):
         x, v = numpy_step(x, v, m, c, edges, l0)
         program.step()
         np.testing.assert_allclose(points["v"], v, rtol=0, atol=1e-10)
+
+
+def test_set_solver_chooses_how_the_step_solves(net):
+    """runtimeSolve=1 solves with `A \\ b`; Cholesky through set_solver
+    matches the dense NumPy solve, and solver_stats says what it did."""
+    program, *_ = net
+    program.bind(runtimeSolve=1)
+    program.set_solver("cholesky")
+    steps_match_numpy(net, 3)
     (stats,) = program.solver_stats()
     assert stats["methods"] == ["cholesky"]
     assert stats["solves"] == 3 and stats["factorisations"] == 3
@@ -139,15 +146,10 @@ def test_pcg_cholesky_factorises_once_then_preconditions(net):
     """pcg-cholesky factorises the first frame's matrix and preconditions
     the later frames' CG with it; refactor_iters=1 makes every frame that
     needs more than one iteration factorise its own matrix."""
-    program, points, springs, edges = net
+    program, *_ = net
     program.bind(runtimeSolve=1)
     program.set_solver("pcg-cholesky", tol=1e-12)
-    x, v = points["x"].copy(), points["v"].copy()
-    m, c, l0 = points["m"].copy(), points["c"].copy(), springs["l0"].copy()
-    for _ in range(3):
-        x, v = numpy_step(x, v, m, c, edges, l0)
-        program.step()
-        np.testing.assert_allclose(points["v"], v, rtol=0, atol=1e-10)
+    steps_match_numpy(net, 3)
     (stats,) = program.solver_stats()
     assert stats["methods"] == ["pcg-cholesky"]
     assert stats["factorisations"] == 1

@@ -349,8 +349,10 @@ TEST(SolveSession, CholeskyCGPreconditionsWithAnEarlierFactorisation) {
   // A 1% change of every entry (symmetric, still SPD): the old factor is
   // a good preconditioner, not an exact one.
   Eigen::MatrixXd change = randomBand(kBlocks, 3, 31);
-  BandSystem<double> nearby(kBlocks, 3,
-                            a + 0.01 * (change + change.transpose()));
+  auto changedBy = [&](double by) {
+    return Eigen::MatrixXd(a + by * (change + change.transpose()));
+  };
+  BandSystem<double> nearby(kBlocks, 3, changedBy(0.01));
   int lagged = iterationsOf(session, nearby, rhs, "s");
   EXPECT_GT(lagged, 1);
   EXPECT_LE(lagged, 8);
@@ -360,8 +362,7 @@ TEST(SolveSession, CholeskyCGPreconditionsWithAnEarlierFactorisation) {
   // with it in two or three steps more.
   settings.refactorIterations = 1;
   session.setSettings(settings);
-  BandSystem<double> farther(kBlocks, 3,
-                             a + 0.05 * (change + change.transpose()));
+  BandSystem<double> farther(kBlocks, 3, changedBy(0.05));
   int refactorised = iterationsOf(session, farther, rhs, "s");
   EXPECT_GE(refactorised, 2);
   EXPECT_LE(refactorised, 4);
@@ -732,27 +733,24 @@ TEST(SolveSession, MethodNamesRoundTrip) {
 }
 
 TEST(IsSymmetric, MissingMirrorBlockCountsAsZero) {
-  // Blocks (0, 0), (0, 1), (1, 1): symmetric only while (0, 1) is zero.
-  std::vector<int32_t> rowptr{0, 2, 3}, colidx{0, 1, 1};
-  std::vector<double> values{2.0, 0.0, 3.0};
-  SquareBCSRView<double> view;
-  view.rows = 2;
-  view.rowptr = rowptr.data();
-  view.colidx = colidx.data();
-  view.values = values.data();
-  EXPECT_TRUE(isSymmetric(view, 1e-12));
-  values[1] = 1e-3;
-  EXPECT_FALSE(isSymmetric(view, 1e-12));
-
-  // The same below the diagonal: (0, 0), (1, 0), (1, 1).
-  std::vector<int32_t> lowerRowptr{0, 1, 3}, lowerColidx{0, 0, 1};
-  std::vector<double> lowerValues{2.0, 0.0, 3.0};
-  view.rowptr = lowerRowptr.data();
-  view.colidx = lowerColidx.data();
-  view.values = lowerValues.data();
-  EXPECT_TRUE(isSymmetric(view, 1e-12));
-  lowerValues[1] = 1e-3;
-  EXPECT_FALSE(isSymmetric(view, 1e-12));
+  // Three 1x1 blocks, the middle one's mirror missing: symmetric only while
+  // the middle one is zero.
+  auto expectSymmetricWhileZero = [](std::vector<int32_t> rowptr,
+                                     std::vector<int32_t> colidx) {
+    std::vector<double> values{2.0, 0.0, 3.0};
+    SquareBCSRView<double> view;
+    view.rows = 2;
+    view.rowptr = rowptr.data();
+    view.colidx = colidx.data();
+    view.values = values.data();
+    EXPECT_TRUE(isSymmetric(view, 1e-12));
+    values[1] = 1e-3;
+    EXPECT_FALSE(isSymmetric(view, 1e-12));
+  };
+  // (0, 0), (0, 1), (1, 1): above the diagonal.
+  expectSymmetricWhileZero({0, 2, 3}, {0, 1, 1});
+  // (0, 0), (1, 0), (1, 1): below it.
+  expectSymmetricWhileZero({0, 1, 3}, {0, 0, 1});
 }
 
 TEST(IsSymmetric, BlocksMustBeTransposes) {

@@ -233,20 +233,6 @@ SolveSession::direct(FactorKind kind, const SquareBCSRView<T> &a, const T *b,
   return report;
 }
 
-CholeskyPreconditioner::CholeskyPreconditioner() = default;
-CholeskyPreconditioner::~CholeskyPreconditioner() = default;
-CholeskyPreconditioner::CholeskyPreconditioner(CholeskyPreconditioner &&) =
-    default;
-CholeskyPreconditioner &
-CholeskyPreconditioner::operator=(CholeskyPreconditioner &&) = default;
-
-llvm::Error CholeskyPreconditioner::apply(const double *r, double *z) {
-  if (!single)
-    return factor->solve(r, z);
-  single->solve(r, z, scratch);
-  return llvm::Error::success();
-}
-
 template <typename T>
 llvm::Expected<SolverResult> SolveSession::factorPreconditioned(
     const SquareBCSRView<T> &a, const T *b, T *x, SolverOptions options,
@@ -262,7 +248,6 @@ llvm::Expected<SolverResult> SolveSession::factorPreconditioned(
     if (!lookup)
       return lookup.takeError();
     preconditioner.factor = lookup->factor;
-    preconditioner.single = SingleCholeskyFactor::of(*lookup->factor);
     report.analysed |= lookup->analysed;
     report.factorised |= lookup->factorised;
     report.reused |= !lookup->factorised;
@@ -280,7 +265,7 @@ llvm::Expected<SolverResult> SolveSession::factorPreconditioned(
       return std::move(err);
   options.preconditioner = Preconditioner::Operator;
   options.apply = [&](const double *r, double *z) {
-    return preconditioner.apply(r, z);
+    return preconditioner.factor->solveRounded(r, z, preconditioner.scratch);
   };
   int cap = options.maxIterations;
   if (!fresh)

@@ -231,56 +231,29 @@ llvm::Error SparseFactorisation::solve(const double *b, double *x) const {
   return llvm::Error::success();
 }
 
-std::unique_ptr<SingleCholeskyFactor>
-SingleCholeskyFactor::of(const SparseFactorisation &factor) {
-  const auto *l = static_cast<const cholmod_factor *>(factor.cholmodFactor);
-  if (!l || !l->is_super || !l->is_ll || l->xtype != CHOLMOD_REAL ||
-      l->itype != CHOLMOD_LONG)
-    return nullptr;
-  std::unique_ptr<SingleCholeskyFactor> single(new SingleCholeskyFactor());
-  single->n = static_cast<int64_t>(l->n);
-  auto copy = [](const void *from, size_t count) {
-    const auto *begin = static_cast<const SuiteSparse_long *>(from);
-    return std::vector<int64_t>(begin, begin + count);
-  };
-  single->permutation = copy(l->Perm, l->n);
-  single->first = copy(l->super, l->nsuper + 1);
-  single->rowStart = copy(l->pi, l->nsuper + 1);
-  single->valueStart = copy(l->px, l->nsuper + 1);
-  single->rows = copy(l->s, l->ssize);
-  const auto *x = static_cast<const double *>(l->x);
-  single->values.resize(l->xsize);
-  for (size_t i = 0; i < l->xsize; ++i) {
-    double value = std::abs(x[i]);
-    if (value != 0 && !(value >= std::numeric_limits<float>::min() &&
-                        value <= std::numeric_limits<float>::max()))
-      return nullptr;
-    single->values[i] = static_cast<float>(x[i]);
-  }
-  return single;
-}
-
 namespace {
 /// Columns of a panel taken together below the diagonal block, so that
 /// each row of the solution is loaded and stored once per group, and the
 /// backward sums are independent chains.
 constexpr int64_t kColumnGroup = 4;
-} // namespace
 
-void SingleCholeskyFactor::solve(const double *b, double *x,
-                                 std::vector<double> &scratch) const {
-  scratch.resize(static_cast<size_t>(n));
-  double *y = scratch.data();
-  for (int64_t k = 0; k < n; ++k)
-    y[k] = b[permutation[k]];
-  int64_t supernodes = static_cast<int64_t>(first.size()) - 1;
+/// y = L^-T L^-1 y in place for a supernodal L in CHOLMOD's layout:
+/// supernode s holds columns [first[s], first[s + 1]), its row indices at
+/// rows[rowStart[s] .. rowStart[s + 1]) (the first ones its own columns),
+/// and its values as a column-major panel of those rows at
+/// values[valueStart[s] ..].
+void solveSupernodal(int64_t supernodes, const SuiteSparse_long *first,
+                     const SuiteSparse_long *rowStart,
+                     const SuiteSparse_long *valueStart,
+                     const SuiteSparse_long *rows, const float *values,
+                     double *y) {
   // L y' = y, supernode by supernode: the diagonal block's forward
   // substitution, then the rows below take the panel times its solution.
   for (int64_t s = 0; s < supernodes; ++s) {
     int64_t k1 = first[s], columns = first[s + 1] - k1;
     int64_t height = rowStart[s + 1] - rowStart[s];
-    const int64_t *panelRows = rows.data() + rowStart[s];
-    const float *panel = values.data() + valueStart[s];
+    const SuiteSparse_long *panelRows = rows + rowStart[s];
+    const float *panel = values + valueStart[s];
     for (int64_t j = 0; j < columns; ++j) {
       const float *column = panel + j * height;
       double yj = y[k1 + j] / column[j];
@@ -308,8 +281,8 @@ void SingleCholeskyFactor::solve(const double *b, double *x,
   for (int64_t s = supernodes; s-- > 0;) {
     int64_t k1 = first[s], columns = first[s + 1] - k1;
     int64_t height = rowStart[s + 1] - rowStart[s];
-    const int64_t *panelRows = rows.data() + rowStart[s];
-    const float *panel = values.data() + valueStart[s];
+    const SuiteSparse_long *panelRows = rows + rowStart[s];
+    const float *panel = values + valueStart[s];
     for (int64_t j = 0; j < columns; j += kColumnGroup) {
       int64_t group = std::min(kColumnGroup, columns - j);
       const float *column[kColumnGroup];
@@ -332,8 +305,44 @@ void SingleCholeskyFactor::solve(const double *b, double *x,
       y[k1 + j] = sum / column[j];
     }
   }
+}
+} // namespace
+
+llvm::Error SparseFactorisation::solveRounded(
+    const double *b, double *x, std::vector<double> &scratch) const {
+  const auto *l = static_cast<const cholmod_factor *>(cholmodFactor);
+  bool supernodal = l && l->is_super && l->is_ll && l->xtype == CHOLMOD_REAL;
+  if (supernodal)
+    std::call_once(roundOnce, [&] {
+      const auto *values = static_cast<const double *>(l->x);
+      std::vector<float> rounded(l->xsize);
+      for (size_t i = 0; i < l->xsize; ++i) {
+        double magnitude = std::abs(values[i]);
+        if (magnitude != 0 &&
+            !(magnitude >= std::numeric_limits<float>::min() &&
+              magnitude <= std::numeric_limits<float>::max()))
+          return;
+        rounded[i] = static_cast<float>(values[i]);
+      }
+      roundedL = std::move(rounded);
+    });
+  if (!supernodal || roundedL.empty())
+    return solve(b, x);
+  int64_t n = size();
+  const auto *permutation = static_cast<const SuiteSparse_long *>(l->Perm);
+  scratch.resize(static_cast<size_t>(n));
+  double *y = scratch.data();
+  for (int64_t k = 0; k < n; ++k)
+    y[k] = b[permutation[k]];
+  solveSupernodal(static_cast<int64_t>(l->nsuper),
+                  static_cast<const SuiteSparse_long *>(l->super),
+                  static_cast<const SuiteSparse_long *>(l->pi),
+                  static_cast<const SuiteSparse_long *>(l->px),
+                  static_cast<const SuiteSparse_long *>(l->s),
+                  roundedL.data(), y);
   for (int64_t k = 0; k < n; ++k)
     x[permutation[k]] = y[k];
+  return llvm::Error::success();
 }
 
 double SparseFactorisation::relativeResidual(const double *b,

@@ -22,6 +22,7 @@
 
 #include <list>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 namespace simit {
@@ -45,12 +46,21 @@ public:
   int64_t size() const;
   /// x = A^-1 b in double.
   llvm::Error solve(const double *b, double *x) const;
+  /// x ~ A^-1 b for preconditioning (pcg-cholesky): a supernodal Cholesky
+  /// factor's triangular solves with L rounded to float, summed in double.
+  /// A solve with one right-hand side reads every value of L once, so it
+  /// runs at memory speed, and float halves the bytes; CG corrects the
+  /// rounding. The float copy is made on the first call and kept, so every
+  /// statement preconditioned by this factorisation shares it. Other
+  /// factorisations, and an L with values outside float's normal range,
+  /// solve exactly. `scratch` is the caller's reused storage.
+  llvm::Error solveRounded(const double *b, double *x,
+                           std::vector<double> &scratch) const;
   /// ||b - A x|| / ||b|| with the factorised matrix, in double; 0 for b = 0.
   double relativeResidual(const double *b, const double *x) const;
 
 private:
   friend class FactorCache;
-  friend class SingleCholeskyFactor;
   SparseFactorisation() = default;
   /// Whether `values` (as T) is the value this factorises.
   template <typename T> bool holds(const SquareBCSRView<T> &a) const;
@@ -64,34 +74,10 @@ private:
   std::vector<double> columnValues;
   void *cholmodFactor = nullptr; // cholmod_factor, Cholesky and LDLT
   void *umfpackNumeric = nullptr; // LU
-};
-
-/// The supernodal Cholesky factor L of a SparseFactorisation, with its
-/// fill-reducing permutation P, its values rounded to float: pcg-cholesky's
-/// preconditioner step (P^T L L^T P)^-1 r. A triangular solve with one
-/// right-hand side reads every value of L once, so it runs at memory speed,
-/// and float halves the bytes; CG corrects the rounding, as it corrects an
-/// earlier frame's factor.
-class SingleCholeskyFactor {
-public:
-  /// Null unless `factor` is a supernodal Cholesky factorisation whose
-  /// values of L all lie in float's normal range (or are zero).
-  static std::unique_ptr<SingleCholeskyFactor>
-  of(const SparseFactorisation &factor);
-
-  int64_t size() const { return n; }
-  /// x = (P^T L L^T P)^-1 b, summed in double; `scratch` is reused storage.
-  void solve(const double *b, double *x, std::vector<double> &scratch) const;
-
-private:
-  SingleCholeskyFactor() = default;
-  int64_t n = 0;
-  /// CHOLMOD's supernodal layout: supernode s holds columns [first[s],
-  /// first[s + 1]), its row indices at rows[rowStart[s] ..
-  /// rowStart[s + 1]) (the first ones its own columns), and its values as
-  /// a column-major panel of those rows at values[valueStart[s] ..].
-  std::vector<int64_t> permutation, first, rowStart, valueStart, rows;
-  std::vector<float> values;
+  /// solveRounded's copy of a supernodal L in float; empty when it does not
+  /// apply.
+  mutable std::once_flag roundOnce;
+  mutable std::vector<float> roundedL;
 };
 
 /// What FactorCache::factorise did.

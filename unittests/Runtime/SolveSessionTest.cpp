@@ -19,16 +19,24 @@ using ::testing::HasSubstr;
 namespace {
 
 /// A matrix of n x n blocks of b x b in BCSR arrays on a band pattern
-/// (blocks (r, c) with |r - c| <= 1), with its dense copy.
+/// (blocks (r, c) with |r - c| <= 1), or on the pattern of its nonzero
+/// blocks, with its dense copy.
 template <typename T> struct BandSystem {
   std::vector<int32_t> rowptr{0}, colidx;
   std::vector<T> values;
   Eigen::MatrixXd dense;
   SquareBCSRView<T> view;
 
-  BandSystem(int n, int b, const Eigen::MatrixXd &full) : dense(full) {
+  BandSystem(int n, int b, const Eigen::MatrixXd &full,
+             bool nonzeroBlocks = false)
+      : dense(full) {
     for (int r = 0; r < n; ++r) {
-      for (int c = std::max(0, r - 1); c <= std::min(n - 1, r + 1); ++c) {
+      for (int c = 0; c < n; ++c) {
+        bool stored = nonzeroBlocks
+                          ? !full.block(r * b, c * b, b, b).isZero(0)
+                          : std::abs(r - c) <= 1;
+        if (!stored)
+          continue;
         colidx.push_back(c);
         for (int i = 0; i < b; ++i)
           for (int j = 0; j < b; ++j)
@@ -395,26 +403,7 @@ TEST(SolveSession, CholeskyCGOnARandomPattern) {
     }
   Eigen::MatrixXd a = m * m.transpose() +
                       Eigen::MatrixXd::Identity(n * b, n * b);
-  std::vector<int32_t> rowptr{0}, colidx;
-  std::vector<double> values;
-  for (int r = 0; r < n; ++r) {
-    for (int c = 0; c < n; ++c) {
-      Eigen::MatrixXd block = a.block(r * b, c * b, b, b);
-      if (block.isZero(0))
-        continue;
-      colidx.push_back(c);
-      for (int i = 0; i < b; ++i)
-        for (int j = 0; j < b; ++j)
-          values.push_back(block(i, j));
-    }
-    rowptr.push_back(static_cast<int32_t>(colidx.size()));
-  }
-  SquareBCSRView<double> view;
-  view.rows = n;
-  view.blockSize = b;
-  view.rowptr = rowptr.data();
-  view.colidx = colidx.data();
-  view.values = values.data();
+  BandSystem<double> system(n, b, a, /*nonzeroBlocks=*/true);
   SolveSettings settings = settingsOf(SolveMethod::CholeskyCG);
   settings.tolerance = 1e-10;
   settings.warmStart = false;
@@ -423,7 +412,7 @@ TEST(SolveSession, CholeskyCGOnARandomPattern) {
   Eigen::VectorXd exact = a.llt().solve(rhs);
   for (int round = 0; round < 2; ++round) {
     std::vector<double> x(n * b);
-    auto report = session.solve(view, rhs.data(), x.data(), "random");
+    auto report = session.solve(system.view, rhs.data(), x.data(), "random");
     ASSERT_TRUE(bool(report)) << llvm::toString(report.takeError());
     EXPECT_EQ(report->iterations, 2);
     for (int i = 0; i < n * b; ++i)

@@ -130,23 +130,6 @@ struct SolveStatementStats {
 
 class FactorCache;
 class SparseFactorisation;
-class SingleCholeskyFactor;
-
-/// pcg-cholesky's preconditioner of one statement: a factorisation of an
-/// earlier matrix, in float where its values fit (SparseDirect.h).
-struct CholeskyPreconditioner {
-  CholeskyPreconditioner();
-  ~CholeskyPreconditioner();
-  CholeskyPreconditioner(CholeskyPreconditioner &&);
-  CholeskyPreconditioner &operator=(CholeskyPreconditioner &&);
-
-  std::shared_ptr<const SparseFactorisation> factor;
-  std::unique_ptr<SingleCholeskyFactor> single;
-  std::vector<double> scratch;
-
-  /// z = M^-1 r.
-  llvm::Error apply(const double *r, double *z);
-};
 
 /// A system `(A + u v^T) x = b` as the Sherman–Morrison rewrite hands it to
 /// the runtime; the pointers live only during the observer's call.
@@ -259,7 +242,12 @@ private:
   /// The latest answer of each statement solved iteratively, the starting
   /// point of its next solve (SolveSettings::warmStart).
   std::map<std::string, std::vector<double>, std::less<>> previousAnswers;
-  /// The preconditioner of each statement solved by pcg-cholesky.
+  /// pcg-cholesky's preconditioner of one statement: the factorisation of
+  /// an earlier matrix, and the storage of its rounded solves.
+  struct CholeskyPreconditioner {
+    std::shared_ptr<const SparseFactorisation> factor;
+    std::vector<double> scratch;
+  };
   std::map<std::string, CholeskyPreconditioner, std::less<>>
       preconditionerFactors;
   RankOneSystemObserver rankOneObserver;

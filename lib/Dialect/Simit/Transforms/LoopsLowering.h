@@ -345,6 +345,12 @@ public:
   void forEachEdgeBlock(Location loc, const Storage &storage, Value edge,
                         function_ref<void(Value endpoint, Value position)>
                             body);
+  /// The `n` components of block (row, col) of `array`, a matrix stored as
+  /// `storage`: zeros where it stores no block, the sum of an incidence's
+  /// blocks there.
+  SmallVector<Value> readMatrixBlock(Location loc, const Storage &storage,
+                                     Value array, Value row, Value col,
+                                     int64_t n);
   /// The sum over the blocks of an incidence (or transposed incidence)
   /// matrix at (row, col) of `read(position)`: an edge naming one endpoint
   /// twice has two blocks there, and none is zero.
@@ -445,6 +451,9 @@ private:
   /// simit.print and strings (C strings as !llvm.ptr) through runtime
   /// functions (simit_rt_print_*, simit_rt_string_*).
   LogicalResult lowerPrintOrString(Operation *op);
+  /// Prints system matrix `matrix` densely with `printScalar`.
+  LogicalResult printMatrix(Location loc, Value matrix,
+                            function_ref<LogicalResult(Value)> printScalar);
   /// The address of a global NUL-terminated copy of `text` (!llvm.ptr).
   Value stringConstant(Location loc, StringRef text);
   /// The private declaration of runtime function `name` with the C

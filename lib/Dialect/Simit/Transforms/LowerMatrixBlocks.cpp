@@ -136,6 +136,41 @@ Value FunctionLowering::sumIncidenceBlocks(Location loc,
   return sum;
 }
 
+SmallVector<Value> FunctionLowering::readMatrixBlock(Location loc,
+                                                    const Storage &storage,
+                                                    Value array, Value row,
+                                                    Value col, int64_t n) {
+  auto type = cast<MemRefType>(array.getType());
+  Type scalar = type.getElementType();
+  auto load = [&](Value position, int64_t c) -> Value {
+    return memref::LoadOp::create(b, loc, array,
+                                  blockIndices(type, {position}, c));
+  };
+  SmallVector<Value> components;
+  if (storage.kind == Storage::Kind::Incidence) {
+    for (int64_t c = 0; c < n; ++c)
+      components.push_back(sumIncidenceBlocks(
+          loc, storage, row, col, scalar,
+          [&](Value position) { return load(position, c); }));
+    return components;
+  }
+  Value position = findBlock(loc, storage, row, col);
+  Value found = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::sge,
+                                      position, indexConstant(0));
+  SmallVector<Type> types(n, scalar);
+  auto branch = scf::IfOp::create(b, loc, types, found,
+                                  /*withElseRegion=*/true);
+  OpBuilder::InsertionGuard guard(b);
+  b.setInsertionPointToStart(branch.thenBlock());
+  for (int64_t c = 0; c < n; ++c)
+    components.push_back(load(position, c));
+  scf::YieldOp::create(b, loc, components);
+  // Blocks outside the storage are zero.
+  b.setInsertionPointToStart(branch.elseBlock());
+  scf::YieldOp::create(b, loc, SmallVector<Value>(n, zeroOf(scalar)));
+  return SmallVector<Value>(branch.getResults());
+}
+
 LogicalResult FunctionLowering::lowerMatrixBlockAccess(Operation *op) {
   Location loc = op->getLoc();
   auto extract = dyn_cast<ExtractOp>(op);
@@ -152,42 +187,17 @@ LogicalResult FunctionLowering::lowerMatrixBlockAccess(Operation *op) {
   Value row = lookup(indices[0]), col = lookup(indices[1]);
   Value array = lookup(matrix);
   auto type = cast<MemRefType>(array.getType());
-  if (storage.kind == Storage::Kind::Incidence && extract) {
-    SmallVector<Value> components;
-    for (int64_t c = 0, n = numComponents(extract.getType()); c < n; ++c)
-      components.push_back(sumIncidenceBlocks(
-          loc, storage, row, col, type.getElementType(), [&](Value p) {
-            return memref::LoadOp::create(b, loc, array,
-                                          blockIndices(type, {p}, c))
-                .getResult();
-          }));
-    map(extract, fromComponents(convertType(extract.getType()), components));
+  if (extract) {
+    map(extract,
+        fromComponents(convertType(extract.getType()),
+                       readMatrixBlock(loc, storage, array, row, col,
+                                       numComponents(extract.getType()))));
     return success();
   }
+
   Value position = findBlock(loc, storage, row, col);
   Value found = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::sge,
                                       position, indexConstant(0));
-
-  if (extract) {
-    Type resultType = convertType(extract.getType());
-    int64_t n = numComponents(extract.getType());
-    auto branch = scf::IfOp::create(b, loc, TypeRange{resultType}, found,
-                                    /*withElseRegion=*/true);
-    OpBuilder::InsertionGuard guard(b);
-    b.setInsertionPointToStart(branch.thenBlock());
-    SmallVector<Value> components;
-    for (int64_t c = 0; c < n; ++c)
-      components.push_back(memref::LoadOp::create(
-          b, loc, array, blockIndices(type, {position}, c)));
-    scf::YieldOp::create(b, loc, fromComponents(resultType, components));
-    // Blocks outside the storage are zero.
-    b.setInsertionPointToStart(branch.elseBlock());
-    SmallVector<Value> zeros(n, zeroOf(type.getElementType()));
-    scf::YieldOp::create(b, loc, fromComponents(resultType, zeros));
-    map(extract, branch.getResult(0));
-    return success();
-  }
-
   cf::AssertOp::create(b, loc, found,
                        "writing a block that is not in the sparsity of " +
                            storage.describe() + sourcePositionSuffix(loc));

@@ -29,6 +29,62 @@ Value FunctionLowering::stringConstant(Location loc, StringRef text) {
   return createStringConstant(b, module, loc, text);
 }
 
+LogicalResult FunctionLowering::printMatrix(
+    Location loc, Value matrix,
+    function_ref<LogicalResult(Value)> printScalar) {
+  // Dense, as language.md section 6 prints every tensor: one line per
+  // scalar row, its components separated by spaces, zeros where the
+  // storage has no block.
+  Storage storage = storageOf(matrix);
+  if (!storage.isMatrix())
+    return matrix.getDefiningOp()
+               ? matrix.getDefiningOp()->emitError(
+                     "printing a system matrix of unknown sparsity")
+               : failure();
+  auto type = cast<SystemTensorType>(matrix.getType());
+  SmallVector<int64_t> shape = localShape(type.getBlockType());
+  int64_t blockRows = shape.empty() ? 1 : shape[0];
+  int64_t blockCols = shape.size() < 2 ? 1 : shape[1];
+  Value array = lookup(matrix);
+  auto printText = [&](StringRef text) {
+    callRuntime(loc, runtimeName(RuntimeFunction::PrintStr), {},
+                {stringConstant(loc, text)});
+  };
+  auto printIf = [&](Value condition, StringRef text) {
+    auto branch = scf::IfOp::create(b, loc, TypeRange{}, condition,
+                                    /*withElseRegion=*/false);
+    OpBuilder::InsertionGuard guard(b);
+    b.setInsertionPointToStart(branch.thenBlock());
+    printText(text);
+  };
+  auto notFirst = [&](Value index) {
+    return arith::CmpIOp::create(b, loc, arith::CmpIPredicate::ne, index,
+                                 indexConstant(0));
+  };
+  LogicalResult result = success();
+  forLoop(loc, getSetSize(storage.rows), [&](Value row) {
+    for (int64_t i = 0; i < blockRows; ++i) {
+      if (i == 0)
+        printIf(notFirst(row), "\n");
+      else
+        printText("\n");
+      forLoop(loc, getSetSize(storage.cols), [&](Value col) {
+        SmallVector<Value> block = readMatrixBlock(
+            loc, storage, array, row, col, blockRows * blockCols);
+        for (int64_t j = 0; j < blockCols; ++j) {
+          if (j == 0)
+            printIf(notFirst(col), " ");
+          else
+            printText(" ");
+          if (failed(printScalar(block[i * blockCols + j])))
+            result = failure();
+        }
+      });
+    }
+  });
+  return result;
+}
+
 LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {
   Location loc = op->getLoc();
   MLIRContext *ctx = op->getContext();
@@ -132,9 +188,14 @@ LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {
     }
     if (auto system = dyn_cast<SystemTensorType>(type);
         system && system.isSystem()) {
+      if (system.getOrder() == 2) {
+        if (failed(printMatrix(loc, value, printScalar)))
+          return failure();
+        continue;
+      }
       if (system.getOrder() != 1)
-        return op->emitError("printing system matrices is not supported by "
-                             "the loop lowering yet");
+        return op->emitError("printing system tensors of order ")
+               << system.getOrder() << " is not supported";
       // A system vector: its elements in set order, separated by spaces
       // when they are scalars, one element's block per line otherwise
       // (the block's components separated by spaces).

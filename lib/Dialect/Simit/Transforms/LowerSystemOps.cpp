@@ -36,6 +36,20 @@ static bool writesField(Operation *op, StringAttr set, StringAttr field,
   return isa<func::CallOp>(op);
 }
 
+/// Whether the first use of variable `alloc` in its block (the use itself
+/// or the operation holding it) is a store to it.
+static bool isFirstUseAStore(AllocOp alloc) {
+  Block *block = alloc->getBlock();
+  Operation *first = nullptr;
+  for (Operation *user : alloc->getUsers()) {
+    Operation *inBlock = block->findAncestorOpInBlock(*user);
+    if (inBlock && (!first || inBlock->isBeforeInBlock(first)))
+      first = inBlock;
+  }
+  auto store = dyn_cast_or_null<StoreOp>(first);
+  return store && store.getRef() == alloc.getResult();
+}
+
 LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
   handled = true;
   Location loc = op->getLoc();
@@ -98,10 +112,20 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
   }
   if (auto alloc = dyn_cast<AllocOp>(op)) {
     Type type = cast<RefType>(alloc.getType()).getValueType();
-    // A matrix variable's storage is that of the first matrix stored to
-    // it: its array is made there.
-    if (cast<SystemTensorType>(type).getOrder() != 1)
+    // A matrix variable's array is made by the first store when that is
+    // the variable's first use in its block (it then dominates every use);
+    // otherwise (first assigned in a branch or loop) here, zero filled,
+    // in the storage of its type.
+    if (cast<SystemTensorType>(type).getOrder() != 1) {
+      if (isFirstUseAStore(alloc))
+        return success();
+      Storage storage = storageOf(alloc);
+      if (!storage.isMatrix())
+        return op->emitError("the storage of this matrix variable is not "
+                             "known");
+      map(alloc, allocSystem(loc, type, storage));
       return success();
+    }
     map(alloc, allocSystem(loc, type, Storage::dense()));
     return success();
   }
@@ -130,12 +154,8 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
     Value value = lookup(store.getValue()), buffer = lookup(store.getRef());
     Storage storage = storageOf(store.getValue());
     if (!buffer) {
-      // The first store to a matrix variable, which must be where the
-      // variable is declared so that its array dominates every use.
-      Operation *alloc = store.getRef().getDefiningOp();
-      if (!alloc || alloc->getBlock() != op->getBlock())
-        return op->emitError("a variable holding a system matrix must be "
-                             "first assigned where it is declared");
+      // The first store to a matrix variable, where it is declared
+      // (isFirstUseAStore), so that its array dominates every use.
       if (!storage.isMatrix())
         return op->emitError("a variable holding a system matrix must be "
                              "first assigned an assembled matrix");

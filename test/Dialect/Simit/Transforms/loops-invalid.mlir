@@ -154,33 +154,6 @@ func.func @scalar_not_a_variable() -> f64 attributes {simit.export} {
 
 // -----
 
-// A matrix variable's array is made at its first store, which must
-// dominate its uses.
-!Point = !simit.element<"Point", {x : f64}>
-!Spring = !simit.element<"Spring", {k : f64}>
-!A = !simit.tensor<["points", "points"] x f64>
-!Springs = !simit.set<"springs", !Spring, ["points", "points"]>
-simit.extern @springs : !Springs
-func.func @link(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> !A {
-  %a = simit.tuple_get %ends[0] : !simit.tuple<!Point x 2> -> !Point
-  %k = simit.elem_read %s["k"] : !Spring -> f64
-  %A0 = simit.zeros : !A
-  %A1 = simit.insert %k into %A0[%a, %a] : f64 into !A, (!Point, !Point)
-  return %A1 : !A
-}
-func.func @late(%c : i1) attributes {simit.export} {
-  %springs = simit.get_set @springs : !Springs
-  %var = simit.alloc : !simit.ref<!A>
-  scf.if %c {
-    %A = simit.assemble @link() to %springs reduce <add> : (!Springs) -> !A
-    // expected-error @below {{a variable holding a system matrix must be first assigned where it is declared}}
-    simit.store %A, %var : !simit.ref<!A>
-  }
-  return
-}
-
-// -----
-
 // An incidence matrix needs every endpoint in its column set.
 !Particle = !simit.element<"Particle", {q : f64}>
 !Node = !simit.element<"Node", {x : f64}>

@@ -341,9 +341,12 @@ int main(int argc, char **argv) {
       argc, argv,
       "Dense LU of H_s + u v^T against the Sherman-Morrison rewrite on the "
       "pressure chamber's Newton systems\n");
+  // Both paths on the kernels the runtime's factorisations use.
+  std::string kernels = simit::selectBlasKernels();
   llvm::outs() << llvm::formatv(
-      "OpenBLAS threads: {0}; Newton step {1}; median of {2} runs\n",
-      openblas_get_num_threads(), newtonStep.getValue(),
+      "OpenBLAS threads: {0}, kernels {1}; Newton step {2}; median of {3} "
+      "runs\n",
+      openblas_get_num_threads(), kernels, newtonStep.getValue(),
       repetitions.getValue());
   llvm::outs() << llvm::formatv(
       "{0,6} {1,8} {2,6} {3,10} {4,10} {5,10} {6,22} {7,7} {8,7} {9,5} "

@@ -21,9 +21,6 @@
 extern "C" {
 #include <suitesparse/cholmod.h>
 #include <suitesparse/umfpack.h>
-// OpenBLAS's own entry point; the runtime links OpenBLAS, so CHOLMOD's and
-// UMFPACK's BLAS calls go to it whatever libblas.so.3 points at.
-char *openblas_get_config(void);
 }
 
 using namespace simit;
@@ -35,6 +32,7 @@ namespace simit::direct {
 struct Common {
   cholmod_common c;
   Common() {
+    selectBlasKernels();
     cholmod_l_start(&c);
     c.print = 0; // errors come back as llvm::Error, not on stderr
   }
@@ -488,9 +486,3 @@ template llvm::Expected<FactorLookup>
 FactorCache::factorise(FactorKind, const SquareBCSRView<double> &);
 template llvm::Expected<FactorLookup>
 FactorCache::factorise(FactorKind, const SquareBCSRView<float> &);
-
-std::string simit::sparseDirectBLAS() {
-  // "OpenBLAS 0.3.21 DYNAMIC_ARCH ... Zen MAX_THREADS=64".
-  const char *config = openblas_get_config();
-  return config ? config : "OpenBLAS";
-}

@@ -253,8 +253,15 @@ private:
   RankOneSystemObserver rankOneObserver;
 };
 
-/// OpenBLAS's version and build: the BLAS the direct solvers run on.
+/// OpenBLAS's version, build and kernels: the BLAS the direct solvers run
+/// on.
 std::string sparseDirectBLAS();
+
+/// Makes OpenBLAS use the widest kernels the CPU's features allow where it
+/// fell back to its generic ones (a CPU newer than it knows), unless
+/// OPENBLAS_CORETYPE is set or SIMIT_BLAS_CORETYPE=keep; once per process,
+/// before any BLAS call it should speed up. Returns the kernels' name.
+std::string selectBlasKernels();
 
 } // namespace simit
 

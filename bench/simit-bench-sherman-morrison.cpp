@@ -24,6 +24,7 @@
 //===----------------------------------------------------------------------===//
 
 #include "simit/Engine/SceneRun.h"
+#include "simit/Runtime/OpenMPThreads.h"
 #include "simit/Runtime/Scene.h"
 #include "simit/Runtime/Set.h"
 #include "simit/Runtime/SolveSession.h"
@@ -341,7 +342,9 @@ int main(int argc, char **argv) {
       argc, argv,
       "Dense LU of H_s + u v^T against the Sherman-Morrison rewrite on the "
       "pressure chamber's Newton systems\n");
-  // Both paths on the kernels the runtime's factorisations use.
+  // Both paths on one thread (CHOLMOD's OpenMP loops included) and on the
+  // kernels the runtime's factorisations use.
+  simit::capOpenMPThreads(1);
   std::string kernels = simit::selectBlasKernels();
   llvm::outs() << llvm::formatv(
       "OpenBLAS threads: {0}, kernels {1}; Newton step {2}; median of {3} "

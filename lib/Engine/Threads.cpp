@@ -3,6 +3,7 @@
 #include "Threads.h"
 
 #include "simit/Engine/Program.h"
+#include "simit/Runtime/OpenMPThreads.h"
 
 #include "llvm/ADT/StringRef.h"
 #include "llvm/Support/Process.h"
@@ -12,7 +13,6 @@
 // libomp's API (omp.h is not among the installed headers of every system).
 extern "C" {
 void omp_set_num_threads(int threads);
-int omp_get_num_procs(void);
 }
 
 using namespace simit;
@@ -43,6 +43,7 @@ llvm::Expected<int> simit::resolveThreadCount(int requested) {
           "SIMIT_NUM_THREADS must be a positive integer, not '" + *text + "'");
     return threads;
   }
-  // The cores this process may run on (its affinity mask).
-  return omp_get_num_procs();
+  // The cores this process may run on (its affinity mask), found without
+  // starting the OpenMP runtime: its thread cap must come first.
+  return availableCores();
 }

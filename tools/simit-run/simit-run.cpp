@@ -23,6 +23,7 @@
 #include "simit/Engine/SceneRun.h"
 #include "simit/Engine/ThreadsOption.h"
 #include "simit/Runtime/CudaDriver.h"
+#include "simit/Runtime/OpenMPThreads.h"
 
 #include "llvm/ADT/SmallString.h"
 #include "llvm/ADT/StringMap.h"
@@ -360,6 +361,8 @@ int main(int argc, char **argv) {
   llvm::Expected<int> threadCount = resolveThreadCount(threads);
   if (!threadCount)
     return fail(threadCount.takeError());
+  // Libraries' parallel loops (CHOLMOD's) too run on at most that many.
+  capOpenMPThreads(*threadCount);
   if (noCache && cacheDir.getNumOccurrences())
     return fail(
         llvm::createStringError("--no-cache and --cache-dir contradict"));

@@ -500,18 +500,27 @@ Function::Impl::unionOf(const std::vector<std::string> &edgeSetNames,
 
 llvm::Expected<std::shared_ptr<const SparsityPattern>>
 Function::Impl::productOf(const ArgumentBinding &arg) {
-  std::string key = llvm::join(arg.edgeSets, "+") + "*" +
-                    llvm::join(arg.rightSets, "+") + ":" + arg.rows + ":" +
-                    arg.mid + ":" + arg.cols;
+  std::string key = arg.rows + ":" + arg.cols;
+  for (size_t i = 0; i < arg.factorSets.size(); ++i)
+    key += (i ? "*" : ":") + llvm::join(arg.factorSets[i], "+") +
+           (i < arg.mids.size() ? ":" + arg.mids[i] : "");
   if (auto it = unions.find(key); it != unions.end())
     return it->second;
-  auto left = unionOf(arg.edgeSets, arg.rows, arg.mid);
-  if (!left)
-    return left.takeError();
-  auto right = unionOf(arg.rightSets, arg.mid, arg.cols);
-  if (!right)
-    return right.takeError();
-  auto product = productPattern(**left, **right, arg.rows == arg.cols);
+  // The sets between the factors: rows, the mids, cols.
+  std::vector<std::string> sets{arg.rows};
+  llvm::append_range(sets, arg.mids);
+  sets.push_back(arg.cols);
+  std::vector<std::shared_ptr<const SparsityPattern>> factors;
+  for (size_t i = 0; i < arg.factorSets.size(); ++i) {
+    auto factor = unionOf(arg.factorSets[i], sets[i], sets[i + 1]);
+    if (!factor)
+      return factor.takeError();
+    factors.push_back(*factor);
+  }
+  std::vector<const SparsityPattern *> views;
+  for (const auto &factor : factors)
+    views.push_back(factor.get());
+  auto product = chainProductPattern(views, sets);
   unions[key] = product;
   return product;
 }
@@ -636,11 +645,13 @@ std::vector<std::string> Function::requiredSets() const {
     add(arg.set);
     add(arg.rows);
     add(arg.cols);
-    add(arg.mid);
+    for (const std::string &mid : arg.mids)
+      add(mid);
     for (const std::string &edges : arg.edgeSets)
       add(edges);
-    for (const std::string &edges : arg.rightSets)
-      add(edges);
+    for (const std::vector<std::string> &factor : arg.factorSets)
+      for (const std::string &edges : factor)
+        add(edges);
   }
   return names;
 }

@@ -200,10 +200,16 @@ std::string ArgumentBinding::describe() const {
            "')";
   case Kind::ProductRowPtr:
   case Kind::ProductColIdx:
-    return "product of the sparsity patterns of '" +
-           llvm::join(edgeSets, "', '") + "' over ('" + rows + "', '" + mid +
-           "') and '" + llvm::join(rightSets, "', '") + "' over ('" + mid +
-           "', '" + cols + "')";
+  {
+    std::string text = "product of the sparsity patterns of ";
+    for (size_t i = 0; i < factorSets.size(); ++i) {
+      std::string from = i == 0 ? rows : mids[i - 1];
+      std::string to = i + 1 == factorSets.size() ? cols : mids[i];
+      text += (i ? ", '" : "'") + llvm::join(factorSets[i], "', '") +
+              "' over ('" + from + "', '" + to + "')";
+    }
+    return text;
+  }
   case Kind::UnionGather:
     return "gather map from the union of the sparsity patterns of '" +
            llvm::join(edgeSets, "', '") + "' over ('" + rows + "', '" + cols +
@@ -307,16 +313,22 @@ public:
       std::string factors;
       if (llvm::Error err = get("set", factors))
         return err;
-      auto [left, right] = llvm::StringRef(factors).split('*');
-      if (left.empty() || right.empty())
-        return error("expected 'set' of the form \"L*R\"");
-      binding.edgeSets = splitSets(left);
-      binding.rightSets = splitSets(right);
+      llvm::SmallVector<llvm::StringRef> parts, mids;
+      llvm::StringRef(factors).split(parts, '*');
+      std::string joinedMids;
+      if (llvm::Error err = get("mid", joinedMids))
+        return err;
+      llvm::StringRef(joinedMids).split(mids, ',');
+      if (parts.size() < 2 || mids.size() + 1 != parts.size() ||
+          llvm::is_contained(parts, "") || llvm::is_contained(mids, ""))
+        return error("expected 'set' of the form \"A*B*...\" and 'mid' "
+                     "naming the sets between its factors, \"M1,...\"");
+      for (llvm::StringRef part : parts)
+        binding.factorSets.push_back(splitSets(part));
+      binding.mids.assign(mids.begin(), mids.end());
       if (llvm::Error err = get("rows", binding.rows))
         return err;
-      if (llvm::Error err = get("cols", binding.cols))
-        return err;
-      return get("mid", binding.mid);
+      return get("cols", binding.cols);
     }
     case Kind::ElementColours: {
       auto chunk = dict.getAs<mlir::IntegerAttr>("chunk");

@@ -114,14 +114,19 @@ std::string simit::serializeObjectCode(const ObjectCode &code) {
     for (const ArgumentBinding &arg : function.signature.arguments) {
       out.integer(arg.kind);
       for (const std::string *text :
-           {&arg.set, &arg.field, &arg.rows, &arg.cols, &arg.name, &arg.mid})
+           {&arg.set, &arg.field, &arg.rows, &arg.cols, &arg.name})
         out.string(*text);
-      for (const std::vector<std::string> *sets :
-           {&arg.edgeSets, &arg.partSets, &arg.rightSets}) {
-        out.integer<uint64_t>(sets->size());
-        for (const std::string &set : *sets)
+      auto writeSets = [&](const std::vector<std::string> &sets) {
+        out.integer<uint64_t>(sets.size());
+        for (const std::string &set : sets)
           out.string(set);
-      }
+      };
+      for (const std::vector<std::string> *sets :
+           {&arg.edgeSets, &arg.partSets, &arg.mids})
+        writeSets(*sets);
+      out.integer<uint64_t>(arg.factorSets.size());
+      for (const std::vector<std::string> &sets : arg.factorSets)
+        writeSets(sets);
       out.integer(arg.partTransposed);
       out.integer(arg.index);
       out.integer(arg.chunk);
@@ -157,14 +162,19 @@ llvm::Expected<ObjectCode> simit::deserializeObjectCode(llvm::StringRef bytes) {
     for (ArgumentBinding &arg : function.signature.arguments) {
       arg.kind = in.enumeration(ArgumentBinding::Kind::Parameter);
       for (std::string *text :
-           {&arg.set, &arg.field, &arg.rows, &arg.cols, &arg.name, &arg.mid})
+           {&arg.set, &arg.field, &arg.rows, &arg.cols, &arg.name})
         *text = in.string();
-      for (std::vector<std::string> *sets :
-           {&arg.edgeSets, &arg.partSets, &arg.rightSets}) {
-        sets->resize(in.count(sizeof(uint64_t)));
-        for (std::string &set : *sets)
+      auto readSets = [&](std::vector<std::string> &sets) {
+        sets.resize(in.count(sizeof(uint64_t)));
+        for (std::string &set : sets)
           set = in.string();
-      }
+      };
+      for (std::vector<std::string> *sets :
+           {&arg.edgeSets, &arg.partSets, &arg.mids})
+        readSets(*sets);
+      arg.factorSets.resize(in.count(sizeof(uint64_t)));
+      for (std::vector<std::string> &sets : arg.factorSets)
+        readSets(sets);
       arg.partTransposed = in.integer<bool>();
       arg.index = in.integer<int64_t>();
       arg.chunk = in.integer<int64_t>();

@@ -4,6 +4,7 @@
 #include "simit/Runtime/IncidenceView.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cstdint>
 
 using namespace simit;
@@ -125,4 +126,33 @@ simit::productPattern(const SparsityPattern &a, const SparsityPattern &b,
   }
   return SparsityPattern::fromArrays(a.numRows(), b.numCols(),
                                      std::move(rowPtr), std::move(colIdx));
+}
+
+std::shared_ptr<const SparsityPattern>
+simit::chainProductPattern(llvm::ArrayRef<const SparsityPattern *> factors,
+                           llvm::ArrayRef<std::string> sets) {
+  size_t k = factors.size();
+  assert(k >= 2 && sets.size() == k + 1 && "a set between each two factors");
+  // part[l][r]: the pattern of factors l..r (interval dynamic programming;
+  // chains are short). The factors themselves are not owned, and never
+  // returned (k >= 2).
+  std::vector<std::vector<std::shared_ptr<const SparsityPattern>>> part(
+      k, std::vector<std::shared_ptr<const SparsityPattern>>(k));
+  for (size_t i = 0; i < k; ++i)
+    part[i][i] = std::shared_ptr<const SparsityPattern>(
+        factors[i], [](const SparsityPattern *) {});
+  for (size_t length = 2; length <= k; ++length)
+    for (size_t l = 0; l + length <= k; ++l) {
+      size_t r = l + length - 1;
+      bool square = sets[l] == sets[r + 1];
+      std::vector<std::shared_ptr<const SparsityPattern>> splits;
+      for (size_t m = l; m < r; ++m)
+        splits.push_back(
+            productPattern(*part[l][m], *part[m + 1][r], square));
+      std::vector<const SparsityPattern *> members;
+      for (const auto &split : splits)
+        members.push_back(split.get());
+      part[l][r] = splits.size() == 1 ? splits.front() : unionPattern(members);
+    }
+  return part[0][k - 1];
 }

@@ -149,6 +149,29 @@ Shape productShape(Sources sources) {
   return std::make_pair(sources[0]->rows, sources[1]->cols);
 }
 
+/// A B C, each factor's columns the next one's rows.
+Shape chainOfThreeShape(Sources sources) {
+  if (sources[0]->cols != sources[1]->rows ||
+      sources[1]->cols != sources[2]->rows)
+    return std::nullopt;
+  return std::make_pair(sources[0]->rows, sources[2]->cols);
+}
+
+/// A chain of three different sources, each set of three once (207 chains
+/// would be too many to compile).
+Shape chainOfThreeDifferent(Sources sources) {
+  if (!(sources[0] < sources[1] && sources[1] < sources[2]))
+    return std::nullopt;
+  return chainOfThreeShape(sources);
+}
+
+/// A chain A B A of two different sources (A' A-like sandwiches).
+Shape sandwichShape(Sources sources) {
+  if (sources[0] != sources[2] || sources[0] == sources[1])
+    return std::nullopt;
+  return chainOfThreeShape(sources);
+}
+
 Shape transposedProductShape(Sources sources) {
   if (sources[0]->rows != sources[1]->rows)
     return std::nullopt;
@@ -228,6 +251,16 @@ const std::vector<Operation> &simit::conformance::allOperations() {
       {"product", 2, M::Matrix, "", "A * B", productShape,
        [](const DenseInputs &in) -> Eigen::MatrixXd {
          return in.operands[0] * in.operands[1];
+       }},
+      // Products of products: the result is stored on the bind-time
+      // pattern of the chain, whichever way it is associated.
+      {"productOfThree", 3, M::Matrix, "", "(A * B) * C", chainOfThreeDifferent,
+       [](const DenseInputs &in) -> Eigen::MatrixXd {
+         return in.operands[0] * in.operands[1] * in.operands[2];
+       }},
+      {"productOfThreeRight", 3, M::Matrix, "", "A * (B * C)", sandwichShape,
+       [](const DenseInputs &in) -> Eigen::MatrixXd {
+         return in.operands[0] * (in.operands[1] * in.operands[2]);
        }},
       {"transposedProduct", 2, M::Matrix, "", "A' * B", transposedProductShape,
        [](const DenseInputs &in) -> Eigen::MatrixXd {

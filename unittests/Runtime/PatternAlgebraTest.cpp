@@ -194,6 +194,27 @@ TEST(PatternProduct, MatchesDenseProduct) {
     }
 }
 
+// A chain's pattern holds the product however it is associated: A (B C)
+// stores B C over (V, V) with its diagonal, so A's own block (0, 1) is in
+// it, although (A B) C, with A B over (V, S) and no diagonal, has none
+// there. Vertex 1 is in no edge of the incidence B = C'.
+TEST(PatternProduct, ChainHoldsEveryAssociation) {
+  auto a = SparsityPattern::fromArrays(2, 2, {0, 1, 1}, {1});
+  auto b = SparsityPattern::fromArrays(2, 1, {0, 1, 1}, {0});
+  auto c = SparsityPattern::fromArrays(1, 2, {0, 1}, {0});
+  auto chain = chainProductPattern({a.get(), b.get(), c.get()},
+                                   {"V", "V", "S", "V"});
+  std::set<std::pair<int, int>> expected{{0, 0}, {0, 1}, {1, 1}};
+  EXPECT_EQ(blocksOf(*chain), expected);
+  // Two factors: productPattern's, with the diagonal when square.
+  EXPECT_EQ(blocksOf(*chainProductPattern({a.get(), a.get()}, {"V", "V", "V"})),
+            blocksOf(*productPattern(*a, *a, true)));
+  EXPECT_EQ(blocksOf(*chainProductPattern({b.get(), c.get()}, {"V", "S", "V"})),
+            blocksOf(*productPattern(*b, *c, true)));
+  EXPECT_EQ(blocksOf(*chainProductPattern({c.get(), b.get()}, {"S", "V", "S"})),
+            blocksOf(*productPattern(*c, *b, true)));
+}
+
 // A result pattern that misses a block of the product is an error, not a
 // dropped contribution.
 TEST(PatternProduct, MissingBlockIsAnError) {

@@ -96,10 +96,10 @@ struct ArgumentBinding {
   /// read transposed).
   std::vector<std::string> edgeSets, partSets;
   bool partTransposed = false;
-  /// Product bindings: the right factor's edge sets (the left's are
-  /// `edgeSets`; written "L*R" in `simit.bindings`) and the shared set.
-  std::vector<std::string> rightSets;
-  std::string mid;
+  /// Product bindings: each factor's edge sets (written "A*B+C*D" in
+  /// `simit.bindings`) and the sets between factors (written "M1,M2").
+  std::vector<std::vector<std::string>> factorSets;
+  std::vector<std::string> mids;
   /// Parameter: its position among the Simit function's parameters.
   int64_t index = -1;
   /// ElementColours: elements per chunk.

@@ -22,6 +22,7 @@
 #include "llvm/Support/Error.h"
 
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace simit {
@@ -56,6 +57,17 @@ std::vector<int32_t> gatherTransposedPositions(const SparsityPattern &whole,
 std::shared_ptr<const SparsityPattern>
 productPattern(const SparsityPattern &a, const SparsityPattern &b,
                bool withDiagonal);
+
+/// The pattern of the product F1 F2 ... Fk (k >= 2) of `factors`, Fi over
+/// (sets[i-1], sets[i]), that holds the product's blocks however it is
+/// associated: the union over the ways to split each part in two of the
+/// products of the halves, where a part from a set to itself also holds
+/// its diagonal (productPattern's withDiagonal, as a stored intermediate
+/// product has). With two factors it is productPattern(F1, F2, sets[0] ==
+/// sets[2]).
+std::shared_ptr<const SparsityPattern>
+chainProductPattern(llvm::ArrayRef<const SparsityPattern *> factors,
+                    llvm::ArrayRef<std::string> sets);
 
 } // namespace simit
 

@@ -107,15 +107,25 @@ static std::string unionKey(const Storage &storage) {
 
 /// A product binding's "set": the factors' edge sets, '*'-separated.
 static std::string productKey(const Storage &storage) {
-  return joinSetNames(storage.members) + "*" +
-         joinSetNames(storage.rightMembers);
+  std::string key;
+  for (const SmallVector<StringAttr, 2> &factor : storage.factors)
+    key += (key.empty() ? "" : "*") + joinSetNames(factor);
+  return key;
+}
+
+/// A product binding's "mid": the sets between factors, ','-separated.
+static std::string productMids(const Storage &storage) {
+  std::string mids;
+  for (StringAttr mid : storage.mids)
+    mids += (mids.empty() ? "" : ",") + mid.getValue().str();
+  return mids;
 }
 
 Value FunctionLowering::rowPointers(const Storage &storage) {
   if (storage.kind == Storage::Kind::Product)
     return getBinding(BindingKind::ProductRowPtr,
                       {productKey(storage), storage.rows.getValue(),
-                       storage.cols.getValue(), storage.mid.getValue()},
+                       storage.cols.getValue(), productMids(storage)},
                       MemRefType::get({ShapedType::kDynamic}, b.getI32Type()));
   if (storage.kind == Storage::Kind::Union)
     return getBinding(BindingKind::UnionRowPtr,
@@ -130,7 +140,7 @@ Value FunctionLowering::columnIndices(const Storage &storage) {
   if (storage.kind == Storage::Kind::Product)
     return getBinding(BindingKind::ProductColIdx,
                       {productKey(storage), storage.rows.getValue(),
-                       storage.cols.getValue(), storage.mid.getValue()},
+                       storage.cols.getValue(), productMids(storage)},
                       MemRefType::get({ShapedType::kDynamic}, b.getI32Type()));
   if (storage.kind == Storage::Kind::Union)
     return getBinding(BindingKind::UnionColIdx,

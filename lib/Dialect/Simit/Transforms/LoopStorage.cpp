@@ -119,11 +119,13 @@ std::string Storage::describe() const {
     return ("dense matrix over ('" + rows.getValue() + "', '" +
             cols.getValue() + "')")
         .str();
-  case Kind::Product:
-    return ("product of matrices over ('" + rows.getValue() + "', '" +
-            mid.getValue() + "') and ('" + mid.getValue() + "', '" +
-            cols.getValue() + "')")
-        .str();
+  case Kind::Product: {
+    std::string over = "('" + rows.getValue().str();
+    for (StringAttr mid : mids)
+      over += "', '" + mid.getValue().str();
+    return "product of matrices over " + over + "', '" +
+           cols.getValue().str() + "')";
+  }
   }
   llvm_unreachable("storage kind");
 }
@@ -265,22 +267,27 @@ struct EncodingReader {
       return Storage::unionOf(*members, rows, cols);
     }
     case StorageKind::Product: {
-      if (e.getMembers().size() != 2)
-        return std::nullopt;
-      std::optional<SmallVector<StringAttr, 2>> left =
-          factorSets(e.getMember(0));
-      std::optional<SmallVector<StringAttr, 2>> right =
-          factorSets(e.getMember(1));
-      StringAttr mid = colSet(e.getMember(0));
-      if (!left || !right || !mid)
-        return std::nullopt;
       Storage product;
       product.kind = Storage::Kind::Product;
       product.rows = rows;
       product.cols = cols;
-      product.mid = mid;
-      product.members = Storage::unionOf(*left, rows, mid).patternSets();
-      product.rightMembers = Storage::unionOf(*right, mid, cols).patternSets();
+      unsigned n = e.getMembers().size();
+      for (unsigned i = 0; i + 1 < n; ++i) {
+        StringAttr mid = colSet(e.getMember(i));
+        if (!mid)
+          return std::nullopt;
+        product.mids.push_back(mid);
+      }
+      for (unsigned i = 0; i < n; ++i) {
+        std::optional<SmallVector<StringAttr, 2>> sets =
+            factorSets(e.getMember(i));
+        if (!sets)
+          return std::nullopt;
+        StringAttr from = i == 0 ? rows : product.mids[i - 1];
+        StringAttr to = i + 1 == n ? cols : product.mids[i];
+        product.factors.push_back(
+            Storage::unionOf(*sets, from, to).patternSets());
+      }
       return product;
     }
     case StorageKind::Dense:

@@ -66,11 +66,13 @@ struct Storage {
     /// different edge sets. Built once per binding by the runtime
     /// (simit::unionPattern), with gather maps from it to its parts.
     Union,
-    /// A BCSR matrix over (rows, cols) on the pattern of the product of a
-    /// pattern or union over (rows, mid) (edge sets `members`) and one over
-    /// (mid, cols) (`rightMembers`), with the diagonal when square. Built
-    /// once per binding (simit::productPattern). A factor may be an
-    /// incidence or its transpose: its edge set is then its rows or cols.
+    /// A BCSR matrix over (rows, cols) on the pattern of a product of two
+    /// or more patterns or unions (`factors`, their edge sets; factor i is
+    /// over (mids[i-1], mids[i]), the first from rows, the last to cols),
+    /// whichever way the product is associated, each square part with the
+    /// diagonal. Built once per binding (simit::chainProductPattern). A
+    /// factor may be an incidence or its transpose: its edge set is then its
+    /// rows or cols.
     Product,
     /// A matrix over (rows, cols) with every block stored: block
     /// r * |cols| + c is (r, c). The solution of `lumatsolve` and
@@ -89,12 +91,11 @@ struct Storage {
   int64_t cardinality = 0;
   /// Incidence: stored over (endpoint set, edges).
   bool transposed = false;
-  /// Union: the member edge sets, sorted by name, at least two. Product:
-  /// the left factor's edge sets.
+  /// Union: the member edge sets, sorted by name, at least two.
   SmallVector<StringAttr, 2> members;
-  /// Product: the right factor's edge sets and the factors' shared set.
-  SmallVector<StringAttr, 2> rightMembers;
-  StringAttr mid;
+  /// Product: each factor's edge sets, and the sets between factors.
+  SmallVector<SmallVector<StringAttr, 2>, 3> factors;
+  SmallVector<StringAttr, 2> mids;
 
   static Storage dense() { return Storage(); }
   static Storage diagonal(StringAttr set) {
@@ -146,8 +147,7 @@ struct Storage {
     return kind == o.kind && edges == o.edges && rows == o.rows &&
            cols == o.cols && offsets == o.offsets &&
            cardinality == o.cardinality && transposed == o.transposed &&
-           members == o.members &&
-           rightMembers == o.rightMembers && mid == o.mid;
+           members == o.members && factors == o.factors && mids == o.mids;
   }
   bool operator!=(const Storage &o) const { return !(*this == o); }
   /// Whether every block of `o` is a block of this storage (an edge pattern

@@ -106,6 +106,24 @@ TEST_F(StorageTest, ProductDropsDiagonalsAndComposesIncidences) {
   EXPECT_EQ(storage::transpose(dense), dense);
 }
 
+// A periodic stencil's transpose is the stencil of the negated offsets,
+// and a product of stencils of one grid the stencil of the sums.
+TEST_F(StorageTest, StencilsTransposeAndComposeIntoStencils) {
+  StorageAttr right = stencil("cells", {{1, 0}});
+  EXPECT_EQ(storage::transpose(right), stencil("cells", {{-1, 0}}));
+  EXPECT_EQ(storage::transpose(storage::transpose(right)), right);
+  EXPECT_EQ(storage::unionOf({right, storage::transpose(right)}),
+            stencil("cells", {{1, 0}, {-1, 0}}));
+  StorageAttr laplace = stencil("cells", {{1, 0}, {-1, 0}});
+  EXPECT_EQ(storage::product({laplace, laplace}),
+            stencil("cells", {{2, 0}, {1, 0}, {-1, 0}, {-2, 0}}));
+  EXPECT_EQ(storage::product({right, diag("points"), right}),
+            stencil("cells", {{1, 0}, {2, 0}}));
+  // Stencils of other grids do not compose.
+  EXPECT_EQ(storage::product({right, stencil("faces", {{1, 0}})}).getKind(),
+            StorageKind::Product);
+}
+
 TEST_F(StorageTest, LowRankAccumulatesTerms) {
   StorageAttr k = pattern("springs", {0, 1}, {0, 1});
   EXPECT_EQ(storage::lowRank(k, 0), k);

@@ -419,6 +419,15 @@ StorageAttr storage::transpose(StorageAttr x) {
     return x;
   case StorageKind::LowRank:
     return lowRank(transpose(x.getOperand()), x.getRank());
+  case StorageKind::Stencil: {
+    // Block (r, r + o) of a periodic stencil is (c - o, c) of its
+    // transpose: the stencil of the negated offsets.
+    SmallVector<SmallVector<int64_t>> negated;
+    for (DenseI64ArrayAttr o : x.getOffsets())
+      negated.push_back(llvm::map_to_vector(
+          o.asArrayRef(), [](int64_t v) { return -v; }));
+    return stencil(x.getSet(), negated);
+  }
   default:
     return make(x.getContext(), StorageKind::Transpose, {}, {}, {}, {}, {x});
   }
@@ -526,6 +535,19 @@ StorageAttr storage::product(ArrayRef<StorageAttr> factors) {
     if (!kept.empty() && composesToPattern(kept.back(), f)) {
       StorageAttr rows = kept.pop_back_val().getOperand();
       f = pattern(rows.getSet(), rows.getCols(), f.getCols());
+    }
+    // Stencils of one grid compose into the stencil of the sums of their
+    // offsets (periodic: (r + a) + b = r + (a + b)).
+    if (!kept.empty() && kept.back().getKind() == StorageKind::Stencil &&
+        f.getKind() == StorageKind::Stencil &&
+        kept.back().getSet() == f.getSet()) {
+      SmallVector<SmallVector<int64_t>> sums;
+      for (DenseI64ArrayAttr a : kept.pop_back_val().getOffsets())
+        for (DenseI64ArrayAttr b : f.getOffsets())
+          sums.push_back(llvm::to_vector(llvm::map_range(
+              llvm::zip_equal(a.asArrayRef(), b.asArrayRef()),
+              [](auto ab) { return std::get<0>(ab) + std::get<1>(ab); })));
+      f = stencil(f.getSet(), sums);
     }
     kept.push_back(f);
   }

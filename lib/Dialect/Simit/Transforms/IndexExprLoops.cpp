@@ -72,6 +72,50 @@ FailureOr<Value> IndexExprLowering::access(unsigned i) {
   Value loopPosition = positions.lookup(i);
   if (entrywiseIncidences && storage.kind == Storage::Kind::Incidence)
     return incidenceEntry(i, row, col, inner, loopPosition);
+  if (entrywiseStencils) {
+    FailureOr<Value> entry = storage.kind == Storage::Kind::Stencil
+                                 ? stencilEntry(i, row, col, inner)
+                                 : blockAt(i, row, col, inner);
+    if (failed(entry))
+      return failure();
+    // Inside a loop over a stencil, at the first block naming the column.
+    for (int64_t v : vars)
+      if (Value first = stencilFirsts.lookup(v))
+        entry = arith::SelectOp::create(b, loc, first, *entry,
+                                        l.zeroOf(scalarType))
+                    .getResult();
+    return entry;
+  }
+  return blockAt(i, row, col, inner);
+}
+
+Value IndexExprLowering::stencilEntry(unsigned i, Value row, Value col,
+                                      ArrayRef<Value> inner) {
+  Value lowered = l.lookup(op.getInputs()[i]);
+  const Storage storage = storageOf(i);
+  Value sum = l.zeroOf(scalarType);
+  for (int64_t k = 0, n = storage.offsets.size(); k < n; ++k) {
+    Value kv = l.indexConstant(k);
+    SmallVector<Value> at(inner);
+    at.insert(at.begin(), l.stencilBlock(storage, row, kv));
+    Value value = memref::LoadOp::create(b, loc, lowered, at);
+    Value match = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq,
+                                        l.stencilColumn(storage, row, kv), col);
+    Value term =
+        arith::SelectOp::create(b, loc, match, value, l.zeroOf(scalarType));
+    sum = isa<FloatType>(scalarType)
+              ? arith::AddFOp::create(b, loc, sum, term).getResult()
+              : arith::AddIOp::create(b, loc, sum, term).getResult();
+  }
+  return sum;
+}
+
+FailureOr<Value> IndexExprLowering::blockAt(unsigned i, Value row, Value col,
+                                            SmallVector<Value> inner) {
+  Value input = op.getInputs()[i];
+  Value lowered = l.lookup(input);
+  Storage storage = storageOf(i);
+  Value loopPosition = positions.lookup(i);
   if (loopPosition) {
     if (!gathered.contains(i)) {
       inner.insert(inner.begin(), loopPosition);
@@ -202,6 +246,7 @@ IndexExprLowering::choose(ArrayRef<unsigned> vars) {
 
 void IndexExprLowering::unbind(const Choice &choice) {
   bound[choice.var][choice.levelIndex] = Value();
+  stencilFirsts.erase(choice.var);
   if (choice.coupledBy >= 0)
     for (unsigned o = 0; o < numMatrixOperands(); ++o)
       if (indexList(o).size() == 2 &&
@@ -287,6 +332,10 @@ IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
     if (storage.kind == Storage::Kind::Stencil) {
       bound[v][0] = l.stencilColumn(storage, row, iv);
       position = l.stencilBlock(storage, row, iv);
+      if (entrywiseStencils)
+        stencilFirsts[v] = arith::CmpIOp::create(
+            b, loc, arith::CmpIPredicate::eq,
+            l.findBlock(loc, storage, row, bound[v][0]), position);
     } else if (storage.kind == Storage::Kind::Incidence) {
       bound[v][0] = arith::IndexCastOp::create(
           b, loc, b.getIndexType(),

@@ -76,6 +76,11 @@ private:
   Value extent(unsigned v, unsigned i);
   /// Reads the component of input `i` at the bound variables.
   FailureOr<Value> access(unsigned i);
+  /// The component of matrix input `i` at block (row, col) and indices
+  /// `inner` within it: at the loop's position when it has one, else found
+  /// by its storage (zero outside it).
+  FailureOr<Value> blockAt(unsigned i, Value row, Value col,
+                           SmallVector<Value> inner);
   /// The entry (row, col) of incidence input `i` at block indices
   /// `inner`: the sum of the edge's blocks at the endpoint. `loopPosition`,
   /// when the loop runs over the incidence's blocks, is the block's
@@ -83,6 +88,10 @@ private:
   /// the others.
   Value incidenceEntry(unsigned i, Value row, Value col, ArrayRef<Value> inner,
                        Value loopPosition);
+  /// The entry (row, col) of stencil input `i` at block indices `inner`:
+  /// the sum of its blocks whose offset names that column (on a grid
+  /// narrower than the offsets, several do).
+  Value stencilEntry(unsigned i, Value row, Value col, ArrayRef<Value> inner);
   /// Picks how to bind the next level of one of `vars`: returns the variable
   /// and whether a matrix couples it (then the loop runs over its pattern).
   struct Choice {
@@ -156,6 +165,15 @@ private:
   /// edge's blocks at the endpoint), not block by block, and an incidence
   /// result keeps each entry in the edge's first block there.
   bool entrywiseIncidences = false;
+  /// Whether a stencil meets a matrix of another storage or the body
+  /// multiplies matrix entries: a loop over a stencil then visits an entry
+  /// once per offset naming its column, so matrices are read as entries
+  /// (stencilEntry for stencils), counted at the first such offset only
+  /// (`stencilFirsts`).
+  bool entrywiseStencils = false;
+  /// Per variable bound by a loop over a stencil (entrywiseStencils):
+  /// whether the loop's block is the first of its row naming its column.
+  DenseMap<unsigned, Value> stencilFirsts;
   /// Variables summed by a simit.index_sum in the body.
   llvm::SmallDenseSet<unsigned> nestedVars;
   bool failedInside = false;

@@ -31,9 +31,35 @@ SmallVector<StringAttr, 2> Storage::patternSets() const {
   return members;
 }
 
+/// The offsets of a stencil storage.
+static SmallVector<SmallVector<int64_t>> offsetsOf(const Storage &s) {
+  return llvm::map_to_vector(s.offsets, [](Attribute o) {
+    return llvm::to_vector(cast<DenseI64ArrayAttr>(o).asArrayRef());
+  });
+}
+
+/// The stencil of `grid` over `points` with `offsets`, sorted and unique as
+/// the encoding keeps them.
+static Storage stencilWith(StringAttr grid, StringAttr points,
+                           SmallVector<SmallVector<int64_t>> offsets) {
+  llvm::sort(offsets);
+  offsets.erase(llvm::unique(offsets), offsets.end());
+  MLIRContext *ctx = grid.getContext();
+  SmallVector<Attribute> attrs = llvm::map_to_vector(
+      offsets, [&](ArrayRef<int64_t> o) -> Attribute {
+        return DenseI64ArrayAttr::get(ctx, o);
+      });
+  return Storage::stencil(grid, points, ArrayAttr::get(ctx, attrs));
+}
+
 bool Storage::contains(const Storage &o) const {
   if (*this == o)
     return true;
+  if (kind == Kind::Stencil && o.kind == Kind::Stencil)
+    return edges == o.edges && rows == o.rows &&
+           llvm::all_of(o.offsets, [&](Attribute offset) {
+             return llvm::is_contained(offsets, offset);
+           });
   if (kind == Kind::DenseMatrix)
     return o.isMatrix() && rows == o.rows && cols == o.cols;
   // An edge pattern over (V, V) holds every diagonal block of V, and so do
@@ -61,8 +87,15 @@ std::optional<Storage> mlir::simit::loops::transposedStorage(const Storage &s) {
     return Storage::unionOf(s.members, s.cols, s.rows);
   case Storage::Kind::DenseMatrix:
     return Storage::denseMatrix(s.cols, s.rows);
+  case Storage::Kind::Stencil: {
+    // The stencil of the negated offsets (storage::transpose).
+    SmallVector<SmallVector<int64_t>> negated = offsetsOf(s);
+    for (SmallVector<int64_t> &offset : negated)
+      for (int64_t &v : offset)
+        v = -v;
+    return stencilWith(s.edges, s.rows, negated);
+  }
   case Storage::Kind::Product:
-  case Storage::Kind::Stencil:
   case Storage::Kind::Incidence:
     return std::nullopt;
   }
@@ -75,6 +108,13 @@ std::optional<Storage> mlir::simit::loops::joinStorages(const Storage &a,
     return a;
   if (b.contains(a))
     return b;
+  // Stencils of one grid join into the stencil of all their offsets.
+  if (a.kind == Storage::Kind::Stencil && b.kind == Storage::Kind::Stencil &&
+      a.edges == b.edges && a.rows == b.rows) {
+    SmallVector<SmallVector<int64_t>> offsets = offsetsOf(a);
+    llvm::append_range(offsets, offsetsOf(b));
+    return stencilWith(a.edges, a.rows, offsets);
+  }
   // Patterns over the same sets join into their union; a diagonal joins
   // into any square one.
   auto combinable = [&](const Storage &s) {

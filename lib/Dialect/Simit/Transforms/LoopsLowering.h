@@ -157,8 +157,8 @@ struct Storage {
 };
 
 /// The storage of the transpose of a matrix stored as `s` (a pattern over
-/// (C, R) for one over (R, C): the same endpoint pairs, swapped); none for
-/// stencils and incidences.
+/// (C, R) for one over (R, C): the same endpoint pairs, swapped; a stencil
+/// of the negated offsets); none for products and incidences.
 std::optional<Storage> transposedStorage(const Storage &s);
 
 /// The smallest storage holding the blocks of both `a` and `b`: the one
@@ -438,6 +438,10 @@ private:
   /// scaled by the diagonal's block at its column or row.
   LogicalResult lowerScaledIncidence(MatMulOp op, const Storage &incidence,
                                      bool diagonalOnRight);
+  /// A product of stencils of one grid (or of a stencil and a block
+  /// diagonal matrix), on the stencil of the sums of their offsets
+  /// (`result`): a loop over the rows adding the products of their blocks.
+  LogicalResult lowerStencilProduct(MatMulOp op, const Storage &result);
   /// simit.factorize, simit.factor_solve, simit.factor_free and
   /// simit.triangular_solve: the runtime's dense solvers for local tensors
   /// (through memref<?xf64>; handles are !llvm.ptr), else

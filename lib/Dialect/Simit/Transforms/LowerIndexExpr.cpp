@@ -392,6 +392,24 @@ LogicalResult IndexExprLowering::lower(ExtractOp at) {
         resultStorage.transposed)
       swappedLists.back() = {resultVars[1], resultVars[0]};
   }
+  // A loop over a stencil on a grid narrower than its offsets visits an
+  // entry once per offset naming its column: block by block is right only
+  // when every matrix is that stencil and the body adds and scales them.
+  SmallVector<Storage> matrixStorages;
+  for (Value in : op.getInputs())
+    if (l.storageOf(in).isMatrix())
+      matrixStorages.push_back(l.storageOf(in));
+  if (resultStorage.isMatrix())
+    matrixStorages.push_back(resultStorage);
+  entrywiseStencils =
+      llvm::any_of(matrixStorages,
+                   [](const Storage &s) {
+                     return s.kind == Storage::Kind::Stencil;
+                   }) &&
+      (multipliesMatrices(op) ||
+       llvm::any_of(matrixStorages, [&](const Storage &s) {
+         return s != matrixStorages.front();
+       }));
   ArrayRef<int64_t> resultOrder = indexList(op.getInputs().size());
   SmallVector<unsigned> free(resultOrder.begin(), resultOrder.end());
   bool sparseSum =

@@ -154,6 +154,57 @@ LogicalResult FunctionLowering::lowerScaledIncidence(MatMulOp op,
   return success();
 }
 
+LogicalResult FunctionLowering::lowerStencilProduct(MatMulOp op,
+                                                    const Storage &result) {
+  // Block (r, r + a) of A times block (r + a, r + a + b) of B adds to block
+  // (r, r + (a + b)) of the product, whose stencil holds every sum a + b
+  // (storage::product). A block diagonal factor is a stencil of the zero
+  // offset alone: its block r is (r, r).
+  Location loc = op.getLoc();
+  auto type = cast<SystemTensorType>(op.getType());
+  auto [blocked, shape] = productShape(op);
+  auto offsetsOf = [&](Value factor) {
+    Storage s = storageOf(factor);
+    if (s.kind == Storage::Kind::Stencil)
+      return s;
+    Storage zero = result;
+    unsigned rank =
+        cast<DenseI64ArrayAttr>(result.offsets[0]).asArrayRef().size();
+    zero.offsets = b.getArrayAttr(
+        {DenseI64ArrayAttr::get(b.getContext(), SmallVector<int64_t>(rank))});
+    return zero;
+  };
+  Storage sa = offsetsOf(op.getLhs()), sb = offsetsOf(op.getRhs());
+  auto offset = [](const Storage &s, int64_t k) {
+    return cast<DenseI64ArrayAttr>(s.offsets[k]).asArrayRef();
+  };
+  Value x = lookup(op.getLhs()), y = lookup(op.getRhs());
+  Value out = allocSystem(loc, type, result, /*zeroFill=*/true);
+  // Each row writes its own blocks only, in a fixed order.
+  forLoop(loc, getSetSize(result.rows), [&](Value row) {
+    for (int64_t i = 0, n = sa.offsets.size(); i < n; ++i) {
+      Value ki = indexConstant(i);
+      Value mid = stencilColumn(sa, row, ki);
+      Value xAt = stencilBlock(sa, row, ki);
+      for (int64_t j = 0, m = sb.offsets.size(); j < m; ++j) {
+        SmallVector<int64_t> sum(offset(sa, i));
+        for (auto [s, o] : llvm::zip_equal(sum, offset(sb, j)))
+          s += o;
+        auto at = llvm::find(result.offsets,
+                             DenseI64ArrayAttr::get(b.getContext(), sum));
+        assert(at != result.offsets.end() && "the stencil holds every sum");
+        Value outAt = stencilBlock(
+            result, row, indexConstant(at - result.offsets.begin()));
+        Value yAt = stencilBlock(sb, mid, indexConstant(j));
+        emitBlockProduct(*this, loc, blocked, shape, out, outAt, x, xAt, y,
+                         yAt, /*accumulate=*/true);
+      }
+    }
+  });
+  map(op, out);
+  return success();
+}
+
 LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
   Location loc = op.getLoc();
   auto type = dyn_cast<SystemTensorType>(op.getType());
@@ -177,6 +228,13 @@ LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
       return lowerScaledIncidence(op, a, /*diagonalOnRight=*/true);
     if (isDiagonal(a) && isIncidence(b2) && storage == b2)
       return lowerScaledIncidence(op, b2, /*diagonalOnRight=*/false);
+    auto onGrid = [&](const Storage &s) {
+      return (s.kind == Storage::Kind::Stencil &&
+              s.edges == storage.edges) ||
+             (isDiagonal(s) && s.rows == storage.rows);
+    };
+    if (storage.kind == Storage::Kind::Stencil && onGrid(a) && onGrid(b2))
+      return lowerStencilProduct(op, storage);
   }
   if (!isProductOperand(a) || !isProductOperand(b2) ||
       storage.kind == Storage::Kind::Incidence || !isProductOperand(storage))

@@ -172,6 +172,14 @@ Shape sandwichShape(Sources sources) {
   return chainOfThreeShape(sources);
 }
 
+/// A B + (A B)' of two different sources whose product is square.
+Shape productPlusTransposedShape(Sources sources) {
+  Shape shape = productShape(sources);
+  if (sources[0] == sources[1] || !shape || shape->first != shape->second)
+    return std::nullopt;
+  return shape;
+}
+
 Shape transposedProductShape(Sources sources) {
   if (sources[0]->rows != sources[1]->rows)
     return std::nullopt;
@@ -261,6 +269,16 @@ const std::vector<Operation> &simit::conformance::allOperations() {
       {"productOfThreeRight", 3, M::Matrix, "", "A * (B * C)", sandwichShape,
        [](const DenseInputs &in) -> Eigen::MatrixXd {
          return in.operands[0] * (in.operands[1] * in.operands[2]);
+       }},
+      // A product's pattern need not be symmetric: its transpose holds
+      // blocks the product does not, which the fused loop must visit.
+      // (Stored, their union has no layout yet: a located error.)
+      {"productPlusTransposedMatvec", 2, M::Vector,
+       "  $R0.y = (A * B + (A * B)') * $R0.x;\n", "",
+       productPlusTransposedShape,
+       [](const DenseInputs &in) -> Eigen::MatrixXd {
+         Eigen::MatrixXd p = in.operands[0] * in.operands[1];
+         return (p + p.transpose()) * in.xRows;
        }},
       {"transposedProduct", 2, M::Matrix, "", "A' * B", transposedProductShape,
        [](const DenseInputs &in) -> Eigen::MatrixXd {

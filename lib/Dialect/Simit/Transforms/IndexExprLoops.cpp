@@ -196,6 +196,10 @@ IndexExprLowering::choose(ArrayRef<unsigned> vars) {
     int best = -1;
     unsigned partner = 0;
     std::optional<Storage> joined;
+    // Whether the loop's storage holds every matrix pairing v with the
+    // partner: one that it does not hold (a product read transposed, or
+    // storages that do not join) could add values the loop never visits.
+    bool holdsAll = true;
     for (unsigned n = 0; n < numMatrixOperands(); ++n) {
       unsigned o = (result + n) % numMatrixOperands();
       if (best == static_cast<int>(result))
@@ -218,19 +222,25 @@ IndexExprLowering::choose(ArrayRef<unsigned> vars) {
         continue;
       std::optional<Storage> own =
           transposed ? transposedStorage(storage) : storage;
-      if (!own)
+      if (!own) {
+        holdsAll = false;
         continue;
+      }
       if (best < 0) {
         best = o;
         partner = u;
         joined = own;
         continue;
       }
-      // Operands that do not combine are read by search-free means only
-      // when the loop's storage holds them; access() says otherwise.
+      // The others are read by position, gather map or search (access()).
       if (std::optional<Storage> both = joinStorages(*joined, *own))
         joined = both;
+      else
+        holdsAll = false;
     }
+    // Otherwise v runs over its whole set, every matrix read by search.
+    if (best >= 0 && !holdsAll && best != static_cast<int>(result))
+      return Choice{v, 0};
     if (best >= 0)
       return Choice{v, 0, best, partner, *joined};
   }

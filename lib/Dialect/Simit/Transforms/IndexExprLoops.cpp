@@ -92,22 +92,14 @@ FailureOr<Value> IndexExprLowering::access(unsigned i) {
 Value IndexExprLowering::stencilEntry(unsigned i, Value row, Value col,
                                       ArrayRef<Value> inner) {
   Value lowered = l.lookup(op.getInputs()[i]);
-  const Storage storage = storageOf(i);
-  Value sum = l.zeroOf(scalarType);
-  for (int64_t k = 0, n = storage.offsets.size(); k < n; ++k) {
-    Value kv = l.indexConstant(k);
-    SmallVector<Value> at(inner);
-    at.insert(at.begin(), l.stencilBlock(storage, row, kv));
-    Value value = memref::LoadOp::create(b, loc, lowered, at);
-    Value match = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq,
-                                        l.stencilColumn(storage, row, kv), col);
-    Value term =
-        arith::SelectOp::create(b, loc, match, value, l.zeroOf(scalarType));
-    sum = isa<FloatType>(scalarType)
-              ? arith::AddFOp::create(b, loc, sum, term).getResult()
-              : arith::AddIOp::create(b, loc, sum, term).getResult();
-  }
-  return sum;
+  return l.sumStencilBlocks(loc, storageOf(i), row, col, scalarType,
+                            [&](Value position) {
+                              SmallVector<Value> at(inner);
+                              at.insert(at.begin(), position);
+                              return memref::LoadOp::create(b, loc, lowered,
+                                                            at)
+                                  .getResult();
+                            });
 }
 
 FailureOr<Value> IndexExprLowering::blockAt(unsigned i, Value row, Value col,

@@ -357,6 +357,12 @@ public:
   Value sumIncidenceBlocks(Location loc, const Storage &storage, Value row,
                            Value col, Type scalar,
                            function_ref<Value(Value)> read);
+  /// The sum over the blocks of row `row` of a stencil matrix whose offset
+  /// names column `col` of `read(position)`: on a grid narrower than the
+  /// offsets several do.
+  Value sumStencilBlocks(Location loc, const Storage &storage, Value row,
+                         Value col, Type scalar,
+                         function_ref<Value(Value)> read);
   /// simit.convert: a matrix moved to a storage that contains its own.
   LogicalResult lowerConvert(ConvertOp op);
   /// The positions of blocks (row, col) of pattern matrices found so far.

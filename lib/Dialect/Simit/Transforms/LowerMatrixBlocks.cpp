@@ -147,11 +147,17 @@ SmallVector<Value> FunctionLowering::readMatrixBlock(Location loc,
                                   blockIndices(type, {position}, c));
   };
   SmallVector<Value> components;
-  if (storage.kind == Storage::Kind::Incidence) {
-    for (int64_t c = 0; c < n; ++c)
-      components.push_back(sumIncidenceBlocks(
-          loc, storage, row, col, scalar,
-          [&](Value position) { return load(position, c); }));
+  // Entries that several blocks share (an edge naming an endpoint twice,
+  // stencil offsets naming one point) are their sums.
+  if (storage.kind == Storage::Kind::Incidence ||
+      storage.kind == Storage::Kind::Stencil) {
+    for (int64_t c = 0; c < n; ++c) {
+      auto read = [&](Value position) { return load(position, c); };
+      components.push_back(
+          storage.kind == Storage::Kind::Incidence
+              ? sumIncidenceBlocks(loc, storage, row, col, scalar, read)
+              : sumStencilBlocks(loc, storage, row, col, scalar, read));
+    }
     return components;
   }
   Value position = findBlock(loc, storage, row, col);
@@ -169,6 +175,23 @@ SmallVector<Value> FunctionLowering::readMatrixBlock(Location loc,
   b.setInsertionPointToStart(branch.elseBlock());
   scf::YieldOp::create(b, loc, SmallVector<Value>(n, zeroOf(scalar)));
   return SmallVector<Value>(branch.getResults());
+}
+
+Value FunctionLowering::sumStencilBlocks(Location loc, const Storage &storage,
+                                         Value row, Value col, Type scalar,
+                                         function_ref<Value(Value)> read) {
+  Value sum = zeroOf(scalar);
+  for (int64_t k = 0, n = storage.offsets.size(); k < n; ++k) {
+    Value kv = indexConstant(k);
+    Value match = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq,
+                                        stencilColumn(storage, row, kv), col);
+    Value value = arith::SelectOp::create(
+        b, loc, match, read(stencilBlock(storage, row, kv)), zeroOf(scalar));
+    sum = isa<FloatType>(scalar)
+              ? arith::AddFOp::create(b, loc, sum, value).getResult()
+              : arith::AddIOp::create(b, loc, sum, value).getResult();
+  }
+  return sum;
 }
 
 LogicalResult FunctionLowering::lowerMatrixBlockAccess(Operation *op) {
@@ -221,6 +244,27 @@ LogicalResult FunctionLowering::lowerMatrixBlockAccess(Operation *op) {
     memref::StoreOp::create(b, loc,
                             component(insert.getValue().getType(), value, c),
                             target, blockIndices(type, {position}, c));
+  // A stencil entry is the sum of the row's blocks naming the column: the
+  // others after the first (findBlock's) become zero.
+  if (storage.kind == Storage::Kind::Stencil)
+    for (int64_t k = 0, n = storage.offsets.size(); k < n; ++k) {
+      Value kv = indexConstant(k);
+      Value block = stencilBlock(storage, row, kv);
+      Value other = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::ne,
+                                          block, position);
+      Value there = arith::CmpIOp::create(
+          b, loc, arith::CmpIPredicate::eq, stencilColumn(storage, row, kv),
+          col);
+      auto branch = scf::IfOp::create(
+          b, loc, TypeRange{}, arith::AndIOp::create(b, loc, other, there),
+          /*withElseRegion=*/false);
+      OpBuilder::InsertionGuard guard(b);
+      b.setInsertionPointToStart(branch.thenBlock());
+      for (int64_t c = 0, nc = numComponents(insert.getValue().getType());
+           c < nc; ++c)
+        memref::StoreOp::create(b, loc, zeroOf(type.getElementType()), target,
+                                blockIndices(type, {block}, c));
+    }
   // An incidence entry is the sum of the edge's blocks at the endpoint:
   // the other blocks there (an edge naming it twice) become zero.
   if (storage.kind == Storage::Kind::Incidence)

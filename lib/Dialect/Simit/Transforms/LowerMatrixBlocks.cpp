@@ -244,48 +244,38 @@ LogicalResult FunctionLowering::lowerMatrixBlockAccess(Operation *op) {
     memref::StoreOp::create(b, loc,
                             component(insert.getValue().getType(), value, c),
                             target, blockIndices(type, {position}, c));
-  // A stencil entry is the sum of the row's blocks naming the column: the
-  // others after the first (findBlock's) become zero.
+  // An entry that several blocks share (stencil offsets naming one point,
+  // an edge naming an endpoint twice) is their sum: the value stays in the
+  // first (findBlock's) and the others there become zero.
+  auto zeroIfOtherThere = [&](Value block, Value there) {
+    Value other = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::ne,
+                                        block, position);
+    auto branch = scf::IfOp::create(
+        b, loc, TypeRange{}, arith::AndIOp::create(b, loc, other, there),
+        /*withElseRegion=*/false);
+    OpBuilder::InsertionGuard guard(b);
+    b.setInsertionPointToStart(branch.thenBlock());
+    for (int64_t c = 0, n = numComponents(insert.getValue().getType()); c < n;
+         ++c)
+      memref::StoreOp::create(b, loc, zeroOf(type.getElementType()), target,
+                              blockIndices(type, {block}, c));
+  };
   if (storage.kind == Storage::Kind::Stencil)
     for (int64_t k = 0, n = storage.offsets.size(); k < n; ++k) {
       Value kv = indexConstant(k);
-      Value block = stencilBlock(storage, row, kv);
-      Value other = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::ne,
-                                          block, position);
-      Value there = arith::CmpIOp::create(
-          b, loc, arith::CmpIPredicate::eq, stencilColumn(storage, row, kv),
-          col);
-      auto branch = scf::IfOp::create(
-          b, loc, TypeRange{}, arith::AndIOp::create(b, loc, other, there),
-          /*withElseRegion=*/false);
-      OpBuilder::InsertionGuard guard(b);
-      b.setInsertionPointToStart(branch.thenBlock());
-      for (int64_t c = 0, nc = numComponents(insert.getValue().getType());
-           c < nc; ++c)
-        memref::StoreOp::create(b, loc, zeroOf(type.getElementType()), target,
-                                blockIndices(type, {block}, c));
+      zeroIfOtherThere(stencilBlock(storage, row, kv),
+                       arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq,
+                                             stencilColumn(storage, row, kv),
+                                             col));
     }
-  // An incidence entry is the sum of the edge's blocks at the endpoint:
-  // the other blocks there (an edge naming it twice) become zero.
   if (storage.kind == Storage::Kind::Incidence)
-    forEachEdgeBlock(
-        loc, storage, storage.transposed ? col : row,
-        [&](Value at, Value block) {
-          Value other = arith::CmpIOp::create(
-              b, loc, arith::CmpIPredicate::ne, block, position);
-          Value there =
-              arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq, at,
-                                    storage.transposed ? row : col);
-          auto branch = scf::IfOp::create(
-              b, loc, TypeRange{}, arith::AndIOp::create(b, loc, other, there),
-              /*withElseRegion=*/false);
-          OpBuilder::InsertionGuard guard(b);
-          b.setInsertionPointToStart(branch.thenBlock());
-          for (int64_t c = 0, n = numComponents(insert.getValue().getType());
-               c < n; ++c)
-            memref::StoreOp::create(b, loc, zeroOf(type.getElementType()),
-                                    target, blockIndices(type, {block}, c));
-        });
+    forEachEdgeBlock(loc, storage, storage.transposed ? col : row,
+                     [&](Value at, Value block) {
+                       zeroIfOtherThere(
+                           block, arith::CmpIOp::create(
+                                      b, loc, arith::CmpIPredicate::eq, at,
+                                      storage.transposed ? row : col));
+                     });
   map(insert, target);
   return success();
 }

@@ -17,6 +17,7 @@
 
 #include "simit/Runtime/ElementColouring.h"
 #include "simit/Runtime/IncidenceView.h"
+#include "simit/Runtime/StencilPattern.h"
 #include "simit/Runtime/PatternAlgebra.h"
 #include "simit/Runtime/SparsityPattern.h"
 
@@ -149,6 +150,8 @@ struct Function::Impl {
   std::vector<std::pair<const Set *, uint64_t>> setVersions;
   std::vector<std::shared_ptr<const SparsityPattern>> patterns;
   std::vector<std::shared_ptr<const IncidenceView>> incidences;
+  /// Stencils as BCSR patterns (stencil_* bindings).
+  std::vector<std::shared_ptr<const StencilPattern>> stencils;
   /// Unions of patterns by their union binding's "set" (the joined edge
   /// sets), rows and cols, and the gather maps into them.
   std::map<std::string, std::shared_ptr<const SparsityPattern>> unions;
@@ -406,6 +409,40 @@ llvm::Error Function::Impl::prepareArgument(const ArgumentBinding &arg,
                  {static_cast<int64_t>(v.colIdx.size())});
     return llvm::Error::success();
   }
+  case Kind::StencilRowPtr:
+  case Kind::StencilColIdx:
+  case Kind::StencilPositions: {
+    llvm::Expected<Set *> grid = boundSet(arg.set);
+    if (!grid)
+      return grid.takeError();
+    std::vector<std::vector<int64_t>> offsets;
+    llvm::SmallVector<llvm::StringRef> points, coordinates;
+    llvm::StringRef(arg.offsets).split(points, ';');
+    for (llvm::StringRef point : points) {
+      coordinates.clear();
+      point.split(coordinates, ',');
+      std::vector<int64_t> &offset = offsets.emplace_back();
+      for (llvm::StringRef coordinate : coordinates)
+        if (coordinate.getAsInteger(10, offset.emplace_back()))
+          return error(arg.describe() + ": malformed offsets");
+    }
+    auto pattern = StencilPattern::get((*grid)->gridDimensions(), offsets);
+    if (!pattern)
+      return error(arg.describe() + ": " +
+                   llvm::toString(pattern.takeError()));
+    stencils.push_back(*pattern);
+    const StencilPattern &p = **pattern;
+    if (arg.kind == Kind::StencilRowPtr)
+      pushMemRef(word, p.rowPtr.data(),
+                 {static_cast<int64_t>(p.rowPtr.size())});
+    else if (arg.kind == Kind::StencilColIdx)
+      pushMemRef(word, p.colIdx.data(),
+                 {static_cast<int64_t>(p.colIdx.size())});
+    else
+      pushMemRef(word, p.positions.data(),
+                 {static_cast<int64_t>(p.positions.size())});
+    return llvm::Error::success();
+  }
   case Kind::ElementColours: {
     llvm::Expected<Set *> set = boundSet(arg.set);
     if (!set)
@@ -530,6 +567,7 @@ llvm::Error Function::Impl::init() {
   setVersions.clear();
   patterns.clear();
   incidences.clear();
+  stencils.clear();
   unions.clear();
   gathers.clear();
   colourings.clear();

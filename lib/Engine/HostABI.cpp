@@ -193,6 +193,11 @@ std::string ArgumentBinding::describe() const {
   case Kind::IncidencePositions:
     return "rows of the incidence of set '" + set + "' over ('" + rows +
            "', '" + cols + "')";
+  case Kind::StencilRowPtr:
+  case Kind::StencilColIdx:
+  case Kind::StencilPositions:
+    return "sparsity pattern of the stencil of grid '" + set +
+           "' with offsets " + offsets;
   case Kind::UnionRowPtr:
   case Kind::UnionColIdx:
     return "union of the sparsity patterns of '" +
@@ -288,6 +293,12 @@ public:
       if (llvm::Error err = get("rows", binding.rows))
         return err;
       return get("cols", binding.cols);
+    case Kind::StencilRowPtr:
+    case Kind::StencilColIdx:
+    case Kind::StencilPositions:
+      if (llvm::Error err = get("set", binding.set))
+        return err;
+      return get("offsets", binding.offsets);
     case Kind::UnionRowPtr:
     case Kind::UnionColIdx:
     case Kind::UnionGather: {
@@ -400,6 +411,9 @@ static llvm::Error checkKindType(const HostSignature &signature,
   case Kind::IncidenceRowPtr:
   case Kind::IncidenceColIdx:
   case Kind::IncidencePositions:
+  case Kind::StencilRowPtr:
+  case Kind::StencilColIdx:
+  case Kind::StencilPositions:
   case Kind::ElementColours:
     if (!type.isMemRef || type.rank() != 1 || type.scalar != ScalarKind::Int32)
       return fail("memref<?xi32>");

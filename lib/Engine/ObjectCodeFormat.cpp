@@ -113,8 +113,8 @@ std::string simit::serializeObjectCode(const ObjectCode &code) {
     out.integer<uint64_t>(function.signature.arguments.size());
     for (const ArgumentBinding &arg : function.signature.arguments) {
       out.integer(arg.kind);
-      for (const std::string *text :
-           {&arg.set, &arg.field, &arg.rows, &arg.cols, &arg.name})
+      for (const std::string *text : {&arg.set, &arg.field, &arg.rows,
+                                       &arg.cols, &arg.name, &arg.offsets})
         out.string(*text);
       auto writeSets = [&](const std::vector<std::string> &sets) {
         out.integer<uint64_t>(sets.size());
@@ -161,8 +161,8 @@ llvm::Expected<ObjectCode> simit::deserializeObjectCode(llvm::StringRef bytes) {
     function.signature.arguments.resize(in.count(sizeof(uint64_t)));
     for (ArgumentBinding &arg : function.signature.arguments) {
       arg.kind = in.enumeration(ArgumentBinding::Kind::Parameter);
-      for (std::string *text :
-           {&arg.set, &arg.field, &arg.rows, &arg.cols, &arg.name})
+      for (std::string *text : {&arg.set, &arg.field, &arg.rows, &arg.cols,
+                                 &arg.name, &arg.offsets})
         *text = in.string();
       auto readSets = [&](std::vector<std::string> &sets) {
         sets.resize(in.count(sizeof(uint64_t)));

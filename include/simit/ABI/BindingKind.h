@@ -43,6 +43,10 @@ enum class BindingKind {
                     // itself), its first block (simit::IncidenceView)
   IncidenceColIdx,  // memref<?xi32>: per block, its column
   IncidencePositions, // memref<?xi32>: per block, its value position
+  StencilRowPtr,    // memref<?xi32>: BCSR row pointers of the stencil of
+                    // grid `set` with `offsets` (simit::StencilPattern)
+  StencilColIdx,    // memref<?xi32>: its block columns
+  StencilPositions, // memref<?xi32>: per stencil block, its BCSR position
   ElementColours,   // memref<?xi32>: the colouring of edge set `set` in
                     // chunks of `chunk` elements
   Extern,           // an extern tensor `name`
@@ -58,7 +62,8 @@ inline constexpr BindingKind kBindingKinds[] = {
     BindingKind::UnionColIdx,      BindingKind::UnionGather,
     BindingKind::ProductRowPtr,    BindingKind::ProductColIdx,
     BindingKind::IncidenceRowPtr,  BindingKind::IncidenceColIdx,
-    BindingKind::IncidencePositions,
+    BindingKind::IncidencePositions, BindingKind::StencilRowPtr,
+    BindingKind::StencilColIdx,    BindingKind::StencilPositions,
     BindingKind::ElementColours,   BindingKind::Extern,
     BindingKind::Parameter};
 
@@ -95,6 +100,12 @@ constexpr std::string_view spelling(BindingKind kind) {
     return "incidence_colidx";
   case BindingKind::IncidencePositions:
     return "incidence_positions";
+  case BindingKind::StencilRowPtr:
+    return "stencil_rowptr";
+  case BindingKind::StencilColIdx:
+    return "stencil_colidx";
+  case BindingKind::StencilPositions:
+    return "stencil_positions";
   case BindingKind::ElementColours:
     return "element_colours";
   case BindingKind::Extern:

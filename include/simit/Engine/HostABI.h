@@ -100,6 +100,9 @@ struct ArgumentBinding {
   /// `simit.bindings`) and the sets between factors (written "M1,M2").
   std::vector<std::vector<std::string>> factorSets;
   std::vector<std::string> mids;
+  /// Stencil bindings: the offsets, ';'-separated points of ','-separated
+  /// coordinates ("-1,0;0,0;1,0"); `set` is the grid.
+  std::string offsets;
   /// Parameter: its position among the Simit function's parameters.
   int64_t index = -1;
   /// ElementColours: elements per chunk.

@@ -45,6 +45,14 @@ Value FunctionLowering::getBinding(BindingKind kind, ArrayRef<StringRef> names,
     entries.emplace_back(StringAttr::get(ctx, "field"),
                          StringAttr::get(ctx, names[1]));
     break;
+  case BindingKind::StencilRowPtr:
+  case BindingKind::StencilColIdx:
+  case BindingKind::StencilPositions:
+    entries.emplace_back(StringAttr::get(ctx, "set"),
+                         StringAttr::get(ctx, names[0]));
+    entries.emplace_back(StringAttr::get(ctx, "offsets"),
+                         StringAttr::get(ctx, names[1]));
+    break;
   default:
     for (auto [i, name] : llvm::enumerate(names))
       entries.emplace_back(StringAttr::get(ctx, setKeys[i]),
@@ -171,6 +179,52 @@ std::array<Value, 3> FunctionLowering::incidenceRows(const Storage &storage) {
   return {array(BindingKind::IncidenceRowPtr),
           array(BindingKind::IncidenceColIdx),
           array(BindingKind::IncidencePositions)};
+}
+
+std::array<Value, 3> FunctionLowering::stencilAsBCSR(Location loc,
+                                                     const Storage &storage,
+                                                     Value array) {
+  // "-1,0;0,0;1,0": the offsets as the runtime's StencilPattern reads them.
+  std::string offsets;
+  for (Attribute offset : storage.offsets) {
+    offsets += offsets.empty() ? "" : ";";
+    for (auto [i, v] :
+         llvm::enumerate(cast<DenseI64ArrayAttr>(offset).asArrayRef()))
+      offsets += (i ? "," : "") + std::to_string(v);
+  }
+  Type indexArray = MemRefType::get({ShapedType::kDynamic}, b.getI32Type());
+  auto binding = [&](BindingKind kind) {
+    return getBinding(kind, {storage.edges.getValue(), offsets}, indexArray);
+  };
+  Value rowPtr = binding(BindingKind::StencilRowPtr);
+  Value colIdx = binding(BindingKind::StencilColIdx);
+  Value positions = binding(BindingKind::StencilPositions);
+  // The blocks added at their BCSR positions (offsets naming one point
+  // share one).
+  auto type = cast<MemRefType>(array.getType());
+  Value count = arith::IndexCastOp::create(
+      b, loc, b.getIndexType(),
+      memref::LoadOp::create(b, loc, rowPtr,
+                             ValueRange{getSetSize(storage.rows)}));
+  Value values = memref::AllocOp::create(b, loc, type, ValueRange{count});
+  fill(loc, values, zeroOf(type.getElementType()));
+  int64_t components = 1;
+  for (int64_t dim : type.getShape().drop_front())
+    components *= dim;
+  forLoop(loc, memref::DimOp::create(b, loc, array, 0), [&](Value block) {
+    Value at = arith::IndexCastOp::create(
+        b, loc, b.getIndexType(),
+        memref::LoadOp::create(b, loc, positions, ValueRange{block}));
+    for (int64_t c = 0; c < components; ++c) {
+      SmallVector<Value> to = blockIndices(type, {at}, c);
+      Value sum = arith::AddFOp::create(
+          b, loc, memref::LoadOp::create(b, loc, values, to),
+          memref::LoadOp::create(b, loc, array,
+                                 blockIndices(type, {block}, c)));
+      memref::StoreOp::create(b, loc, sum, values, to);
+    }
+  });
+  return {rowPtr, colIdx, values};
 }
 
 Value FunctionLowering::emptyIndexArray() {

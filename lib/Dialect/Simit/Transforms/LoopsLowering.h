@@ -263,6 +263,11 @@ public:
   /// product reads them: per row its first block, per block its column and
   /// value position (incidence_* bindings, simit::IncidenceView).
   std::array<Value, 3> incidenceRows(const Storage &storage);
+  /// A stencil matrix `array` as BCSR for the runtime's sparse solvers:
+  /// the bind-time pattern of the stencil (stencil_* bindings,
+  /// simit::StencilPattern) and a fresh array of values on it.
+  std::array<Value, 3> stencilAsBCSR(Location loc, const Storage &storage,
+                                     Value array);
   /// An empty memref<?xi32> for runtime functions whose index arrays a
   /// layout does not use.
   Value emptyIndexArray();

@@ -75,9 +75,22 @@ static std::pair<Value, Value> bcsrIndices(FunctionLowering &l, Location loc,
   return {rowPtr, colIdx};
 }
 
-/// Whether the runtime's sparse solvers take a matrix stored as `s`.
+/// Whether the runtime's sparse solvers take a matrix stored as `s` (a
+/// stencil through its bind-time BCSR pattern).
 static bool isSparseSquare(const Storage &s) {
-  return (s.isBCSR() || s.kind == Storage::Kind::Diagonal) && s.rows == s.cols;
+  return (s.isBCSR() || s.kind == Storage::Kind::Diagonal ||
+          s.kind == Storage::Kind::Stencil) &&
+         s.rows == s.cols;
+}
+
+/// The BCSR row pointers, column indices and values the runtime's sparse
+/// solvers take for `matrix`, stored as `storage` (isSparseSquare).
+static std::array<Value, 3> bcsrArrays(FunctionLowering &l, Location loc,
+                                       const Storage &storage, Value matrix) {
+  if (storage.kind == Storage::Kind::Stencil)
+    return l.stencilAsBCSR(loc, storage, l.lookup(matrix));
+  auto [rowPtr, colIdx] = bcsrIndices(l, loc, storage);
+  return {rowPtr, colIdx, l.lookup(matrix)};
 }
 
 /// `\`: the runtime's SolveSession (lib/ABI/SystemSolves.cpp).
@@ -146,11 +159,12 @@ LogicalResult FunctionLowering::lowerSystemSolve(Operation *op, Value matrix,
   Value x = allocSystem(loc, result.getType(), Storage::dense(),
                         /*zeroFill=*/false);
   SmallVector<Value> args;
-  if (!diagonal) {
-    auto [rowPtr, colIdx] = bcsrIndices(*this, loc, storage);
-    args.append({rowPtr, colIdx});
+  if (diagonal) {
+    args.push_back(asRuntimeBlocks(loc, lookup(matrix), values));
+  } else {
+    auto [rowPtr, colIdx, blocks] = bcsrArrays(*this, loc, storage, matrix);
+    args.append({rowPtr, colIdx, asRuntimeBlocks(loc, blocks, values)});
   }
-  args.push_back(asRuntimeBlocks(loc, lookup(matrix), values));
   for (Value input : vectors)
     args.push_back(asRuntimeBlocks(loc, lookup(input), vector));
   args.append({asRuntimeBlocks(loc, x, vector),
@@ -277,11 +291,11 @@ LogicalResult FunctionLowering::lowerSystemFactorisation(Operation *op) {
     if (!callee)
       return op->emitError("@") << runtimeName
                                 << " is declared with another type";
-    auto [rowPtr, colIdx] = bcsrIndices(*this, loc, storage);
+    auto [rowPtr, colIdx, blocks] = bcsrArrays(*this, loc, storage, matrix);
     auto lowered = func::CallOp::create(
         b, loc, callee,
-        ValueRange{rowPtr, colIdx,
-                   asRuntimeBlocks(loc, lookup(matrix), values), where});
+        ValueRange{rowPtr, colIdx, asRuntimeBlocks(loc, blocks, values),
+                   where});
     map(factorize.getResult(), lowered.getResult(0));
     return success();
   }

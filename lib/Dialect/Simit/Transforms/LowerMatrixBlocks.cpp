@@ -322,14 +322,36 @@ LogicalResult FunctionLowering::lowerMatrixSlice(SliceOp op) {
     return arith::IndexCastOp::create(b, loc, b.getIndexType(), v);
   };
   bool incidence = storage.kind == Storage::Kind::Incidence;
+  bool stencil = storage.kind == Storage::Kind::Stencil;
   if (!isa<FloatType>(scalar) ||
       !(storage.kind == Storage::Kind::Diagonal || storage.isBCSR() ||
-        incidence))
+        incidence || stencil))
     return op.emitError("this slice of a matrix stored as ")
            << storage.describe() << " is not supported by the loop lowering";
 
   if (storage.kind == Storage::Kind::Diagonal) {
     copy(index, index, /*add=*/false);
+  } else if (stencil && row) {
+    // Row p: its block per offset at the offset's point (offsets naming
+    // one point add).
+    for (int64_t k = 0, n = storage.offsets.size(); k < n; ++k)
+      copy(stencilBlock(storage, index, indexConstant(k)),
+           stencilColumn(storage, index, indexConstant(k)), /*add=*/true);
+  } else if (stencil) {
+    // Column q: every row's blocks whose offset names q.
+    forEach(indexConstant(0), getSetSize(storage.rows), [&](Value r) {
+      for (int64_t k = 0, n = storage.offsets.size(); k < n; ++k) {
+        Value kv = indexConstant(k);
+        Value match = arith::CmpIOp::create(
+            b, loc, arith::CmpIPredicate::eq, stencilColumn(storage, r, kv),
+            index);
+        auto branch = scf::IfOp::create(b, loc, TypeRange{}, match,
+                                        /*withElseRegion=*/false);
+        OpBuilder::InsertionGuard guard(b);
+        b.setInsertionPointToStart(branch.thenBlock());
+        copy(stencilBlock(storage, r, kv), r, /*add=*/true);
+      }
+    });
   } else if (incidence && row == storage.transposed) {
     // A row of a transposed incidence (a vertex's) or a column of an
     // incidence: the blocks of every edge naming the vertex, at the edge.

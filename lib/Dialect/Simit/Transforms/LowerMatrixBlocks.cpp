@@ -323,14 +323,25 @@ LogicalResult FunctionLowering::lowerMatrixSlice(SliceOp op) {
   };
   bool incidence = storage.kind == Storage::Kind::Incidence;
   bool stencil = storage.kind == Storage::Kind::Stencil;
+  bool dense = storage.kind == Storage::Kind::DenseMatrix;
   if (!isa<FloatType>(scalar) ||
       !(storage.kind == Storage::Kind::Diagonal || storage.isBCSR() ||
-        incidence || stencil))
+        incidence || stencil || dense))
     return op.emitError("this slice of a matrix stored as ")
            << storage.describe() << " is not supported by the loop lowering";
 
   if (storage.kind == Storage::Kind::Diagonal) {
     copy(index, index, /*add=*/false);
+  } else if (dense) {
+    // Block r * |cols| + c is (r, c).
+    Value cols = getSetSize(storage.cols);
+    forEach(indexConstant(0), getSetSize(row ? storage.cols : storage.rows),
+            [&](Value i) {
+              Value r = row ? index : i, c = row ? i : index;
+              copy(arith::AddIOp::create(
+                       b, loc, arith::MulIOp::create(b, loc, r, cols), c),
+                   i, /*add=*/false);
+            });
   } else if (stencil && row) {
     // Row p: its block per offset at the offset's point (offsets naming
     // one point add).

@@ -134,25 +134,27 @@ simit::chainProductPattern(llvm::ArrayRef<const SparsityPattern *> factors,
   size_t k = factors.size();
   assert(k >= 2 && sets.size() == k + 1 && "a set between each two factors");
   // part[l][r]: the pattern of factors l..r (interval dynamic programming;
-  // chains are short). The factors themselves are not owned, and never
-  // returned (k >= 2).
-  std::vector<std::vector<std::shared_ptr<const SparsityPattern>>> part(
-      k, std::vector<std::shared_ptr<const SparsityPattern>>(k));
+  // chains are short), the ones made here held in `made`.
+  std::vector<std::vector<const SparsityPattern *>> part(
+      k, std::vector<const SparsityPattern *>(k));
+  std::vector<std::shared_ptr<const SparsityPattern>> made;
   for (size_t i = 0; i < k; ++i)
-    part[i][i] = std::shared_ptr<const SparsityPattern>(
-        factors[i], [](const SparsityPattern *) {});
+    part[i][i] = factors[i];
   for (size_t length = 2; length <= k; ++length)
     for (size_t l = 0; l + length <= k; ++l) {
       size_t r = l + length - 1;
       bool square = sets[l] == sets[r + 1];
       std::vector<std::shared_ptr<const SparsityPattern>> splits;
-      for (size_t m = l; m < r; ++m)
+      std::vector<const SparsityPattern *> members;
+      for (size_t m = l; m < r; ++m) {
         splits.push_back(
             productPattern(*part[l][m], *part[m + 1][r], square));
-      std::vector<const SparsityPattern *> members;
-      for (const auto &split : splits)
-        members.push_back(split.get());
-      part[l][r] = splits.size() == 1 ? splits.front() : unionPattern(members);
+        members.push_back(splits.back().get());
+      }
+      made.push_back(splits.size() == 1 ? splits.front()
+                                        : unionPattern(members));
+      part[l][r] = made.back().get();
     }
-  return part[0][k - 1];
+  // The whole chain is the last part made (k >= 2).
+  return made.back();
 }

@@ -40,18 +40,15 @@ Value FunctionLowering::getBinding(BindingKind kind, ArrayRef<StringRef> names,
                          StringAttr::get(ctx, names[0]));
     break;
   case BindingKind::Field:
-    entries.emplace_back(StringAttr::get(ctx, "set"),
-                         StringAttr::get(ctx, names[0]));
-    entries.emplace_back(StringAttr::get(ctx, "field"),
-                         StringAttr::get(ctx, names[1]));
-    break;
   case BindingKind::StencilRowPtr:
   case BindingKind::StencilColIdx:
   case BindingKind::StencilPositions:
+    // A set and what of it: a field's name, a stencil's offsets.
     entries.emplace_back(StringAttr::get(ctx, "set"),
                          StringAttr::get(ctx, names[0]));
-    entries.emplace_back(StringAttr::get(ctx, "offsets"),
-                         StringAttr::get(ctx, names[1]));
+    entries.emplace_back(
+        StringAttr::get(ctx, kind == BindingKind::Field ? "field" : "offsets"),
+        StringAttr::get(ctx, names[1]));
     break;
   default:
     for (auto [i, name] : llvm::enumerate(names))

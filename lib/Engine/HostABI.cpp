@@ -6,6 +6,7 @@
 #include "mlir/Dialect/LLVMIR/LLVMTypes.h"
 #include "mlir/IR/BuiltinAttributes.h"
 #include "mlir/IR/BuiltinTypes.h"
+#include "mlir/IR/SymbolTable.h"
 
 #include "llvm/ADT/StringExtras.h"
 #include "llvm/Support/raw_ostream.h"
@@ -428,11 +429,22 @@ static llvm::Error checkKindType(const HostSignature &signature,
   llvm_unreachable("unknown binding kind");
 }
 
-llvm::Expected<HostSignature> simit::readHostSignature(mlir::func::FuncOp func) {
+llvm::Expected<HostSignature>
+simit::readHostSignature(mlir::Operation *function) {
   HostSignature signature;
-  signature.function = func.getSymName().str();
-  mlir::FunctionType type = func.getFunctionType();
-  auto bindings = func->getAttrOfType<mlir::ArrayAttr>("simit.bindings");
+  signature.function = mlir::SymbolTable::getSymbolName(function).str();
+  mlir::FunctionType type;
+  if (auto hostType = function->getAttrOfType<mlir::TypeAttr>(
+          llvm::StringRef(abi::kHostTypeAttr)))
+    type = llvm::dyn_cast<mlir::FunctionType>(hostType.getValue());
+  else if (auto func = llvm::dyn_cast<mlir::func::FuncOp>(function))
+    type = func.getFunctionType();
+  if (!type)
+    return llvm::createStringError(
+        "function '" + signature.function + "' has no function type in " +
+        llvm::StringRef(abi::kHostTypeAttr) + " (simit-record-host-abi)");
+  auto bindings = function->getAttrOfType<mlir::ArrayAttr>(
+      llvm::StringRef(abi::kBindingsAttr));
   if (!bindings)
     return llvm::createStringError("function '" + signature.function +
                                    "' has no simit.bindings attribute");

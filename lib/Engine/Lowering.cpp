@@ -65,48 +65,20 @@ void simit::registerEngineDialects(mlir::DialectRegistry &registry) {
 }
 
 namespace {
-/// Records the host ABI of each function with `simit.bindings` at every pass
-/// boundary, so the last record is the signature the function had before it
-/// became an llvm.func; and keeps the IR after convert-simit-to-loops.
-class SignatureRecorder : public mlir::PassInstrumentation {
+/// Keeps the IR right after convert-simit-to-loops, the "loops" stage of
+/// --emit.
+class LoopsStageKeeper : public mlir::PassInstrumentation {
 public:
-  explicit SignatureRecorder(LoweringResult &result) : result(result) {}
-
-  void runBeforePass(mlir::Pass *, mlir::Operation *op) override {
-    record(op);
-  }
+  explicit LoopsStageKeeper(std::string &text) : text(text) {}
   void runAfterPass(mlir::Pass *pass, mlir::Operation *op) override {
-    record(op);
-    if (pass->getArgument() == kLoopsPass) {
-      llvm::raw_string_ostream os(result.loopsText);
-      op->print(os);
-    }
+    if (pass->getArgument() != kLoopsPass)
+      return;
+    llvm::raw_string_ostream os(text);
+    op->print(os);
   }
-  /// The error of a malformed signature, if any was seen.
-  llvm::Error takeError() { return std::move(error); }
 
 private:
-  void record(mlir::Operation *op) {
-    op->walk<mlir::WalkOrder::PreOrder>([&](mlir::Operation *nested) {
-      auto func = llvm::dyn_cast<mlir::func::FuncOp>(nested);
-      if (!func)
-        return nested == op ? mlir::WalkResult::advance()
-                            : mlir::WalkResult::skip();
-      if (func->hasAttr("simit.bindings")) {
-        llvm::Expected<HostSignature> signature = readHostSignature(func);
-        if (signature)
-          result.signatures[signature->function] = std::move(*signature);
-        else if (!error)
-          error = signature.takeError();
-        else
-          llvm::consumeError(signature.takeError());
-      }
-      return mlir::WalkResult::skip();
-    });
-  }
-
-  LoweringResult &result;
-  llvm::Error error = llvm::Error::success();
+  std::string &text;
 };
 } // namespace
 
@@ -235,7 +207,8 @@ static void markLaunchStatements(mlir::ModuleOp module) {
 llvm::Error
 simit::lowerToLLVM(mlir::ModuleOp module, LoweringResult &result,
                    mlir::simit::SimitCpuPipelineOptions pipelineOptions,
-                   const std::optional<GPUKernelTarget> &gpu) {
+                   const std::optional<GPUKernelTarget> &gpu,
+                   bool keepLoopsStage) {
   mlir::MLIRContext *context = module.getContext();
   DiagnosticCollector diagnostics(context);
 
@@ -246,9 +219,8 @@ simit::lowerToLLVM(mlir::ModuleOp module, LoweringResult &result,
   // end, before it is translated; simit-opt, which the lit tests run, still
   // verifies after every pass.
   pm.enableVerifier(false);
-  auto recorder = std::make_unique<SignatureRecorder>(result);
-  SignatureRecorder *recorderPtr = recorder.get();
-  pm.addInstrumentation(std::move(recorder));
+  if (keepLoopsStage)
+    pm.addInstrumentation(std::make_unique<LoopsStageKeeper>(result.loopsText));
 
   pipelineOptions.runtimeAllocator = true;
   if (gpu)
@@ -256,13 +228,28 @@ simit::lowerToLLVM(mlir::ModuleOp module, LoweringResult &result,
   else
     mlir::simit::buildSimitCpuPipeline(pm, pipelineOptions);
 
-  mlir::LogicalResult status = pm.run(module);
-  if (llvm::Error err = recorderPtr->takeError())
-    return err;
-  if (mlir::failed(status))
+  if (mlir::failed(pm.run(module)))
     return diagnostics.error("lowering failed");
   if (mlir::failed(mlir::verify(module)))
     return diagnostics.error("lowering produced invalid IR");
+  auto hasBindings = [](mlir::Operation *function) {
+    return function &&
+           function->hasAttr(llvm::StringRef(::simit::abi::kBindingsAttr));
+  };
+  for (auto function : module.getOps<mlir::LLVM::LLVMFuncOp>()) {
+    if (!hasBindings(function))
+      continue;
+    // func-to-llvm copies the attributes onto the C interface wrapper
+    // `_mlir_ciface_<name>` it makes; the engine calls the function itself.
+    llvm::StringRef name = function.getSymName();
+    if (name.consume_front("_mlir_ciface_") &&
+        hasBindings(module.lookupSymbol(name)))
+      continue;
+    llvm::Expected<HostSignature> signature = readHostSignature(function);
+    if (!signature)
+      return signature.takeError();
+    result.signatures[signature->function] = std::move(*signature);
+  }
   if (gpu)
     markLaunchStatements(module);
   return llvm::Error::success();
@@ -277,6 +264,25 @@ static size_t loweredArgumentCount(const HostSignature &signature,
                  ? 3 + 2 * arg.type.rank()
                  : 1;
   return count;
+}
+
+/// The convention `function` declares in simit.memref_convention.
+static llvm::Expected<MemRefConvention>
+readMemRefConvention(mlir::LLVM::LLVMFuncOp function) {
+  auto attr = function->getAttrOfType<mlir::StringAttr>(
+      llvm::StringRef(::simit::abi::kMemRefConventionAttr));
+  if (attr &&
+      attr.getValue() == llvm::StringRef(::simit::abi::kDescriptorConvention))
+    return MemRefConvention::Descriptor;
+  if (attr &&
+      attr.getValue() == llvm::StringRef(::simit::abi::kBarePointerConvention))
+    return MemRefConvention::BarePointer;
+  return llvm::createStringError(
+      "function '" + function.getSymName() +
+      "' declares no memref convention "
+      "in " +
+      llvm::StringRef(::simit::abi::kMemRefConventionAttr) +
+      " (simit-record-host-abi)");
 }
 
 /// Adds `void _mlir_<name>(void **args)` calling `function` with
@@ -347,20 +353,22 @@ simit::compileToObject(mlir::ModuleOp llvmModule,
     if (!func)
       return llvm::createStringError("function '" + entry.getKey() +
                                      "' did not reach the LLVM dialect");
-    size_t numArgs = func.getNumArguments();
     CompiledFunction function;
     function.signature = entry.getValue();
-    if (numArgs == loweredArgumentCount(function.signature,
-                                        MemRefConvention::Descriptor))
-      function.convention = MemRefConvention::Descriptor;
-    else if (numArgs == loweredArgumentCount(function.signature,
-                                             MemRefConvention::BarePointer))
-      function.convention = MemRefConvention::BarePointer;
-    else
+    llvm::Expected<MemRefConvention> convention = readMemRefConvention(func);
+    if (!convention)
+      return convention.takeError();
+    function.convention = *convention;
+    // A conversion to LLVM that did not pass memrefs as declared would make
+    // the engine pass the wrong words.
+    size_t numArgs = func.getNumArguments();
+    size_t expected = loweredArgumentCount(function.signature, *convention);
+    if (numArgs != expected)
       return llvm::createStringError(
           "function '" + entry.getKey() + "' has " + llvm::Twine(numArgs) +
-          " LLVM arguments, which matches neither memref convention of its " +
-          llvm::Twine(function.signature.arguments.size()) + " arguments");
+          " LLVM arguments where its host signature and memref convention "
+          "make " +
+          llvm::Twine(expected));
     code.functions[entry.getKey()] = std::move(function);
   }
 

@@ -29,11 +29,11 @@ void registerEngineDialects(mlir::DialectRegistry &registry);
 
 /// What lowering learnt on the way.
 struct LoweringResult {
-  /// The host ABI of every function carrying `simit.bindings`, read just
-  /// before the function became an llvm.func.
+  /// The host ABI of every function carrying `simit.bindings`, read from
+  /// the attributes of its llvm.func (simit-record-host-abi).
   llvm::StringMap<HostSignature> signatures;
-  /// The module right after convert-simit-to-loops (empty when the input
-  /// was already loops).
+  /// The module right after convert-simit-to-loops, when asked for (empty
+  /// when the input was already loops).
   std::string loopsText;
 };
 
@@ -56,10 +56,13 @@ GPUKernelTarget gpuKernelTargetFor(int capability);
 /// the loops (Sherman–Morrison, phase timer, numerics checks) and then
 /// simit-gpu-pipeline for `gpu`, and marks every kernel launch with its
 /// Simit statement (simit_rt_gpu_statement) for the runtime's messages.
+/// With `keepLoopsStage`, also prints the module after the loop lowering
+/// into result.loopsText.
 llvm::Error
 lowerToLLVM(mlir::ModuleOp module, LoweringResult &result,
             mlir::simit::SimitCpuPipelineOptions options = {},
-            const std::optional<GPUKernelTarget> &gpu = std::nullopt);
+            const std::optional<GPUKernelTarget> &gpu = std::nullopt,
+            bool keepLoopsStage = false);
 
 /// Compiles a module in the LLVM dialect at -O3 for the host (hostTarget())
 /// into an object with a packed entry point for every function in

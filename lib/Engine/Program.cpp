@@ -156,24 +156,28 @@ struct Program::Impl {
   llvm::Error lower() {
     if (llvmModule)
       return llvm::Error::success();
+    return lowerClone(llvmModule, lowering, /*keepLoopsStage=*/false);
+  }
+
+  /// Lowers a specialised copy of the module into `lowered` and `result`.
+  llvm::Error lowerClone(mlir::OwningOpRef<mlir::ModuleOp> &lowered,
+                         LoweringResult &result, bool keepLoopsStage) {
     if (!threadsError.empty())
       return llvm::createStringError(threadsError);
     if (llvm::Error err = requireModule())
       return err;
     mlir::OwningOpRef<mlir::ModuleOp> clone = module->clone();
     specialiseModule(*clone, options.specialisation);
-    LoweringResult result;
     mlir::simit::SimitCpuPipelineOptions pipelineOptions;
     pipelineOptions.timePhases = options.timePhases;
     pipelineOptions.checkNumerics = options.checkNumerics;
     pipelineOptions.openmp = openmp();
     pipelineOptions.shermanMorrison = options.shermanMorrison;
     pipelineOptions.eliminateDeadAssemblies = options.eliminateDeadAssemblies;
-    if (llvm::Error err =
-            lowerToLLVM(*clone, result, pipelineOptions, kernelTarget()))
+    if (llvm::Error err = lowerToLLVM(*clone, result, pipelineOptions,
+                                      kernelTarget(), keepLoopsStage))
       return err;
-    llvmModule = std::move(clone);
-    lowering = std::move(result);
+    lowered = std::move(clone);
     return llvm::Error::success();
   }
 
@@ -346,14 +350,19 @@ llvm::Expected<std::string> Program::emit(Stage stage) {
       return std::move(err);
     impl->module->print(os);
     return text;
-  case Stage::Loops:
-    if (llvm::Error err = impl->lower())
+  case Stage::Loops: {
+    // Printed only here: every compile would otherwise pay for it.
+    mlir::OwningOpRef<mlir::ModuleOp> lowered;
+    LoweringResult result;
+    if (llvm::Error err =
+            impl->lowerClone(lowered, result, /*keepLoopsStage=*/true))
       return std::move(err);
-    if (impl->lowering.loopsText.empty())
+    if (result.loopsText.empty())
       return llvm::createStringError(
           "the program has no loops stage: it was not lowered by "
           "convert-simit-to-loops");
-    return impl->lowering.loopsText;
+    return result.loopsText;
+  }
   case Stage::LLVM:
     if (llvm::Error err = impl->lower())
       return std::move(err);

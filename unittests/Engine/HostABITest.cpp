@@ -3,6 +3,7 @@
 #include "simit/Engine/HostABI.h"
 
 #include "mlir/Dialect/Func/IR/FuncOps.h"
+#include "mlir/Dialect/LLVMIR/LLVMDialect.h"
 #include "mlir/Dialect/MemRef/IR/MemRef.h"
 #include "mlir/IR/BuiltinOps.h"
 #include "mlir/IR/MLIRContext.h"
@@ -16,16 +17,17 @@ namespace {
 class HostABITest : public ::testing::Test {
 protected:
   HostABITest() {
-    context.loadDialect<mlir::func::FuncDialect, mlir::memref::MemRefDialect>();
+    context.loadDialect<mlir::func::FuncDialect, mlir::memref::MemRefDialect,
+                        mlir::LLVM::LLVMDialect>();
   }
 
-  /// The signature of the only function of `text`.
+  /// The signature of the only function (func.func or llvm.func) of
+  /// `text`.
   llvm::Expected<HostSignature> read(llvm::StringRef text) {
     module = mlir::parseSourceString<mlir::ModuleOp>(text, &context);
     if (!module)
       return llvm::createStringError("parse error");
-    auto funcs = module->getOps<mlir::func::FuncOp>();
-    return readHostSignature(*funcs.begin());
+    return readHostSignature(&module->getBody()->front());
   }
 
   std::string readError(llvm::StringRef text) {
@@ -138,6 +140,38 @@ TEST_F(HostABITest, ReadsAnElementColouring) {
 TEST_F(HostABITest, RequiresTheBindingsAttribute) {
   EXPECT_EQ(readError("func.func private @f(f64) -> i32"),
             "function 'f' has no simit.bindings attribute");
+}
+
+// After the conversion to LLVM, the memref types are gone from the
+// signature: simit.host_type keeps them.
+TEST_F(HostABITest, ReadsTheHostTypeOfAnLLVMFunction) {
+  auto signature = read(R"mlir(
+    llvm.func @step(%n : i64, %a : !llvm.ptr, %b : !llvm.ptr, %o : i64,
+                    %s : i64, %t : i64) -> f64
+      attributes {simit.bindings = [{kind = "set_size", set = "points"},
+                                    {kind = "field", set = "points", field = "m"}],
+                  simit.host_type = (index, memref<?xf64>) -> f64,
+                  simit.memref_convention = "descriptor"} {
+      %0 = llvm.mlir.constant(0.0 : f64) : f64
+      llvm.return %0 : f64
+    }
+  )mlir");
+  ASSERT_TRUE(!!signature) << llvm::toString(signature.takeError());
+  EXPECT_EQ(signature->function, "step");
+  ASSERT_EQ(signature->arguments.size(), 2u);
+  EXPECT_EQ(signature->arguments[1].type.str(), "memref<?xf64>");
+  EXPECT_EQ(signature->arguments[1].field, "m");
+  ASSERT_EQ(signature->results.size(), 1u);
+  EXPECT_EQ(signature->results[0].str(), "f64");
+}
+
+TEST_F(HostABITest, RequiresTheHostTypeOfAnLLVMFunction) {
+  EXPECT_EQ(readError(R"mlir(llvm.func @f(%n : i64)
+      attributes {simit.bindings = [{kind = "set_size", set = "p"}]} {
+      llvm.return
+    })mlir"),
+            "function 'f' has no function type in simit.host_type "
+            "(simit-record-host-abi)");
 }
 
 TEST_F(HostABITest, RejectsAnUnknownKind) {

@@ -19,6 +19,19 @@
 namespace simit {
 namespace abi {
 
+/// The attributes a lowered exported function carries to the engine, on
+/// its func.func and, after the conversion to LLVM, on its llvm.func:
+/// one binding dictionary per argument; the function's type at the host
+/// boundary (memrefs, scalars, vectors), which the LLVM signature no longer
+/// shows; and how its memref arguments are passed (simit-record-host-abi).
+constexpr std::string_view kBindingsAttr = "simit.bindings";
+constexpr std::string_view kHostTypeAttr = "simit.host_type";
+constexpr std::string_view kMemRefConventionAttr = "simit.memref_convention";
+/// The spellings of kMemRefConventionAttr: a memref passed as its exploded
+/// descriptor (MLIR's default), or as a bare pointer to its data.
+constexpr std::string_view kDescriptorConvention = "descriptor";
+constexpr std::string_view kBarePointerConvention = "bare_pointer";
+
 /// What one argument of a lowered function carries (docs/lowering.md,
 /// "Host ABI of an entry point").
 enum class BindingKind {

@@ -23,10 +23,8 @@
 #include <vector>
 
 namespace mlir {
+class Operation;
 class Type;
-namespace func {
-class FuncOp;
-} // namespace func
 } // namespace mlir
 
 namespace simit {
@@ -124,9 +122,11 @@ struct HostSignature {
   std::vector<ValueType> results;
 };
 
-/// Reads `func`'s signature and `simit.bindings` attribute. Errors name the
-/// function and the malformed entry.
-llvm::Expected<HostSignature> readHostSignature(mlir::func::FuncOp func);
+/// Reads the signature of `function`, a func.func or an llvm.func, from its
+/// `simit.bindings` and `simit.host_type` attributes (simit-record-host-abi;
+/// a func.func without the latter has its own type read instead). Errors
+/// name the function and the malformed entry.
+llvm::Expected<HostSignature> readHostSignature(mlir::Operation *function);
 
 } // namespace simit
 

@@ -590,7 +590,8 @@ LogicalResult FunctionLowering::run(func::FuncOp original) {
   entry->eraseArguments(firstBinding, bindings.size());
   function.setType(FunctionType::get(
       ctx, function.front().getArgumentTypes(), resultTypes));
-  function->setAttr("simit.bindings", ArrayAttr::get(ctx, bindingAttrs));
+  function->setAttr(StringRef(::simit::abi::kBindingsAttr),
+                    ArrayAttr::get(ctx, bindingAttrs));
   function->setAttr("llvm.emit_c_interface", UnitAttr::get(ctx));
   return success();
 }

@@ -93,6 +93,9 @@ void mlir::simit::buildSimitCpuPipeline(
   pm.addPass(createArithToLLVMConversionPass());
   pm.addPass(createConvertIndexToLLVMPass());
   pm.addPass(createConvertComplexToLLVMPass());
+  // Written while function arguments are still memrefs: the conversions
+  // of OpenMP and func below make them descriptors.
+  pm.addPass(createSimitRecordHostABI());
   FinalizeMemRefToLLVMConversionPassOptions memrefOptions;
   memrefOptions.useGenericFunctions = options.runtimeAllocator;
   pm.addPass(createFinalizeMemRefToLLVMConversionPass(memrefOptions));

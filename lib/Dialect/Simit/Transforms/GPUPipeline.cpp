@@ -67,6 +67,9 @@ struct GpuPipeline : public simit::impl::SimitGpuPipelineBase<GpuPipeline> {
     nvvm.cubinFeatures = features;
     nvvm.cubinFormat = format;
     nvvm.optLevel = optLevel;
+    simit::SimitRecordHostABIOptions hostABI;
+    hostABI.barePointers = nvvm.hostUseBarePtrCallConv;
+    pm.addPass(simit::createSimitRecordHostABI(hostABI));
     gpu::buildLowerToNVVMPassPipeline(pm, nvvm);
   }
 

@@ -48,7 +48,8 @@ namespace {
 /// `function`, else null.
 DictionaryAttr bindingOf(func::FuncOp function, Value value) {
   auto arg = dyn_cast<BlockArgument>(value);
-  auto bindings = function->getAttrOfType<ArrayAttr>("simit.bindings");
+  auto bindings = function->getAttrOfType<ArrayAttr>(
+      StringRef(::simit::abi::kBindingsAttr));
   if (!arg || !bindings || arg.getOwner() != &function.front() ||
       arg.getArgNumber() >= bindings.size())
     return {};
@@ -525,7 +526,8 @@ Value ParallelLoops::elementColours(func::FuncOp function, StringRef set) {
                          ::simit::abi::BindingKind::ElementColours))),
       b.getNamedAttr("set", b.getStringAttr(set))};
   auto binding = DictionaryAttr::get(ctx, entries);
-  auto bindings = function->getAttrOfType<ArrayAttr>("simit.bindings");
+  auto bindings = function->getAttrOfType<ArrayAttr>(
+      StringRef(::simit::abi::kBindingsAttr));
   for (auto [i, existing] : llvm::enumerate(bindings))
     if (existing == binding)
       return function.getArgument(i);
@@ -536,7 +538,8 @@ Value ParallelLoops::elementColours(func::FuncOp function, StringRef set) {
     return {};
   SmallVector<Attribute> entriesAfter(bindings.begin(), bindings.end());
   entriesAfter.push_back(binding);
-  function->setAttr("simit.bindings", ArrayAttr::get(ctx, entriesAfter));
+  function->setAttr(StringRef(::simit::abi::kBindingsAttr),
+                    ArrayAttr::get(ctx, entriesAfter));
   return function.getArgument(index);
 }
 

@@ -31,9 +31,12 @@
 // FEM-DAG: define void @step(
 // FEM-DAG: define void @_mlir_ciface_step(
 
-// Only the LLVM dialect is left, and the bindings stay on the function.
+// Only the LLVM dialect is left, and the bindings, the host type and the
+// memref convention stay on the function.
 // LLVM-LABEL: llvm.func @scale(
 // LLVM-SAME: simit.bindings = [{index = 0 : i64, kind = "param"}, {kind = "set_size", set = "points"}, {field = "x", kind = "field", set = "points"}]
+// LLVM-SAME: simit.host_type = (f64, index, memref<?x3xf64>) -> ()
+// LLVM-SAME: simit.memref_convention = "descriptor"} {
 // LLVM-NOT: simit.
 // LLVM-NOT: scf.
 // LLVM-NOT: memref.

@@ -325,6 +325,24 @@ def SimitGuardIntegerDivision : Pass<"simit-guard-integer-division", "::mlir::fu
                            "::mlir::vector::VectorDialect"];
 }
 
+def SimitRecordHostABI : Pass<"simit-record-host-abi", "::mlir::ModuleOp"> {
+  let summary = "Records each exported function's host signature in attributes";
+  let description = [{
+    Stamps every `func.func` that carries `simit.bindings` with
+    `simit.host_type`, its function type as the host sees it (memrefs,
+    scalars, vectors), and `simit.memref_convention`, `"descriptor"` or
+    `"bare_pointer"` as the conversion to LLVM that follows will pass its
+    memrefs. The pipelines run it just before that conversion; the
+    attributes stay on the `llvm.func`, where the engine reads the signature
+    (simit/ABI/BindingKind.h names them). A function whose bindings do not
+    match its arguments in number is an error.
+  }];
+  let options = [
+    Option<"barePointers", "bare-pointers", "bool", /*default=*/"false",
+           "Memrefs will be passed as bare pointers to their data">
+  ];
+}
+
 def SimitLowerAssertions : Pass<"simit-lower-assertions", "::mlir::ModuleOp"> {
   let summary = "Turns cf.assert into a call of the runtime's simit_rt_fail";
   let description = [{

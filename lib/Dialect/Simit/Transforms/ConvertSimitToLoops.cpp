@@ -131,12 +131,8 @@ LogicalResult FunctionLowering::checkStorages(func::FuncOp original) {
     unsupported = true;
     Location loc = value.getDefiningOp() ? value.getDefiningOp()->getLoc()
                                          : value.getLoc();
-    if (encoding.getKind() == StorageKind::Empty)
-      emitError(loc, "a zero system matrix (stored as 'empty') cannot be "
-                     "created here; assemble it with a map");
-    else
-      emitError(loc, "a matrix stored as '")
-          << encoding.str() << "' is not supported by the loop lowering yet";
+    emitError(loc, "a matrix stored as '")
+        << encoding.str() << "' is not supported by the loop lowering yet";
   };
   original.walk([&](Operation *op) {
     for (Value result : op->getResults())

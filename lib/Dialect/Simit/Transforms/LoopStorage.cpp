@@ -333,6 +333,10 @@ struct EncodingReader {
     case StorageKind::Dense:
       return Storage::denseMatrix(rows, cols);
     case StorageKind::Empty:
+      // A matrix nothing writes (a variable only declared) is zero; it is
+      // stored zero-filled in the smallest layout that needs no pattern.
+      return rows == cols ? Storage::diagonal(rows)
+                          : Storage::denseMatrix(rows, cols);
     case StorageKind::LowRank:
       return std::nullopt;
     }

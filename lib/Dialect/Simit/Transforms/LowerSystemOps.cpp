@@ -100,11 +100,18 @@ LogicalResult FunctionLowering::lowerSystemOp(Operation *op, bool &handled) {
 
   if (isa<ZerosOp, BroadcastOp>(op)) {
     Type type = op->getResult(0).getType();
-    if (cast<SystemTensorType>(type).getOrder() != 1)
+    bool matrix = cast<SystemTensorType>(type).getOrder() != 1;
+    // A zero matrix is stored as its encoding says (simit-assign-storage:
+    // `empty`, a zero-filled diagonal or dense array); a matrix of one
+    // value everywhere has no sparsity to be stored in.
+    if (matrix && !isa<ZerosOp>(op))
       return op->emitError("a system matrix of unknown sparsity cannot be "
                            "created here; assemble it with a map");
-    Value array = allocSystem(loc, type, Storage::dense(),
-                               /*zeroFill=*/isa<ZerosOp>(op));
+    Storage storage = matrix ? storageOf(op->getResult(0)) : Storage::dense();
+    if (!storage.isMatrix() && matrix)
+      return op->emitError("the storage of this zero matrix is not known");
+    Value array = allocSystem(loc, type, storage,
+                              /*zeroFill=*/isa<ZerosOp>(op));
     if (auto broadcast = dyn_cast<BroadcastOp>(op))
       fill(loc, array, lookup(broadcast.getValue()));
     map(op->getResult(0), array);

@@ -12,20 +12,6 @@ func.func @matrix_param(%A : !K) attributes {simit.export} {
 
 // -----
 
-!K = !simit.tensor<["points", "points"] x tensor<3x3xf64>>
-!F = !simit.tensor<["points"] x tensor<3xf64>>
-!Point = !simit.element<"Point", {x : tensor<3xf64>}>
-simit.extern @points : !simit.set<"points", !Point>
-
-func.func @zeros(%x : !F) -> !F attributes {simit.export} {
-  // expected-error @below {{a zero system matrix (stored as 'empty') cannot be created here; assemble it with a map}}
-  %A = simit.zeros : !K
-  %y = simit.matvec %A, %x : !K, !F -> !F
-  return %y : !F
-}
-
-// -----
-
 !Point = !simit.element<"Point", {x : tensor<3xf64>}>
 !F = !simit.tensor<["points"] x tensor<3xf64>>
 !Points = !simit.set<"points", !Point>

@@ -31,26 +31,6 @@ func.func @call() -> !F attributes {simit.export} {
 
 // -----
 
-!Point = !simit.element<"Point", {x : tensor<3xf64>}>
-!Cell = !simit.element<"Cell", {c : f64}>
-!Points = !simit.set<"points", !Point>
-!Cells = !simit.set<"cells", !Cell, grid 2 over "points">
-simit.extern @points : !Points
-simit.extern @cells : !Cells
-
-func.func @cell(%c : !Cell) {
-  return
-}
-
-func.func @grid_edges() attributes {simit.export} {
-  %cells = simit.get_set @cells : !Cells
-  // expected-error @below {{maps over the edges of a grid are not supported by the loop lowering; map over its points 'through' it}}
-  simit.map @cell() to %cells : (!Cells) -> ()
-  return
-}
-
-// -----
-
 !Point = !simit.element<"Point", {x : f64}>
 !Cell = !simit.element<"Cell", {c : f64}>
 !Points = !simit.set<"points", !Point>

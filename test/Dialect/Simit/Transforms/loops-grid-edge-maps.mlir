@@ -1,0 +1,33 @@
+// RUN: simit-opt %s --simit-linalg-to-index-expr --convert-simit-to-loops --canonicalize | FileCheck %s
+
+// A map over the edges of a grid (no `through`) is a loop over the grid's
+// own set, sized by its set_size binding (d edges per point), reading and
+// writing its fields.
+
+!Point = !simit.element<"Point", {x : tensor<3xf64>}>
+!Cell = !simit.element<"Cell", {c : f64}>
+!Points = !simit.set<"points", !Point>
+!Cells = !simit.set<"cells", !Cell, grid 2 over "points">
+simit.extern @points : !Points
+simit.extern @cells : !Cells
+
+func.func @double(%e : !Cell) {
+  %c = simit.elem_read %e["c"] : !Cell -> f64
+  %two = arith.addf %c, %c : f64
+  simit.elem_write %two, %e["c"] : f64, !Cell
+  return
+}
+
+// CHECK-LABEL: func.func @grid_edges(
+// CHECK-SAME: %[[N:.*]]: index, %[[C:.*]]: memref<?xf64>)
+// CHECK-SAME: {kind = "set_size", set = "cells"}
+// CHECK-SAME: {field = "c", kind = "field", set = "cells"}
+// CHECK: scf.parallel (%[[E:.*]]) = (%{{.*}}) to (%[[N]])
+// CHECK: %[[V:.*]] = memref.load %[[C]][%[[E]]]
+// CHECK: %[[W:.*]] = arith.addf %[[V]], %[[V]]
+// CHECK: memref.store %[[W]], %[[C]][%[[E]]]
+func.func @grid_edges() attributes {simit.export} {
+  %cells = simit.get_set @cells : !Cells
+  simit.map @double() to %cells : (!Cells) -> ()
+  return
+}

@@ -338,8 +338,7 @@ TypePtr Sema::checkMap(MapExpr &map, bool isApply) {
   // Arguments: extras, the element, the endpoint tuple, the grid.
   size_t extras = map.args.size();
   size_t base = extras + 1 + (map.grid ? 1 : 0);
-  bool passesEndpoints =
-      set.isEdgeSet() && !set.isGrid() && callee.params.size() > base;
+  bool passesEndpoints = set.isEdgeSet() && callee.params.size() > base;
   size_t expected = base + (passesEndpoints ? 1 : 0);
   if (callee.params.size() != expected) {
     diags.error(map.funcLoc, "function '" + callee.name + "' takes " +
@@ -400,15 +399,15 @@ TypePtr Sema::checkMap(MapExpr &map, bool isApply) {
                                      "parameter");
       return Type::error();
     }
-    if (tt->members.size() != set.endpoints.size()) {
+    if (tt->members.size() != set.cardinality()) {
       diags.error(map.targetLoc,
-                  what + " passes " + std::to_string(set.endpoints.size()) +
+                  what + " passes " + std::to_string(set.cardinality()) +
                       " endpoints but '" + callee.name + "' expects '" +
                       tt->str() + "'");
       return Type::error();
     }
-    for (size_t m = 0; m < set.endpoints.size(); ++m) {
-      const VarDecl *endpoint = set.endpoints[m];
+    for (size_t m = 0; m < set.cardinality(); ++m) {
+      const VarDecl *endpoint = set.endpoint(m);
       if (tt->members[m] != endpoint->type->element) {
         diags.error(map.targetLoc,
                     what + " passes endpoint of type '" +
@@ -447,8 +446,8 @@ TypePtr Sema::checkMap(MapExpr &map, bool isApply) {
     if (key.first == &elementParam)
       binding[generic->index] = Dim::ofSet(target);
     else if (tupleParam && key.first == tupleParam)
-      binding[generic->index] = Dim::ofSet(
-          set.endpoints[key.second < 0 ? 0 : key.second]);
+      binding[generic->index] =
+          Dim::ofSet(set.endpoint(key.second < 0 ? 0 : key.second));
   }
   std::vector<Dim> bound;
   for (size_t g = 0; g < binding.size(); ++g) {

@@ -127,6 +127,13 @@ public:
   bool isSet() const { return kind == Kind::Set; }
   bool isGrid() const { return isSet() && gridRank > 0; }
   bool isEdgeSet() const { return isSet() && !endpoints.empty(); }
+  /// The number of endpoints of every element of a set: 2 for a grid (an
+  /// edge joins two neighbouring points), as in the simit dialect.
+  size_t cardinality() const { return isGrid() ? 2 : endpoints.size(); }
+  /// The set of endpoint `m` (a grid's point set for both).
+  const VarDecl *endpoint(size_t m) const {
+    return isGrid() ? endpoints.front() : endpoints[m];
+  }
   bool isElement() const { return kind == Kind::Element; }
   bool isTuple() const { return kind == Kind::Tuple; }
   bool isOpaque() const { return kind == Kind::Opaque; }

@@ -409,12 +409,6 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
   ValueRange extras = mapOp ? mapOp.getExtras() : assembleOp.getExtras();
   Value grid = mapOp ? mapOp.getGrid() : assembleOp.getGrid();
   auto set = cast<SetType>(setValue.getType());
-  // A grid's edges are a set of their own (fields, results over them); the
-  // front end passes them no endpoint tuple.
-  if (set.isGrid() && callee.getNumArguments() > extras.size() + 1)
-    return op->emitError("maps over the edges of a grid take the edge "
-                         "alone; map over its points 'through' it to "
-                         "reach its neighbours");
   if (element)
     return op->emitError("maps inside element functions are not supported");
 

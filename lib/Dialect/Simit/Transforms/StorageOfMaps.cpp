@@ -146,11 +146,6 @@ StorageRule mlir::simit::getMapResultStorage(Operation *map, unsigned result) {
   }
   if (rows == name && cols == name)
     return StorageRule::of(storage::diag(name));
-  // A grid's edges reach no endpoints in a map over them.
-  if (set.isGrid())
-    return StorageRule::error("a matrix assembled over the edges of grid '" +
-                              name.getValue() +
-                              "' must be over those edges (its diagonal)");
   SmallVector<int64_t> rowPositions = positionsOf(set, rows);
   SmallVector<int64_t> colPositions = positionsOf(set, cols);
   if (rows == name && !colPositions.empty())

@@ -278,10 +278,8 @@ readMemRefConvention(mlir::LLVM::LLVMFuncOp function) {
       attr.getValue() == llvm::StringRef(::simit::abi::kBarePointerConvention))
     return MemRefConvention::BarePointer;
   return llvm::createStringError(
-      "function '" + function.getSymName() +
-      "' declares no memref convention "
-      "in " +
-      llvm::StringRef(::simit::abi::kMemRefConventionAttr) +
+      "function '" + function.getSymName() + "' declares no memref " +
+      "convention in " + llvm::StringRef(::simit::abi::kMemRefConventionAttr) +
       " (simit-record-host-abi)");
 }
 

@@ -62,6 +62,15 @@ TEST_F(StorageTest, TransposeCanonicalises) {
             "transpose(incidence(\"springs\", cols [0, 1]))");
   EXPECT_EQ(storage::transpose(storage::lowRank(a, 1)),
             storage::lowRank(storage::transpose(a), 1));
+  // (K H)' = H' K': the product of the transposed factors, reversed.
+  StorageAttr k = pattern("springs", {0, 1}, {0, 1});
+  StorageAttr h = pattern("hinges", {0, 1, 2}, {0, 1, 2});
+  StorageAttr kh = storage::product({k, h});
+  EXPECT_EQ(storage::transpose(kh),
+            storage::product({storage::transpose(h), storage::transpose(k)}));
+  EXPECT_EQ(storage::transpose(storage::transpose(kh)), kh);
+  EXPECT_EQ(storage::product({kh, storage::transpose(kh)}).getMembers().size(),
+            4u);
 }
 
 TEST_F(StorageTest, UnionFlattensSortsAndDropsContainedMembers) {

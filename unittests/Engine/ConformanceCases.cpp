@@ -180,6 +180,28 @@ Shape productPlusTransposedShape(Sources sources) {
   return shape;
 }
 
+/// (A B)' and (A B)(A B)' for two different sources (the product with
+/// itself is `product` and `productTransposed` already).
+Shape productOfTwoDifferent(Sources sources) {
+  if (sources[0] == sources[1])
+    return std::nullopt;
+  return productShape(sources);
+}
+
+Shape transposeOfProductShape(Sources sources) {
+  Shape shape = productOfTwoDifferent(sources);
+  if (!shape)
+    return std::nullopt;
+  return std::make_pair(shape->second, shape->first);
+}
+
+Shape productTimesItsTransposeShape(Sources sources) {
+  Shape shape = productOfTwoDifferent(sources);
+  if (!shape)
+    return std::nullopt;
+  return std::make_pair(shape->first, shape->first);
+}
+
 Shape transposedProductShape(Sources sources) {
   if (sources[0]->rows != sources[1]->rows)
     return std::nullopt;
@@ -279,6 +301,19 @@ const std::vector<Operation> &simit::conformance::allOperations() {
        [](const DenseInputs &in) -> Eigen::MatrixXd {
          Eigen::MatrixXd p = in.operands[0] * in.operands[1];
          return (p + p.transpose()) * in.xRows;
+       }},
+      // The transpose of a product is the product of the transposed
+      // factors, reversed: stored on its own chain pattern.
+      {"transposeOfProduct", 2, M::Matrix, "", "(A * B)'",
+       transposeOfProductShape,
+       [](const DenseInputs &in) -> Eigen::MatrixXd {
+         return (in.operands[0] * in.operands[1]).transpose();
+       }},
+      {"productTimesItsTranspose", 2, M::Matrix, "", "(A * B) * (A * B)'",
+       productTimesItsTransposeShape,
+       [](const DenseInputs &in) -> Eigen::MatrixXd {
+         Eigen::MatrixXd p = in.operands[0] * in.operands[1];
+         return p * p.transpose();
        }},
       {"transposedProduct", 2, M::Matrix, "", "A' * B", transposedProductShape,
        [](const DenseInputs &in) -> Eigen::MatrixXd {

@@ -9,6 +9,12 @@ func.func @f(%a : !simit.tensor<["points", "points"] x f64, #simit.storage<trans
 
 // -----
 
+// The transpose of a product is the product of the transposed factors.
+// expected-error @+1 {{'transpose(product(pattern("hinges", rows [0, 1], cols [0, 1]), pattern("springs", rows [0, 1], cols [0, 1])))' is not canonical}}
+func.func @f(%a : !simit.tensor<["points", "points"] x f64, #simit.storage<transpose(product(pattern("hinges", rows [0, 1], cols [0, 1]), pattern("springs", rows [0, 1], cols [0, 1])))>>)
+
+// -----
+
 // expected-error @+1 {{union member 'diag("points")' is contained in 'pattern("springs", rows [0, 1], cols [0, 1])'}}
 func.func @f(%a : !simit.tensor<["points", "points"] x f64, #simit.storage<union(diag("points"), pattern("springs", rows [0, 1], cols [0, 1]))>>)
 

@@ -293,7 +293,8 @@ StorageAttr::verify(function_ref<InFlightDiagnostic()> emitError,
       return emitError() << "'transpose' has one member";
     StorageKind inner = member(0).getKind();
     if (inner == StorageKind::Transpose || inner == StorageKind::Diag ||
-        inner == StorageKind::Empty || inner == StorageKind::LowRank)
+        inner == StorageKind::Empty || inner == StorageKind::LowRank ||
+        inner == StorageKind::Product)
       return emitError() << "'transpose(" << member(0).str()
                          << ")' is not canonical";
     return success();
@@ -427,6 +428,15 @@ StorageAttr storage::transpose(StorageAttr x) {
       negated.push_back(llvm::map_to_vector(
           o.asArrayRef(), [](int64_t v) { return -v; }));
     return stencil(x.getSet(), negated);
+  }
+  case StorageKind::Product: {
+    // (F1 ... Fk)' = Fk' ... F1': a product pattern of its own, built at
+    // bind time like any other (the union over associations transposes
+    // into the union over the reversed associations).
+    SmallVector<StorageAttr> reversed;
+    for (unsigned i = x.getMembers().size(); i-- > 0;)
+      reversed.push_back(transpose(x.getMember(i)));
+    return product(reversed);
   }
   default:
     return make(x.getContext(), StorageKind::Transpose, {}, {}, {}, {}, {x});

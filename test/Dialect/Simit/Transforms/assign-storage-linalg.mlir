@@ -20,6 +20,8 @@
 // CHECK-DAG: #inc_springs_t = #simit.storage<transpose(incidence("springs", cols [0, 1]))>
 // CHECK-DAG: #pat_hinges_t = #simit.storage<transpose(pattern("hinges", rows [0, 1], cols [0, 1]))>
 // CHECK-DAG: #product = #simit.storage<product(pattern("hinges", rows [0, 1], cols [0, 1]), pattern("springs", rows [0, 1], cols [0, 1]))>
+// CHECK-DAG: #product1 = #simit.storage<product(transpose(pattern("springs", rows [0, 1], cols [0, 1])), transpose(pattern("hinges", rows [0, 1], cols [0, 1])))>
+// CHECK-DAG: #product2 = #simit.storage<product(pattern("hinges", rows [0, 1], cols [0, 1]), pattern("springs", rows [0, 1], cols [0, 1]), transpose(pattern("springs", rows [0, 1], cols [0, 1])), transpose(pattern("hinges", rows [0, 1], cols [0, 1])))>
 // CHECK-DAG: #lowrank = #simit.storage<lowrank(empty, 1)>
 // CHECK-DAG: #lowrank1 = #simit.storage<lowrank(pattern("springs", rows [0, 1], cols [0, 1]), 1)>
 
@@ -99,6 +101,10 @@ func.func @products_elementwise(%points : !Points, %springs : !Springs) -> f64 {
 // A transposed square pattern is a view of it.
 // CHECK: simit.transpose %{{.*}} : {{.*}}#pat_hinges> -> !simit.tensor<["points", "points"] x f64, #pat_hinges_t>
 // CHECK: simit.transpose %{{.*}} : {{.*}}#diag_points> -> !simit.tensor<["points", "points"] x f64, #diag_points>
+// The transpose of a product is the product of the transposed factors in
+// reverse order, and composes with the product itself.
+// CHECK: simit.transpose %{{.*}} : {{.*}}#product> -> !simit.tensor<["points", "points"] x f64, #product1>
+// CHECK: simit.matmul %{{.*}}, %{{.*}} : {{.*}}#product>, {{.*}}#product1> -> !simit.tensor<["points", "points"] x f64, #product2>
 func.func @composition(%points : !Points, %springs : !Springs, %hinges : !Hinges) -> f64 {
   %M = simit.assemble @mass() to %points reduce <add> : (!Points) -> !K
   %K, %I = simit.assemble @edge() to %springs reduce <add> : (!Springs) -> (!K, !I)
@@ -109,6 +115,8 @@ func.func @composition(%points : !Points, %springs : !Springs, %hinges : !Hinges
   %MK = simit.matmul %M, %K : !K, !K -> !K
   %HT = simit.transpose %H : !K -> !K
   %MT = simit.transpose %M : !K -> !K
+  %HKT = simit.transpose %HK : !K -> !K
+  %HKHKT = simit.matmul %HK, %HKT : !K, !K -> !K
   %zero = arith.constant 0.0 : f64
   return %zero : f64
 }

@@ -19,28 +19,32 @@ using namespace mlir;
 using namespace mlir::simit;
 using namespace mlir::simit::loops;
 
-/// Whether a map result of `type` is a scalar (accumulated in one slot).
-static bool isScalarResult(Type type) {
-  return isa<FloatType, IntegerType>(type);
+/// Whether a map result of `type` is accumulated in one slot: a scalar, or
+/// a local tensor (a result whose dimensions are ranges, language.md 8.3),
+/// one slot component per tensor component.
+static bool isSlotResult(Type type) {
+  return isa<FloatType, IntegerType>(type) ||
+         (isa<RankedTensorType>(type) &&
+          cast<RankedTensorType>(type).hasStaticShape());
 }
 
 /// Finds the values of `callee` that stand for its results: everything a
 /// returned value is built from by inserts, loop-carried values, branches
-/// and variables; a scalar result must be the value of a variable (the
-/// frontend's result variable), which goes to `scalarSlots`.
+/// and variables; a scalar or local tensor result must be the value of a
+/// variable (the frontend's result variable), which goes to `scalarSlots`.
 static LogicalResult collectSinks(func::FuncOp callee,
                                   DenseMap<Value, unsigned> &sinks,
                                   DenseMap<Value, unsigned> &scalarSlots) {
   auto ret = cast<func::ReturnOp>(callee.front().getTerminator());
   SmallVector<std::pair<Value, unsigned>> work;
   for (auto [i, v] : llvm::enumerate(ret.getOperands())) {
-    if (!isScalarResult(v.getType())) {
+    if (!isSlotResult(v.getType())) {
       work.push_back({v, i});
       continue;
     }
     auto load = v.getDefiningOp<LoadOp>();
     if (!load || !load.getRef().getDefiningOp<AllocOp>())
-      return ret.emitError("scalar result ")
+      return ret.emitError("result ")
              << i << " of element function '" << callee.getSymName()
              << "' must be the value of a variable";
     scalarSlots[load.getRef()] = i;
@@ -100,7 +104,7 @@ static LogicalResult collectSinks(func::FuncOp callee,
 /// Combines an old and a new component with the reduction.
 static Value combine(OpBuilder &b, Location loc, ReductionKind kind, Value old,
                      Value value) {
-  bool isFloat = isa<FloatType>(value.getType());
+  bool isFloat = isa<FloatType>(getElementTypeOrSelf(value.getType()));
   switch (kind) {
   case ReductionKind::Add:
     return isFloat ? arith::AddFOp::create(b, loc, old, value).getResult()
@@ -309,15 +313,56 @@ LogicalResult FunctionLowering::lowerElementAccess(Operation *op,
   }
   if (auto store = dyn_cast<StoreOp>(op);
       store && element && element->scalarSlots.count(store.getRef())) {
+    // Every element writes the one slot.
+    element->scatters = true;
     Value output = lookup(store.getRef());
     Value value = lookup(store.getValue());
-    if (element->accumulate)
-      value = combine(b, loc, element->reduction,
-                      memref::LoadOp::create(b, loc, output, ValueRange{}),
-                      value);
-    memref::StoreOp::create(b, loc, value, output, ValueRange{});
-    // Every element writes the one location.
-    element->scatters = true;
+    auto slotType = cast<MemRefType>(output.getType());
+    if (slotType.getRank() == 0) {
+      if (element->accumulate)
+        value = combine(b, loc, element->reduction,
+                        memref::LoadOp::create(b, loc, output, ValueRange{}),
+                        value);
+      memref::StoreOp::create(b, loc, value, output, ValueRange{});
+      return success();
+    }
+    // A local tensor result: `m(i, j) = v` (an insert into the variable's
+    // value) combines v into its one component, so that every write adds
+    // (language.md 8.2); any other value combines component by component.
+    auto insert = store.getValue().getDefiningOp<InsertOp>();
+    auto base = insert ? insert.getTensor().getDefiningOp<LoadOp>() : LoadOp();
+    if (element->accumulate && base && base.getRef() == store.getRef() &&
+        isa<FloatType, IntegerType>(insert.getValue().getType())) {
+      auto tensorType = cast<RankedTensorType>(insert.getTensor().getType());
+      Value position = indexConstant(0);
+      for (auto [dim, index] : llvm::enumerate(insert.getIndices())) {
+        Value scaled = arith::MulIOp::create(
+            b, loc, position, indexConstant(tensorType.getDimSize(dim)));
+        position = arith::AddIOp::create(b, loc, scaled, lookup(index));
+      }
+      Value old = memref::LoadOp::create(b, loc, output, position);
+      memref::StoreOp::create(
+          b, loc,
+          combine(b, loc, element->reduction, old, lookup(insert.getValue())),
+          output, position);
+      return success();
+    }
+    if (!element->accumulate) {
+      vector::StoreOp::create(b, loc, value, output,
+                              ValueRange{indexConstant(0)});
+      return success();
+    }
+    // One scalar update per component, as for a scalar result, so that
+    // the GPU pipeline makes each an atomic (GPUScatterAtomics).
+    for (int64_t c = 0, n = slotType.getNumElements(); c < n; ++c) {
+      Value position = indexConstant(c);
+      Value old = memref::LoadOp::create(b, loc, output, position);
+      memref::StoreOp::create(
+          b, loc,
+          combine(b, loc, element->reduction, old,
+                  component(store.getValue().getType(), value, c)),
+          output, position);
+    }
     return success();
   }
   if (auto insert = dyn_cast<InsertOp>(op); insert && isSink(insert)) {
@@ -424,18 +469,18 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
   // Outputs, zero-filled, stored as the sparsity analysis says.
   SmallVector<std::pair<Value, Value>> scalarResults;
   for (Value result : op->getResults()) {
-    if (isScalarResult(result.getType())) {
+    if (isSlotResult(result.getType())) {
       // Each write combines into (or, for a map, stores to) one slot that
-      // starts at zero.
+      // starts at zero, laid out as a variable of the result's type.
+      auto slotType = cast<MemRefType>(
+          convertType(RefType::get(result.getContext(), result.getType())));
       Value slot;
       {
         OpBuilder::InsertionGuard guard(b);
         b.setInsertionPointToStart(allocaBlock);
-        slot = memref::AllocaOp::create(
-            b, loc, MemRefType::get({}, result.getType()));
+        slot = memref::AllocaOp::create(b, loc, slotType);
       }
-      memref::StoreOp::create(b, loc, zeroOf(result.getType()), slot,
-                              ValueRange{});
+      fill(loc, slot, zeroOf(slotType.getElementType()));
       ctx.outputs.push_back(slot);
       ctx.outputStorages.push_back(Storage::dense());
       scalarResults.push_back({result, slot});
@@ -509,7 +554,13 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
   if (ctx.scatters)
     loop->setAttr("simit.scatter", b.getUnitAttr());
   b.setInsertionPointAfter(loop);
-  for (auto [result, slot] : scalarResults)
-    map(result, memref::LoadOp::create(b, loc, slot, ValueRange{}));
+  for (auto [result, slot] : scalarResults) {
+    if (cast<MemRefType>(slot.getType()).getRank() == 0)
+      map(result, memref::LoadOp::create(b, loc, slot, ValueRange{}));
+    else
+      map(result, vector::LoadOp::create(
+                      b, loc, cast<VectorType>(convertType(result.getType())),
+                      slot, ValueRange{indexConstant(0)}));
+  }
   return success();
 }

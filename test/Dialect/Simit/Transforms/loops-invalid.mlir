@@ -108,7 +108,7 @@ simit.extern @points : !Points
 
 func.func @direct(%p : !Point) -> f64 {
   %m = simit.elem_read %p["m"] : !Point -> f64
-  // expected-error @below {{scalar result 0 of element function 'direct' must be the value of a variable}}
+  // expected-error @below {{result 0 of element function 'direct' must be the value of a variable}}
   return %m : f64
 }
 

@@ -23,9 +23,10 @@ using namespace mlir::simit::loops;
 /// a local tensor (a result whose dimensions are ranges, language.md 8.3),
 /// one slot component per tensor component.
 static bool isSlotResult(Type type) {
+  auto tensor = dyn_cast<RankedTensorType>(type);
   return isa<FloatType, IntegerType>(type) ||
-         (isa<RankedTensorType>(type) &&
-          cast<RankedTensorType>(type).hasStaticShape());
+         (tensor && tensor.hasStaticShape() &&
+          isa<FloatType, IntegerType>(tensor.getElementType()));
 }
 
 /// Finds the values of `callee` that stand for its results: everything a
@@ -333,6 +334,8 @@ LogicalResult FunctionLowering::lowerElementAccess(Operation *op,
     auto base = insert ? insert.getTensor().getDefiningOp<LoadOp>() : LoadOp();
     if (element->accumulate && base && base.getRef() == store.getRef() &&
         isa<FloatType, IntegerType>(insert.getValue().getType())) {
+      // The insert's own lowering, before this store, asserted that a
+      // dynamic index lies in its dimension.
       auto tensorType = cast<RankedTensorType>(insert.getTensor().getType());
       Value position = indexConstant(0);
       for (auto [dim, index] : llvm::enumerate(insert.getIndices())) {
@@ -489,8 +492,8 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
     auto type = dyn_cast<SystemTensorType>(result.getType());
     if (!type || !type.isSystem())
       return op->emitError("map results that are neither system tensors "
-                           "nor scalars are not supported by the loop "
-                           "lowering");
+                           "nor scalars or local tensors of int or float "
+                           "are not supported by the loop lowering");
     // Stored as simit-assign-storage found from the set (and, through a
     // grid, the offsets the element function writes).
     Storage storage = storageOf(result);

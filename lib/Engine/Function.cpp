@@ -538,26 +538,43 @@ Function::Impl::unionOf(const std::vector<std::string> &edgeSetNames,
 llvm::Expected<std::shared_ptr<const SparsityPattern>>
 Function::Impl::productOf(const ArgumentBinding &arg) {
   std::string key = arg.rows + ":" + arg.cols;
-  for (size_t i = 0; i < arg.factorSets.size(); ++i)
-    key += (i ? "*" : ":") + llvm::join(arg.factorSets[i], "+") +
-           (i < arg.mids.size() ? ":" + arg.mids[i] : "");
+  for (const ArgumentBinding::ProductChain &chain : arg.chains) {
+    key += "|";
+    for (size_t i = 0; i < chain.factorSets.size(); ++i)
+      key += (i ? "*" : ":") + llvm::join(chain.factorSets[i], "+") +
+             (i < chain.mids.size() ? ":" + chain.mids[i] : "");
+  }
   if (auto it = unions.find(key); it != unions.end())
     return it->second;
-  // The sets between the factors: rows, the mids, cols.
-  std::vector<std::string> sets{arg.rows};
-  llvm::append_range(sets, arg.mids);
-  sets.push_back(arg.cols);
-  std::vector<std::shared_ptr<const SparsityPattern>> factors;
-  for (size_t i = 0; i < arg.factorSets.size(); ++i) {
-    auto factor = unionOf(arg.factorSets[i], sets[i], sets[i + 1]);
-    if (!factor)
-      return factor.takeError();
-    factors.push_back(*factor);
+  std::vector<std::shared_ptr<const SparsityPattern>> chainPatterns;
+  for (const ArgumentBinding::ProductChain &chain : arg.chains) {
+    // The sets between the factors: rows, the mids, cols.
+    std::vector<std::string> sets{arg.rows};
+    llvm::append_range(sets, chain.mids);
+    sets.push_back(arg.cols);
+    std::vector<std::shared_ptr<const SparsityPattern>> factors;
+    for (size_t i = 0; i < chain.factorSets.size(); ++i) {
+      auto factor = unionOf(chain.factorSets[i], sets[i], sets[i + 1]);
+      if (!factor)
+        return factor.takeError();
+      factors.push_back(*factor);
+    }
+    if (factors.size() == 1) {
+      chainPatterns.push_back(factors.front());
+      continue;
+    }
+    std::vector<const SparsityPattern *> views;
+    for (const auto &factor : factors)
+      views.push_back(factor.get());
+    chainPatterns.push_back(chainProductPattern(views, sets));
   }
-  std::vector<const SparsityPattern *> views;
-  for (const auto &factor : factors)
-    views.push_back(factor.get());
-  auto product = chainProductPattern(views, sets);
+  std::shared_ptr<const SparsityPattern> product = chainPatterns.front();
+  if (chainPatterns.size() > 1) {
+    std::vector<const SparsityPattern *> members;
+    for (const auto &chain : chainPatterns)
+      members.push_back(chain.get());
+    product = unionPattern(members);
+  }
   unions[key] = product;
   return product;
 }
@@ -683,13 +700,15 @@ std::vector<std::string> Function::requiredSets() const {
     add(arg.set);
     add(arg.rows);
     add(arg.cols);
-    for (const std::string &mid : arg.mids)
-      add(mid);
     for (const std::string &edges : arg.edgeSets)
       add(edges);
-    for (const std::vector<std::string> &factor : arg.factorSets)
-      for (const std::string &edges : factor)
-        add(edges);
+    for (const ArgumentBinding::ProductChain &chain : arg.chains) {
+      for (const std::string &mid : chain.mids)
+        add(mid);
+      for (const std::vector<std::string> &factor : chain.factorSets)
+        for (const std::string &edges : factor)
+          add(edges);
+    }
   }
   return names;
 }

@@ -207,12 +207,19 @@ std::string ArgumentBinding::describe() const {
   case Kind::ProductRowPtr:
   case Kind::ProductColIdx:
   {
-    std::string text = "product of the sparsity patterns of ";
-    for (size_t i = 0; i < factorSets.size(); ++i) {
-      std::string from = i == 0 ? rows : mids[i - 1];
-      std::string to = i + 1 == factorSets.size() ? cols : mids[i];
-      text += (i ? ", '" : "'") + llvm::join(factorSets[i], "', '") +
-              "' over ('" + from + "', '" + to + "')";
+    std::string text;
+    for (const ProductChain &chain : chains) {
+      text += text.empty() ? "" : ", united with ";
+      text += chain.factorSets.size() == 1
+                  ? "the sparsity pattern of "
+                  : "the product of the sparsity patterns of ";
+      for (size_t i = 0; i < chain.factorSets.size(); ++i) {
+        std::string from = i == 0 ? rows : chain.mids[i - 1];
+        std::string to =
+            i + 1 == chain.factorSets.size() ? cols : chain.mids[i];
+        text += (i ? ", '" : "'") + llvm::join(chain.factorSets[i], "', '") +
+                "' over ('" + from + "', '" + to + "')";
+      }
     }
     return text;
   }
@@ -322,22 +329,32 @@ public:
     }
     case Kind::ProductRowPtr:
     case Kind::ProductColIdx: {
-      std::string factors;
+      std::string factors, joinedMids;
       if (llvm::Error err = get("set", factors))
         return err;
-      llvm::SmallVector<llvm::StringRef> parts, mids;
-      llvm::StringRef(factors).split(parts, '*');
-      std::string joinedMids;
       if (llvm::Error err = get("mid", joinedMids))
         return err;
-      llvm::StringRef(joinedMids).split(mids, ',');
-      if (parts.size() < 2 || mids.size() + 1 != parts.size() ||
-          llvm::is_contained(parts, "") || llvm::is_contained(mids, ""))
-        return error("expected 'set' of the form \"A*B*...\" and 'mid' "
-                     "naming the sets between its factors, \"M1,...\"");
-      for (llvm::StringRef part : parts)
-        binding.factorSets.push_back(splitSets(part));
-      binding.mids.assign(mids.begin(), mids.end());
+      llvm::SmallVector<llvm::StringRef> chainFactors, chainMids;
+      llvm::StringRef(factors).split(chainFactors, '|');
+      llvm::StringRef(joinedMids).split(chainMids, '|');
+      bool wellFormed = chainFactors.size() == chainMids.size();
+      for (size_t c = 0; wellFormed && c < chainFactors.size(); ++c) {
+        llvm::SmallVector<llvm::StringRef> parts, mids;
+        chainFactors[c].split(parts, '*');
+        if (!chainMids[c].empty())
+          chainMids[c].split(mids, ',');
+        wellFormed = mids.size() + 1 == parts.size() &&
+                     !llvm::is_contained(parts, "") &&
+                     !llvm::is_contained(mids, "");
+        ArgumentBinding::ProductChain &chain = binding.chains.emplace_back();
+        for (llvm::StringRef part : parts)
+          chain.factorSets.push_back(splitSets(part));
+        chain.mids.assign(mids.begin(), mids.end());
+      }
+      if (!wellFormed)
+        return error("expected 'set' of the form \"A*B*...|C*...\" and "
+                     "'mid' naming the sets between the factors of each "
+                     "chain, \"M1,...|M2,...\"");
       if (llvm::Error err = get("rows", binding.rows))
         return err;
       return get("cols", binding.cols);

@@ -121,12 +121,15 @@ std::string simit::serializeObjectCode(const ObjectCode &code) {
         for (const std::string &set : sets)
           out.string(set);
       };
-      for (const std::vector<std::string> *sets :
-           {&arg.edgeSets, &arg.partSets, &arg.mids})
-        writeSets(*sets);
-      out.integer<uint64_t>(arg.factorSets.size());
-      for (const std::vector<std::string> &sets : arg.factorSets)
-        writeSets(sets);
+      writeSets(arg.edgeSets);
+      writeSets(arg.partSets);
+      out.integer<uint64_t>(arg.chains.size());
+      for (const ArgumentBinding::ProductChain &chain : arg.chains) {
+        writeSets(chain.mids);
+        out.integer<uint64_t>(chain.factorSets.size());
+        for (const std::vector<std::string> &sets : chain.factorSets)
+          writeSets(sets);
+      }
       out.integer(arg.partTransposed);
       out.integer(arg.index);
       out.integer(arg.chunk);
@@ -169,12 +172,15 @@ llvm::Expected<ObjectCode> simit::deserializeObjectCode(llvm::StringRef bytes) {
         for (std::string &set : sets)
           set = in.string();
       };
-      for (std::vector<std::string> *sets :
-           {&arg.edgeSets, &arg.partSets, &arg.mids})
-        readSets(*sets);
-      arg.factorSets.resize(in.count(sizeof(uint64_t)));
-      for (std::vector<std::string> &sets : arg.factorSets)
-        readSets(sets);
+      readSets(arg.edgeSets);
+      readSets(arg.partSets);
+      arg.chains.resize(in.count(sizeof(uint64_t)));
+      for (ArgumentBinding::ProductChain &chain : arg.chains) {
+        readSets(chain.mids);
+        chain.factorSets.resize(in.count(sizeof(uint64_t)));
+        for (std::vector<std::string> &sets : chain.factorSets)
+          readSets(sets);
+      }
       arg.partTransposed = in.integer<bool>();
       arg.index = in.integer<int64_t>();
       arg.chunk = in.integer<int64_t>();

@@ -180,6 +180,13 @@ Shape productPlusTransposedShape(Sources sources) {
   return shape;
 }
 
+/// A B + A: B square over A's columns.
+Shape productPlusFirstShape(Sources sources) {
+  if (sources[1]->rows != sources[1]->cols)
+    return std::nullopt;
+  return productShape(sources);
+}
+
 /// (A B)' and (A B)(A B)' for two different sources (the product with
 /// itself is `product` and `productTransposed` already).
 Shape productOfTwoDifferent(Sources sources) {
@@ -302,6 +309,19 @@ const std::vector<Operation> &simit::conformance::allOperations() {
          Eigen::MatrixXd p = in.operands[0] * in.operands[1];
          return (p + p.transpose()) * in.xRows;
        }},
+      // Sums of products stored in a variable: on the union of the
+      // patterns of the chains of factors (and of a pattern).
+      {"productPlusItsTranspose", 2, M::Matrix, "", "A * B + (A * B)'",
+       productPlusTransposedShape,
+       [](const DenseInputs &in) -> Eigen::MatrixXd {
+         Eigen::MatrixXd p = in.operands[0] * in.operands[1];
+         return p + p.transpose();
+       }},
+      {"productPlusFactor", 2, M::Matrix, "", "A * B + A",
+       productPlusFirstShape,
+       [](const DenseInputs &in) -> Eigen::MatrixXd {
+         return in.operands[0] * in.operands[1] + in.operands[0];
+       }},
       // The transpose of a product is the product of the transposed
       // factors, reversed: stored on its own chain pattern.
       {"transposeOfProduct", 2, M::Matrix, "", "(A * B)'",
@@ -407,11 +427,12 @@ const std::vector<Operation> &simit::conformance::allOperations() {
        "  lufree(h);\n"
        "  $R0.y = X * $R0.x;\n",
        "", squareOnVerts,
-       [](const DenseInputs &in) -> Eigen::MatrixXd {
-         return (in.operands[0] + in.shift)
-             .lu()
-             .solve(in.operands[1] * in.xRows);
-       },
+       [](const DenseInputs &in) -> Eigen::
+                                     MatrixXd {
+                                       return (in.operands[0] + in.shift)
+                                           .lu()
+                                           .solve(in.operands[1] * in.xRows);
+                                     },
        1e-9, /*shifted=*/true, /*scalarBlocksOnly=*/true},
       {"cholMatSolve", 2, M::Vector,
        "  h = chol(A + A' + S);\n"
@@ -419,12 +440,13 @@ const std::vector<Operation> &simit::conformance::allOperations() {
        "  cholfree(h);\n"
        "  $R0.y = X * $R0.x;\n",
        "", squareOnVerts,
-       [](const DenseInputs &in) -> Eigen::MatrixXd {
-         Eigen::MatrixXd a = in.operands[0];
-         return (a + a.transpose() + in.shift)
-             .llt()
-             .solve(in.operands[1] * in.xRows);
-       },
+       [](const DenseInputs &in) -> Eigen::
+                                     MatrixXd {
+                                       Eigen::MatrixXd a = in.operands[0];
+                                       return (a + a.transpose() + in.shift)
+                                           .llt()
+                                           .solve(in.operands[1] * in.xRows);
+                                     },
        1e-9, /*shifted=*/true, /*scalarBlocksOnly=*/true},
       // The lower triangle of the matrix of components.
       {"triangularSolve", 1, M::Vector,

@@ -137,6 +137,38 @@ TEST_F(HostABITest, ReadsAnElementColouring) {
             "type memref<?xf64>, expected memref<?xi32>");
 }
 
+// A product binding is the union of chains of factors: '|' separates the
+// chains of "set" and of "mid", a chain of one factor has no mid.
+TEST_F(HostABITest, ReadsTheChainsOfAProduct) {
+  auto signature = read(R"mlir(
+    func.func private @f(memref<?xi32>) attributes {simit.bindings = [
+        {kind = "product_rowptr", set = "springs*tris+hinges|springs",
+         mid = "points|", rows = "points", cols = "points"}]}
+  )mlir");
+  ASSERT_TRUE(!!signature) << llvm::toString(signature.takeError());
+  const ArgumentBinding &product = signature->arguments[0];
+  ASSERT_EQ(product.chains.size(), 2u);
+  using Sets = std::vector<std::vector<std::string>>;
+  EXPECT_EQ(product.chains[0].factorSets,
+            (Sets{{"springs"}, {"tris", "hinges"}}));
+  EXPECT_EQ(product.chains[0].mids, std::vector<std::string>{"points"});
+  EXPECT_EQ(product.chains[1].factorSets, Sets{{"springs"}});
+  EXPECT_TRUE(product.chains[1].mids.empty());
+  EXPECT_EQ(product.describe(),
+            "the product of the sparsity patterns of 'springs' over "
+            "('points', 'points'), 'tris', 'hinges' over ('points', "
+            "'points'), united with the sparsity pattern of 'springs' over "
+            "('points', 'points')");
+  // Each chain needs one mid fewer than it has factors.
+  EXPECT_EQ(readError(R"mlir(func.func private @f(memref<?xi32>)
+      attributes {simit.bindings = [
+        {kind = "product_rowptr", set = "a*b|c", mid = "p", rows = "p",
+         cols = "p"}]})mlir"),
+            "function 'f': simit.bindings entry 0: expected 'set' of the "
+            "form \"A*B*...|C*...\" and 'mid' naming the sets between the "
+            "factors of each chain, \"M1,...|M2,...\"");
+}
+
 TEST_F(HostABITest, RequiresTheBindingsAttribute) {
   EXPECT_EQ(readError("func.func private @f(f64) -> i32"),
             "function 'f' has no simit.bindings attribute");

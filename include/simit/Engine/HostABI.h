@@ -94,10 +94,15 @@ struct ArgumentBinding {
   /// read transposed).
   std::vector<std::string> edgeSets, partSets;
   bool partTransposed = false;
-  /// Product bindings: each factor's edge sets (written "A*B+C*D" in
-  /// `simit.bindings`) and the sets between factors (written "M1,M2").
-  std::vector<std::vector<std::string>> factorSets;
-  std::vector<std::string> mids;
+  /// Product bindings: the union of one or more chains of factors, each
+  /// with its factors' edge sets and the sets between its factors (written
+  /// "A*B+C|E" and "M1|" in `simit.bindings`: chains '|'-separated, factors
+  /// '*'-separated, a factor's edge sets '+'-joined, mids ','-separated).
+  struct ProductChain {
+    std::vector<std::vector<std::string>> factorSets;
+    std::vector<std::string> mids;
+  };
+  std::vector<ProductChain> chains;
   /// Stencil bindings: the offsets, ';'-separated points of ','-separated
   /// coordinates ("-1,0;0,0;1,0"); `set` is the grid.
   std::string offsets;

@@ -110,19 +110,30 @@ static std::string unionKey(const Storage &storage) {
   return joinSetNames(storage.patternSets());
 }
 
-/// A product binding's "set": the factors' edge sets, '*'-separated.
+/// A product binding's "set": each chain's factors' edge sets,
+/// '*'-separated, chains '|'-separated.
 static std::string productKey(const Storage &storage) {
   std::string key;
-  for (const SmallVector<StringAttr, 2> &factor : storage.factors)
-    key += (key.empty() ? "" : "*") + joinSetNames(factor);
+  for (const ProductChain &chain : storage.chains) {
+    if (&chain != &storage.chains.front())
+      key += "|";
+    for (const SmallVector<StringAttr, 2> &factor : chain.factors)
+      key +=
+          (&factor == &chain.factors.front() ? "" : "*") + joinSetNames(factor);
+  }
   return key;
 }
 
-/// A product binding's "mid": the sets between factors, ','-separated.
+/// A product binding's "mid": each chain's sets between factors,
+/// ','-separated, chains '|'-separated.
 static std::string productMids(const Storage &storage) {
   std::string mids;
-  for (StringAttr mid : storage.mids)
-    mids += (mids.empty() ? "" : ",") + mid.getValue().str();
+  for (const ProductChain &chain : storage.chains) {
+    if (&chain != &storage.chains.front())
+      mids += "|";
+    for (auto [i, mid] : llvm::enumerate(chain.mids))
+      mids += (i ? "," : "") + mid.getValue().str();
+  }
   return mids;
 }
 

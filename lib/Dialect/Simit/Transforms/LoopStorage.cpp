@@ -25,6 +25,23 @@ Storage Storage::unionOf(ArrayRef<StringAttr> edgeSets, StringAttr rows,
   return result;
 }
 
+/// The names a chain is made of, in order: factors' edge sets, then mids.
+static SmallVector<StringRef> chainNames(const ProductChain &chain) {
+  SmallVector<StringRef> names;
+  for (const SmallVector<StringAttr, 2> &factor : chain.factors) {
+    for (StringAttr set : factor)
+      names.push_back(set.getValue());
+    names.push_back("*");
+  }
+  for (StringAttr mid : chain.mids)
+    names.push_back(mid.getValue());
+  return names;
+}
+
+bool ProductChain::operator<(const ProductChain &o) const {
+  return chainNames(*this) < chainNames(o);
+}
+
 SmallVector<StringAttr, 2> Storage::patternSets() const {
   if (kind == Kind::Pattern)
     return {edges};
@@ -68,6 +85,22 @@ bool Storage::contains(const Storage &o) const {
     return (kind == Kind::Pattern || kind == Kind::Stencil ||
             kind == Kind::Union || kind == Kind::Product) &&
            rows == cols && rows == o.rows;
+  // A product holds its chains; one of a single factor holds that
+  // factor's patterns.
+  if (kind == Kind::Product && rows == o.rows && cols == o.cols) {
+    if (o.kind == Kind::Product)
+      return llvm::all_of(o.chains, [&](const ProductChain &chain) {
+        return llvm::is_contained(chains, chain);
+      });
+    if (o.kind != Kind::Pattern && o.kind != Kind::Union)
+      return false;
+    return llvm::any_of(chains, [&](const ProductChain &chain) {
+      return chain.factors.size() == 1 &&
+             llvm::all_of(o.patternSets(), [&](StringAttr e) {
+               return llvm::is_contained(chain.factors.front(), e);
+             });
+    });
+  }
   // A union holds the patterns of its members over its sets.
   return kind == Kind::Union &&
          (o.kind == Kind::Pattern || o.kind == Kind::Union) && rows == o.rows &&
@@ -160,8 +193,13 @@ std::string Storage::describe() const {
             cols.getValue() + "')")
         .str();
   case Kind::Product: {
+    if (chains.size() > 1)
+      return ("sum of " + Twine(chains.size()) +
+              " products of matrices over ('" + rows.getValue() + "', '" +
+              cols.getValue() + "')")
+          .str();
     std::string over = "('" + rows.getValue().str();
-    for (StringAttr mid : mids)
+    for (StringAttr mid : chains.front().mids)
       over += "', '" + mid.getValue().str();
     return "product of matrices over " + over + "', '" +
            cols.getValue().str() + "')";
@@ -254,6 +292,65 @@ struct EncodingReader {
     return patternSets(e);
   }
 
+  /// The chain of factors of a product encoding over (rows, cols).
+  std::optional<ProductChain> productChain(StorageAttr e, StringAttr rows,
+                                           StringAttr cols) {
+    ProductChain chain;
+    unsigned n = e.getMembers().size();
+    for (unsigned i = 0; i + 1 < n; ++i) {
+      StringAttr mid = colSet(e.getMember(i));
+      if (!mid)
+        return std::nullopt;
+      chain.mids.push_back(mid);
+    }
+    for (unsigned i = 0; i < n; ++i) {
+      std::optional<SmallVector<StringAttr, 2>> sets =
+          factorSets(e.getMember(i));
+      if (!sets)
+        return std::nullopt;
+      StringAttr from = i == 0 ? rows : chain.mids[i - 1];
+      StringAttr to = i + 1 == n ? cols : chain.mids[i];
+      chain.factors.push_back(Storage::unionOf(*sets, from, to).patternSets());
+    }
+    return chain;
+  }
+
+  /// A union with products among its members: a product storage of their
+  /// chains, each pattern, union or incidence member a chain of one factor
+  /// (a square chain holds the diagonal, so a diagonal member adds nothing
+  /// there).
+  std::optional<Storage> sumOfProducts(StorageAttr e, StringAttr rows,
+                                       StringAttr cols) {
+    Storage sum{Storage::Kind::Product, nullptr, rows, cols};
+    for (unsigned i = 0, n = e.getMembers().size(); i < n; ++i) {
+      StorageAttr member = e.getMember(i);
+      if (member.getKind() == StorageKind::Diag && rows == cols)
+        continue;
+      std::optional<Storage> part = read(member, rows, cols);
+      if (!part)
+        return std::nullopt;
+      if (part->kind == Storage::Kind::Product) {
+        llvm::append_range(sum.chains, part->chains);
+      } else if (part->hasGatherMaps() ||
+                 part->kind == Storage::Kind::Incidence) {
+        // The runtime reads an edge set E over (E, V) or (V, E) as the
+        // pattern of its incidence or of the transpose.
+        ProductChain single;
+        single.factors.push_back(part->kind == Storage::Kind::Incidence
+                                     ? SmallVector<StringAttr, 2>{part->edges}
+                                     : part->patternSets());
+        sum.chains.push_back(std::move(single));
+      } else {
+        return std::nullopt;
+      }
+    }
+    llvm::sort(sum.chains);
+    sum.chains.erase(llvm::unique(sum.chains), sum.chains.end());
+    if (sum.chains.empty())
+      return std::nullopt;
+    return sum;
+  }
+
   std::optional<Storage> read(StorageAttr e, StringAttr rows,
                               StringAttr cols) {
     switch (e.getKind()) {
@@ -301,33 +398,16 @@ struct EncodingReader {
             return other;
         }
       }
-      std::optional<SmallVector<StringAttr, 2>> members = patternSets(e);
-      if (!members)
-        return std::nullopt;
-      return Storage::unionOf(*members, rows, cols);
+      if (std::optional<SmallVector<StringAttr, 2>> members = patternSets(e))
+        return Storage::unionOf(*members, rows, cols);
+      return sumOfProducts(e, rows, cols);
     }
     case StorageKind::Product: {
-      Storage product;
-      product.kind = Storage::Kind::Product;
-      product.rows = rows;
-      product.cols = cols;
-      unsigned n = e.getMembers().size();
-      for (unsigned i = 0; i + 1 < n; ++i) {
-        StringAttr mid = colSet(e.getMember(i));
-        if (!mid)
-          return std::nullopt;
-        product.mids.push_back(mid);
-      }
-      for (unsigned i = 0; i < n; ++i) {
-        std::optional<SmallVector<StringAttr, 2>> sets =
-            factorSets(e.getMember(i));
-        if (!sets)
-          return std::nullopt;
-        StringAttr from = i == 0 ? rows : product.mids[i - 1];
-        StringAttr to = i + 1 == n ? cols : product.mids[i];
-        product.factors.push_back(
-            Storage::unionOf(*sets, from, to).patternSets());
-      }
+      std::optional<ProductChain> chain = productChain(e, rows, cols);
+      if (!chain)
+        return std::nullopt;
+      Storage product{Storage::Kind::Product, nullptr, rows, cols};
+      product.chains.push_back(std::move(*chain));
       return product;
     }
     case StorageKind::Dense:

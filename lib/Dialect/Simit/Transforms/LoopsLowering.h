@@ -43,6 +43,20 @@ namespace simit {
 namespace loops {
 
 /// How a system tensor is stored (its sparsity).
+/// A chain of factors of a product over (rows, cols): each factor's edge
+/// sets (a pattern or a union of patterns), factor i over (mids[i-1],
+/// mids[i]), the first from rows, the last to cols.
+struct ProductChain {
+  SmallVector<SmallVector<StringAttr, 2>, 3> factors;
+  SmallVector<StringAttr, 2> mids;
+
+  bool operator==(const ProductChain &o) const {
+    return factors == o.factors && mids == o.mids;
+  }
+  /// An order to keep a product's chains sorted by.
+  bool operator<(const ProductChain &o) const;
+};
+
 struct Storage {
   enum class Kind {
     /// A vector (or tensor with one set dimension): one block per element.
@@ -67,12 +81,13 @@ struct Storage {
     /// (simit::unionPattern), with gather maps from it to its parts.
     Union,
     /// A BCSR matrix over (rows, cols) on the pattern of a product of two
-    /// or more patterns or unions (`factors`, their edge sets; factor i is
-    /// over (mids[i-1], mids[i]), the first from rows, the last to cols),
-    /// whichever way the product is associated, each square part with the
-    /// diagonal. Built once per binding (simit::chainProductPattern). A
-    /// factor may be an incidence or its transpose: its edge set is then its
-    /// rows or cols.
+    /// or more patterns or unions (a ProductChain), whichever way the
+    /// product is associated, each square part with the diagonal; or on the
+    /// union of the patterns of several such chains and of patterns (a
+    /// chain of one factor): a sum of products, `P + P'`. Built once per
+    /// binding (simit::chainProductPattern, simit::unionPattern). A factor
+    /// may be an incidence or its transpose: its edge set is then its rows
+    /// or cols.
     Product,
     /// A matrix over (rows, cols) with every block stored: block
     /// r * |cols| + c is (r, c). The solution of `lumatsolve` and
@@ -93,9 +108,8 @@ struct Storage {
   bool transposed = false;
   /// Union: the member edge sets, sorted by name, at least two.
   SmallVector<StringAttr, 2> members;
-  /// Product: each factor's edge sets, and the sets between factors.
-  SmallVector<SmallVector<StringAttr, 2>, 3> factors;
-  SmallVector<StringAttr, 2> mids;
+  /// Product: its chains, sorted and unique.
+  SmallVector<ProductChain, 0> chains;
 
   static Storage dense() { return Storage(); }
   static Storage diagonal(StringAttr set) {
@@ -147,7 +161,7 @@ struct Storage {
     return kind == o.kind && edges == o.edges && rows == o.rows &&
            cols == o.cols && offsets == o.offsets &&
            cardinality == o.cardinality && transposed == o.transposed &&
-           members == o.members && factors == o.factors && mids == o.mids;
+           members == o.members && chains == o.chains;
   }
   bool operator!=(const Storage &o) const { return !(*this == o); }
   /// Whether every block of `o` is a block of this storage (an edge pattern

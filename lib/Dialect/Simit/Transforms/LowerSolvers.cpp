@@ -389,20 +389,32 @@ LogicalResult FunctionLowering::lowerFactorisation(Operation *op) {
                   getTensorOrder(op->getOperand(1).getType()) == 2;
 
   // The runtime takes f64 matrices and vectors of static shapes; the op's
-  // verifier has checked the rest.
-  auto isF64Tensor = [](Type t) {
+  // verifier has checked the rest. With float32 (language.md 4.1) the
+  // operands are widened and the result rounded back: the runtime's
+  // factorisations and solves run in f64.
+  auto floatOf = [](Type t) -> Type {
     auto tensor = dyn_cast<RankedTensorType>(t);
-    return !tensor ||
-           (tensor.getElementType().isF64() && tensor.hasStaticShape());
+    return tensor ? tensor.getElementType() : Type();
   };
-  if (!llvm::all_of(op->getOperandTypes(), isF64Tensor) ||
-      !llvm::all_of(op->getResultTypes(), isF64Tensor) ||
-      (!factorise && !free && !triangular &&
-       op->getResult(0).getType() != op->getOperand(1).getType()))
+  Type precision;
+  bool supported = true;
+  for (Type t :
+       llvm::concat<const Type>(op->getOperandTypes(), op->getResultTypes())) {
+    if (isa<OpaqueType>(t))
+      continue;
+    auto tensor = dyn_cast<RankedTensorType>(t);
+    supported &= tensor && tensor.hasStaticShape() &&
+                 (floatOf(t).isF64() || floatOf(t).isF32()) &&
+                 (!precision || precision == floatOf(t));
+    precision = floatOf(t);
+  }
+  if (!supported || (!factorise && !free && !triangular &&
+                     op->getResult(0).getType() != op->getOperand(1).getType()))
     return op->emitError("'")
            << name
-           << "' is supported by the loop lowering on dense local f64 "
-              "matrices and vectors, solved to the right-hand side's shape";
+           << "' is supported by the loop lowering on dense local float "
+              "matrices and vectors of static shapes, its result of the "
+              "right-hand side's type";
 
   // Local tensors (vectors) are stored to a stack buffer passed as
   // memref<?xf64>; tensor results come back through one.
@@ -424,6 +436,9 @@ LogicalResult FunctionLowering::lowerFactorisation(Operation *op) {
     }
     int64_t size = cast<RankedTensorType>(operand.getType()).getNumElements();
     Value slot = buffer(size);
+    if (!precision.isF64())
+      value =
+          arith::ExtFOp::create(b, loc, VectorType::get({size}, f64), value);
     vector::StoreOp::create(b, loc, value, slot, ValueRange{zero});
     args.push_back(memref::CastOp::create(b, loc, flat, slot));
     argTypes.push_back(flat);
@@ -465,12 +480,16 @@ LogicalResult FunctionLowering::lowerFactorisation(Operation *op) {
     return op->emitError("@") << runtimeName
                               << " is declared with another type";
   auto lowered = func::CallOp::create(b, loc, callee, args);
-  if (factorise)
+  if (factorise) {
     map(op->getResult(0), lowered.getResult(0));
-  else
-    map(op->getResult(0),
-        vector::LoadOp::create(
-            b, loc, cast<VectorType>(convertType(op->getResult(0).getType())),
-            resultSlot, ValueRange{zero}));
+    return success();
+  }
+  auto resultType = cast<VectorType>(convertType(op->getResult(0).getType()));
+  Value result = vector::LoadOp::create(
+      b, loc, VectorType::get(resultType.getShape(), f64), resultSlot,
+      ValueRange{zero});
+  if (!precision.isF64())
+    result = arith::TruncFOp::create(b, loc, resultType, result);
+  map(op->getResult(0), result);
   return success();
 }

@@ -73,9 +73,31 @@ func.func @two_sizes(%a: tensor<2x2xf64>, %b: tensor<3x3xf64>) attributes {simit
 
 // -----
 
-// The runtime's dense solvers take f64 only.
-func.func @bad(%a: tensor<2x2xf32>) attributes {simit.export} {
-  // expected-error @below {{'lu' is supported by the loop lowering on dense local f64 matrices and vectors, solved to the right-hand side's shape}}
+// With float32 the operands are widened to f64 for the runtime and the
+// result rounded back.
+// CHECK-LABEL: func.func @solve_f32
+// CHECK-SAME: (%[[A:.*]]: vector<4xf32>, %[[B:.*]]: vector<2xf32>) -> vector<2xf32>
+// CHECK: %[[AW:.*]] = arith.extf %[[A]] : vector<4xf32> to vector<4xf64>
+// CHECK: vector.store %[[AW]]
+// CHECK: call @simit_rt_lu(
+// CHECK: %[[BW:.*]] = arith.extf %[[B]] : vector<2xf32> to vector<2xf64>
+// CHECK: vector.store %[[BW]]
+// CHECK: call @simit_rt_lusolve(
+// CHECK: %[[XW:.*]] = vector.load %{{.*}} : memref<2xf64>, vector<2xf64>
+// CHECK: %[[X:.*]] = arith.truncf %[[XW]] : vector<2xf64> to vector<2xf32>
+// CHECK: return %[[X]] : vector<2xf32>
+func.func @solve_f32(%a: tensor<2x2xf32>, %b: tensor<2xf32>) -> tensor<2xf32> attributes {simit.export} {
   %h = simit.factorize lu %a : tensor<2x2xf32>
+  %x = simit.factor_solve lu %h, %b : tensor<2xf32> -> tensor<2xf32>
+  simit.factor_free lu %h
+  return %x : tensor<2xf32>
+}
+
+// -----
+
+// The runtime's dense solvers take f64 (and f32, widened) only.
+func.func @bad(%a: tensor<2x2xf16>) attributes {simit.export} {
+  // expected-error @below {{'lu' is supported by the loop lowering on dense local float matrices and vectors of static shapes, its result of the right-hand side's type}}
+  %h = simit.factorize lu %a : tensor<2x2xf16>
   return
 }

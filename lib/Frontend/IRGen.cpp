@@ -86,9 +86,38 @@ OwningOpRef<ModuleOp> IRGenerator::generate() {
   if (failed)
     return nullptr;
   simplify();
-  if (!verifyModule())
+  if (!checkResultWrites() || !verifyModule())
     return nullptr;
   return owned;
+}
+
+/// The source position of an IR location (none outside the main file).
+SMLoc IRGenerator::sourceLoc(Location where) {
+  llvm::SourceMgr &sourceMgr = diags.getSourceMgr();
+  auto fileLoc = where->findInstanceOf<FileLineColLoc>();
+  if (!fileLoc || sourceMgr.getNumBuffers() == 0)
+    return SMLoc();
+  return sourceMgr.FindLocForLineAndColumn(
+      sourceMgr.getMainFileID(), fileLoc.getLine(), fileLoc.getColumn());
+}
+
+/// Element functions write map results only at their own element and
+/// endpoints: a write elsewhere is the program's error, reported at the
+/// write (the maps' verifier would report it as an internal one).
+bool IRGenerator::checkResultWrites() {
+  bool ok = true;
+  module.walk([&](Operation *op) {
+    if (!isa<dialect::MapOp, dialect::AssembleOp>(op))
+      return;
+    if (auto bad = dialect::findUnindexedResultWrite(op)) {
+      diags.error(sourceLoc(bad->first.getLoc()),
+                  "an element function writes a result of a map only at its "
+                  "own element and endpoints (language.md 8.3); this index "
+                  "is neither");
+      ok = false;
+    }
+  });
+  return ok;
 }
 
 /// Generation leaves unused side-effect-free values behind (the int
@@ -183,18 +212,12 @@ func::FuncOp IRGenerator::declareRuntimeFunction(llvm::StringRef base,
 /// Runs the verifier; its messages become internal errors at the source
 /// position of the offending operation.
 bool IRGenerator::verifyModule() {
-  llvm::SourceMgr &sourceMgr = diags.getSourceMgr();
   bool ok = true;
   ScopedDiagnosticHandler handler(&context, [&](mlir::Diagnostic &diag) {
     if (diag.getSeverity() != mlir::DiagnosticSeverity::Error)
       return success();
     ok = false;
-    SMLoc where;
-    if (auto fileLoc = diag.getLocation()->findInstanceOf<FileLineColLoc>())
-      if (sourceMgr.getNumBuffers() != 0)
-        where = sourceMgr.FindLocForLineAndColumn(sourceMgr.getMainFileID(),
-                                                  fileLoc.getLine(),
-                                                  fileLoc.getColumn());
+    SMLoc where = sourceLoc(diag.getLocation());
     std::string text;
     llvm::raw_string_ostream os(text);
     os << "internal error: the generated IR does not verify: " << diag;

@@ -81,6 +81,8 @@ private:
                                             mlir::FunctionType type);
   /// Erases dead side-effect-free operations and merges repeated ones.
   void simplify();
+  SMLoc sourceLoc(mlir::Location where);
+  bool checkResultWrites();
   bool verifyModule();
 
   //===--- IRGenTypes.cpp -------------------------------------------------===//

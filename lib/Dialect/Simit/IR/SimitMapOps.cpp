@@ -166,7 +166,6 @@ static LogicalResult verifyMapLike(Operation *op,
            << " as its element parameter but set '" << set.getName().getValue()
            << "' holds " << set.getElementType();
   unsigned numPassed = numExtras + 1;
-  std::optional<unsigned> endpointsParam;
   if (grid) {
     auto gridType = cast<SetType>(grid.getType());
     if (!gridType.isGrid() || gridType.getEndpoint(0) != set.getName())
@@ -185,7 +184,7 @@ static LogicalResult verifyMapLike(Operation *op,
                                << " where the map passes the endpoint tuple";
     if (failed(verifyEndpointTuple(op, set, tuple)))
       return failure();
-    endpointsParam = numPassed++;
+    ++numPassed;
   }
   if (params.size() != numPassed)
     return op->emitOpError() << callee << " has " << params.size()
@@ -217,30 +216,60 @@ static LogicalResult verifyMapLike(Operation *op,
   }
 
   // Writes to results, indexed only by the element and its endpoints.
+  if (std::optional<std::pair<InsertOp, unsigned>> bad =
+          findUnindexedResultWrite(op)) {
+    InFlightDiagnostic diag =
+        op->emitOpError()
+        << callee << " writes result #" << bad->second
+        << " at a set position not indexed by its element or endpoints; "
+           "an element function writes only to locations indexed by its "
+           "own element and endpoints";
+    diag.attachNote(bad->first.getLoc()) << "see the write here";
+    return diag;
+  }
+  return success();
+}
+
+std::optional<std::pair<InsertOp, unsigned>>
+mlir::simit::findUnindexedResultWrite(Operation *mapLike) {
+  auto callee = mapLike->getAttrOfType<FlatSymbolRefAttr>("callee");
+  auto function =
+      callee ? SymbolTable::lookupNearestSymbolFrom<FunctionOpInterface>(
+                   mapLike, callee)
+             : FunctionOpInterface();
+  if (!function || function.getFunctionBody().empty())
+    return std::nullopt;
+  bool throughGrid;
+  unsigned numExtras;
+  if (auto map = dyn_cast<MapOp>(mapLike)) {
+    throughGrid = static_cast<bool>(map.getGrid());
+    numExtras = map.getExtras().size();
+  } else {
+    auto assemble = cast<AssembleOp>(mapLike);
+    throughGrid = static_cast<bool>(assemble.getGrid());
+    numExtras = assemble.getExtras().size();
+  }
   Region &body = function.getFunctionBody();
-  if (body.empty())
-    return success();
+  if (body.getNumArguments() <= numExtras)
+    return std::nullopt;
   Value element = body.getArgument(numExtras);
-  Value endpoints = endpointsParam ? body.getArgument(*endpointsParam) : Value();
+  // The endpoint tuple follows the element (a grid point's neighbours are
+  // reached through the grid instead).
+  Value endpoints;
+  if (!throughGrid && body.getNumArguments() > numExtras + 1 &&
+      isa<TupleType>(body.getArgument(numExtras + 1).getType()))
+    endpoints = body.getArgument(numExtras + 1);
   for (Block &block : body) {
     Operation *terminator = block.getTerminator();
     if (!terminator || !terminator->hasTrait<OpTrait::ReturnLike>())
       continue;
     for (auto [i, result] : llvm::enumerate(terminator->getOperands())) {
       ResultWriteChecker checker(element, endpoints);
-      if (InsertOp bad = checker.findBadWrite(result)) {
-        InFlightDiagnostic diag =
-            op->emitOpError()
-            << callee << " writes result #" << i
-            << " at a set position not indexed by its element or endpoints; "
-               "an element function writes only to locations indexed by its "
-               "own element and endpoints";
-        diag.attachNote(bad.getLoc()) << "see the write here";
-        return diag;
-      }
+      if (InsertOp bad = checker.findBadWrite(result))
+        return std::make_pair(bad, static_cast<unsigned>(i));
     }
   }
-  return success();
+  return std::nullopt;
 }
 
 LogicalResult MapOp::verifySymbolUses(SymbolTableCollection &symbolTable) {

@@ -65,4 +65,19 @@ bool hasSetDimension(Type type);
 #define GET_OP_CLASSES
 #include "simit/Dialect/Simit/IR/SimitOps.h.inc"
 
+namespace mlir {
+namespace simit {
+
+/// The first write, and the result it writes, of the element function of a
+/// `simit.map` or `simit.assemble` into a set dimension of one of its
+/// results at a position other than its element, its endpoints or (through
+/// a grid) points near it (language.md 8.3); none when every write is
+/// indexed so. The maps' verifier rejects such writes; front ends report
+/// them at the write.
+std::optional<std::pair<InsertOp, unsigned>>
+findUnindexedResultWrite(Operation *mapLike);
+
+} // namespace simit
+} // namespace mlir
+
 #endif // SIMIT_DIALECT_SIMIT_IR_SIMIT_H

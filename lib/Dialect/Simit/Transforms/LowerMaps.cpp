@@ -13,6 +13,7 @@
 
 #include "LoopsLowering.h"
 
+#include "mlir/Dialect/Utils/IndexingUtils.h"
 #include "mlir/Dialect/Utils/StaticValueUtils.h"
 
 using namespace mlir;
@@ -123,37 +124,96 @@ static Value combine(OpBuilder &b, Location loc, ReductionKind kind, Value old,
   llvm_unreachable("reduction kind");
 }
 
-/// The component writes of `K(i, j)(a, b) = v` (or `f(i)(a) = v`), which
-/// arrives as insert(insert(v, extract(K, i, j), a, b), K, i, j): the inner
-/// inserts, outermost first; empty when `insert` writes a whole block.
-static SmallVector<InsertOp> componentWrites(InsertOp insert) {
-  SmallVector<InsertOp> writes;
-  Value block = insert.getValue();
+namespace {
+/// One write of a component write chain: `write` puts its value at `path`
+/// (indices below the result's block position, through nested blocks),
+/// one scalar or one whole block of builtin shape.
+struct ComponentWrite {
+  InsertOp write;
+  SmallVector<Value> path;
+};
+
+/// The component writes of `K(i, j)(a, b) = v` (or `f(i)(a) = v`,
+/// `W(t)(1)(2) = v`), which arrive as insert(insert(v, extract(K, i, j), a,
+/// b), K, i, j), nested once per block level: the writes, outermost
+/// first, the block read they start from and every op of the chain.
+struct ComponentWrites {
+  SmallVector<ComponentWrite> writes;
+  ExtractOp base;
+  llvm::SmallPtrSet<Operation *, 8> ops;
+};
+} // namespace
+
+/// The root of a chain of inserts ending in `block`.
+static Value insertRoot(Value block) {
+  while (auto inner = block.getDefiningOp<InsertOp>())
+    block = inner.getTensor();
+  return block;
+}
+
+/// Adds the writes that turn `base` into `block` below `path`; false when
+/// `block` is not built from `base` by inserts.
+static bool collectWrites(Value block, Value base, ArrayRef<Value> path,
+                          ComponentWrites &tree) {
+  SmallVector<InsertOp> chain;
   while (auto inner = block.getDefiningOp<InsertOp>()) {
-    writes.push_back(inner);
+    chain.push_back(inner);
+    tree.ops.insert(inner);
     block = inner.getTensor();
   }
-  auto read = block.getDefiningOp<ExtractOp>();
-  if (!read || read.getTensor() != insert.getTensor() ||
+  if (block != base)
+    return false;
+  for (InsertOp write : chain) {
+    SmallVector<Value> at(path);
+    llvm::append_range(at, write.getIndices());
+    // A sub-block rebuilt from its own read of this block: a write one
+    // block level deeper.
+    Value root = insertRoot(write.getValue());
+    auto sub = root.getDefiningOp<ExtractOp>();
+    if (root != write.getValue() && sub && sub.getTensor() == base &&
+        sub.getIndices() == write.getIndices()) {
+      tree.ops.insert(sub);
+      if (!collectWrites(write.getValue(), sub.getResult(), at, tree))
+        return false;
+      continue;
+    }
+    tree.writes.push_back({write, std::move(at)});
+  }
+  return true;
+}
+
+/// The component writes of `insert`; none when it writes a whole block.
+static std::optional<ComponentWrites> componentWrites(InsertOp insert) {
+  Value root = insertRoot(insert.getValue());
+  auto read = root.getDefiningOp<ExtractOp>();
+  if (root == insert.getValue() || !read ||
+      read.getTensor() != insert.getTensor() ||
       read.getIndices() != insert.getIndices())
-    return {};
-  return writes;
+    return std::nullopt;
+  ComponentWrites tree;
+  tree.base = read;
+  tree.ops.insert(read);
+  if (!collectWrites(insert.getValue(), read.getResult(), {}, tree))
+    return std::nullopt;
+  return tree;
 }
 
 /// Whether `read` reads a block of a map result only to have components
 /// written into it and the block written back (componentWrites): no other
-/// use sees its value.
+/// use sees its value or a value of the chain.
 static bool feedsComponentWrites(ExtractOp read) {
-  Value block = read.getResult();
-  while (block.hasOneUse()) {
-    auto insert = dyn_cast<InsertOp>(*block.getUsers().begin());
-    if (!insert)
-      return false;
-    if (insert.getValue() == block)
-      return !componentWrites(insert).empty();
-    if (insert.getTensor() != block)
-      return false;
-    block = insert.getResult();
+  for (Operation *user : read.getTensor().getUsers()) {
+    auto insert = dyn_cast<InsertOp>(user);
+    if (!insert || insert.getTensor() != read.getTensor())
+      continue;
+    std::optional<ComponentWrites> tree = componentWrites(insert);
+    if (!tree || tree->base != read)
+      continue;
+    return llvm::all_of(tree->ops, [&](Operation *op) {
+      return llvm::all_of(op->getUsers(), [&](Operation *use) {
+        return use == insert.getOperation() || tree->ops.contains(use);
+      });
+    });
   }
   return false;
 }
@@ -250,20 +310,41 @@ static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
   };
   // Component writes combine only the written components; the last write
   // of a component in the chain is the one that counts.
-  SmallVector<InsertOp> writes = componentWrites(insert);
-  if (!writes.empty()) {
+  if (std::optional<ComponentWrites> tree = componentWrites(insert)) {
     SmallVector<SmallVector<Value>> done;
-    for (InsertOp write : writes) {
-      if (!isa<FloatType, IntegerType>(write.getValue().getType()))
-        return write.emitError("a component write into a map result must "
-                               "write one scalar component");
-      SmallVector<Value> indices(prefix);
-      for (Value index : write.getIndices())
-        indices.push_back(l.lookup(index));
-      if (llvm::is_contained(done, indices))
-        continue;
-      combineInto(indices, l.lookup(write.getValue()));
-      done.push_back(indices);
+    for (ComponentWrite &write : tree->writes) {
+      Value value = write.write.getValue();
+      SmallVector<Value> at(prefix);
+      for (Value index : write.path)
+        at.push_back(l.lookup(index));
+      // A scalar, or a whole block of builtin shape: each of its
+      // components at its own indices.
+      ArrayRef<int64_t> shape;
+      if (auto block = dyn_cast<RankedTensorType>(value.getType()))
+        shape = block.getShape();
+      else if (!isa<FloatType, IntegerType>(value.getType()))
+        return write.write.emitError("a component write into a map result "
+                                     "must write a scalar or a block of "
+                                     "scalars");
+      if (at.size() + shape.size() != static_cast<size_t>(type.getRank()))
+        return write.write.emitError("this component write does not name "
+                                     "one component of the map result's "
+                                     "block");
+      Value lowered = l.lookup(value);
+      int64_t n = computeProduct(shape);
+      for (int64_t c = 0; c < n; ++c) {
+        SmallVector<Value> indices(at);
+        for (int64_t d = 0, rest = c; d < static_cast<int64_t>(shape.size());
+             ++d) {
+          int64_t stride = computeProduct(shape.drop_front(d + 1));
+          indices.push_back(l.indexConstant(rest / stride));
+          rest %= stride;
+        }
+        if (llvm::is_contained(done, indices))
+          continue;
+        combineInto(indices, l.component(value.getType(), lowered, c));
+        done.push_back(indices);
+      }
     }
     return success();
   }

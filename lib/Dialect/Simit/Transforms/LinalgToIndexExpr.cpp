@@ -24,7 +24,18 @@ namespace {
 /// The scalar operation of a body.
 enum class BodyKind { Add, Sub, Mul, Div, Neg };
 
-Value emitScalar(OpBuilder &b, Location loc, BodyKind kind, ValueRange args) {
+/// Whether `type` is a matrix over two sets.
+bool isSystemMatrix(Type type) {
+  auto tensor = dyn_cast<SystemTensorType>(type);
+  return tensor && tensor.getOrder() == 2 &&
+         isa<StringAttr>(tensor.getDims()[0]) &&
+         isa<StringAttr>(tensor.getDims()[1]);
+}
+
+/// The body of an element-wise operation; `ofMatrix` when its result is a
+/// system matrix.
+Value emitScalar(OpBuilder &b, Location loc, BodyKind kind, ValueRange args,
+                 bool ofMatrix) {
   bool isFloat = isa<FloatType>(args[0].getType());
   switch (kind) {
   case BodyKind::Add:
@@ -37,14 +48,18 @@ Value emitScalar(OpBuilder &b, Location loc, BodyKind kind, ValueRange args) {
     return isFloat ? arith::MulFOp::create(b, loc, args[0], args[1]).getResult()
                    : arith::MulIOp::create(b, loc, args[0], args[1]).getResult();
   case BodyKind::Div: {
-    // Components outside a matrix's sparsity read as zero (language.md
-    // 7.5), also where its storage holds a zero block (the diagonal of a
-    // vertex no edge touches): a zero dividend gives zero, not 0/0.
-    Value zero =
-        arith::ConstantOp::create(b, loc, b.getZeroAttr(args[0].getType()));
     Value quotient =
         isFloat ? arith::DivFOp::create(b, loc, args[0], args[1]).getResult()
                 : arith::DivSIOp::create(b, loc, args[0], args[1]).getResult();
+    // Vectors divide as IEEE numbers (0/0 is NaN, which the numerics
+    // checks report). Components outside a matrix's sparsity read as zero
+    // (language.md 7.5), also where its storage holds a zero block (the
+    // diagonal of a vertex no edge touches): there a zero dividend gives
+    // zero, not 0/0.
+    if (!ofMatrix)
+      return quotient;
+    Value zero =
+        arith::ConstantOp::create(b, loc, b.getZeroAttr(args[0].getType()));
     Value isZero =
         isFloat ? arith::CmpFOp::create(b, loc, arith::CmpFPredicate::OEQ,
                                         args[0], zero)
@@ -85,17 +100,10 @@ Value buildIndexExpr(OpBuilder &b, Location loc, Type resultType,
   Block &body = op.getBody().front();
   OpBuilder::InsertionGuard guard(b);
   b.setInsertionPointToStart(&body);
-  Value value = emitScalar(b, loc, kind, body.getArguments());
+  Value value =
+      emitScalar(b, loc, kind, body.getArguments(), isSystemMatrix(resultType));
   YieldOp::create(b, loc, value);
   return op.getResult();
-}
-
-/// Whether `type` is a matrix over two sets.
-bool isSystemMatrix(Type type) {
-  auto tensor = dyn_cast<SystemTensorType>(type);
-  return tensor && tensor.getOrder() == 2 &&
-         isa<StringAttr>(tensor.getDims()[0]) &&
-         isa<StringAttr>(tensor.getDims()[1]);
 }
 
 ArrayAttr hierarchy(Type type, unsigned dim) {

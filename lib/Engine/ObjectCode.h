@@ -36,6 +36,9 @@ struct ObjectCode {
   /// (Program::externSetFields()), so that a program loaded from the cache
   /// need not be imported.
   std::map<std::string, std::vector<std::string>> externSetFields;
+  /// The endpoint sets of each extern edge set and grid, by set
+  /// (Program::externSetEndpoints()).
+  std::map<std::string, std::vector<std::string>> externSetEndpoints;
 };
 
 /// The host CPU with all its features, at -O3, with the small code model and

@@ -139,12 +139,14 @@ std::string simit::serializeObjectCode(const ObjectCode &code) {
     for (const ValueType &result : function.signature.results)
       out.type(result);
   }
-  out.integer<uint64_t>(code.externSetFields.size());
-  for (const auto &[set, fields] : code.externSetFields) {
-    out.string(set);
-    out.integer<uint64_t>(fields.size());
-    for (const std::string &field : fields)
-      out.string(field);
+  for (const auto *sets : {&code.externSetFields, &code.externSetEndpoints}) {
+    out.integer<uint64_t>(sets->size());
+    for (const auto &[set, names] : *sets) {
+      out.string(set);
+      out.integer<uint64_t>(names.size());
+      for (const std::string &name : names)
+        out.string(name);
+    }
   }
   return std::move(out.bytes);
 }
@@ -191,12 +193,14 @@ llvm::Expected<ObjectCode> simit::deserializeObjectCode(llvm::StringRef bytes) {
       result = in.type();
     code.functions[name] = std::move(function);
   }
-  uint64_t numSets = in.count(sizeof(uint64_t));
-  for (uint64_t i = 0; i < numSets && !in.failed; ++i) {
-    std::vector<std::string> &fields = code.externSetFields[in.string()];
-    fields.resize(in.count(sizeof(uint64_t)));
-    for (std::string &field : fields)
-      field = in.string();
+  for (auto *sets : {&code.externSetFields, &code.externSetEndpoints}) {
+    uint64_t numSets = in.count(sizeof(uint64_t));
+    for (uint64_t i = 0; i < numSets && !in.failed; ++i) {
+      std::vector<std::string> &names = (*sets)[in.string()];
+      names.resize(in.count(sizeof(uint64_t)));
+      for (std::string &name : names)
+        name = in.string();
+    }
   }
   if (in.failed || !in.rest.empty())
     return llvm::createStringError("malformed compiled code");

@@ -232,6 +232,21 @@ struct Program::Impl {
     return std::move(*code);
   }
 
+  /// The endpoint sets of each extern edge set and grid, from the imported
+  /// module.
+  std::map<std::string, std::vector<std::string>> externSetEndpointsOfModule() {
+    std::map<std::string, std::vector<std::string>> endpoints;
+    for (auto global : module->getOps<mlir::simit::ExternOp>()) {
+      auto set = llvm::dyn_cast<mlir::simit::SetType>(global.getType());
+      if (!set || set.getEndpoints().empty())
+        continue;
+      std::vector<std::string> &names = endpoints[set.getName().str()];
+      for (mlir::StringAttr name : set.getEndpoints())
+        names.push_back(name.str());
+    }
+    return endpoints;
+  }
+
   /// The fields of each extern set's elements, from the imported module.
   std::map<std::string, std::vector<std::string>> externSetFieldsOfModule() {
     std::map<std::string, std::vector<std::string>> fields;
@@ -293,6 +308,7 @@ struct Program::Impl {
     if (!code)
       return code.takeError();
     code->externSetFields = externSetFieldsOfModule();
+    code->externSetEndpoints = externSetEndpointsOfModule();
     Stopwatch link;
     auto loaded = loadObjectCode(*code);
     if (!loaded)
@@ -400,6 +416,15 @@ Program::externSetFields() {
   if (llvm::Error err = impl->requireModule())
     return std::move(err);
   return impl->externSetFieldsOfModule();
+}
+
+llvm::Expected<std::map<std::string, std::vector<std::string>>>
+Program::externSetEndpoints() {
+  if (impl->cachedCode)
+    return impl->cachedCode->externSetEndpoints;
+  if (llvm::Error err = impl->requireModule())
+    return std::move(err);
+  return impl->externSetEndpointsOfModule();
 }
 
 SolveSession &Program::solver() { return *impl->solver; }

@@ -98,6 +98,40 @@ llvm::Error checkSceneFields(const SceneDescription &scene, Program &program,
   return llvm::Error::success();
 }
 
+/// An edge set or grid of the scene whose endpoints are other sets than the
+/// program declares would have its endpoint indices read as positions in
+/// the declared sets: out of their bounds, or silently the wrong elements.
+llvm::Error checkSceneEndpoints(const SceneDescription &scene,
+                                const SetRegistry &registry, Program &program,
+                                llvm::StringRef programPath) {
+  auto declared = program.externSetEndpoints();
+  if (!declared)
+    return declared.takeError();
+  for (const auto &[name, expected] : *declared) {
+    Set *set = registry.find(name);
+    if (!set)
+      continue;
+    std::vector<std::string> given;
+    for (Set *endpoints : set->endpointSetList())
+      given.push_back(endpoints->name().str());
+    // A grid declares its point set once and carries it per endpoint.
+    auto unique = [](std::vector<std::string> names) {
+      llvm::sort(names);
+      names.erase(llvm::unique(names), names.end());
+      return names;
+    };
+    bool same = given.size() == expected.size()
+                    ? given == expected
+                    : unique(given) == unique(expected);
+    if (!same)
+      return llvm::createStringError(
+          scene.path + ": sets." + name + ".endpoints: set '" + name + "' in " +
+          programPath + " has endpoints in (" + llvm::join(expected, ", ") +
+          "), but the scene gives (" + llvm::join(given, ", ") + ")");
+  }
+  return llvm::Error::success();
+}
+
 /// Where the scene gives the value bound to `arg`.
 std::string jsonPathOf(const SceneDescription &scene,
                        const ArgumentBinding &arg) {
@@ -323,6 +357,9 @@ SceneRunner::create(SceneDescription scene, const SceneRunOptions &options) {
                                                 &runner->stepFunctions}),
                           registry)
               : buildSets(desc, registry))
+    return std::move(err);
+  if (llvm::Error err =
+          checkSceneEndpoints(desc, registry, program, programPath))
     return std::move(err);
   times.setsMs = millisecondsSince(bindStart);
   for (auto *group : {&runner->initFunctions, &runner->stepFunctions})

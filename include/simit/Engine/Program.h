@@ -174,6 +174,11 @@ public:
   llvm::Expected<std::map<std::string, std::vector<std::string>>>
   externSetFields();
 
+  /// The endpoint sets the program declares for each extern edge set and
+  /// grid, by set name, in endpoint order.
+  llvm::Expected<std::map<std::string, std::vector<std::string>>>
+  externSetEndpoints();
+
 private:
   struct Impl;
   std::unique_ptr<Impl> impl;

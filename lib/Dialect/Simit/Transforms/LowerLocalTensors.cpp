@@ -224,8 +224,10 @@ static bool isLoopVariableBelow(Value index, int64_t size) {
 /// The flat offset of the block at `indices` (one per outer dimension) of a
 /// local tensor, in components. A dynamic index is asserted to lie in its
 /// dimension: out of range, a flat vector would read a neighbouring
-/// component or poison without a word. Constant indices were checked by the
-/// frontend, and loop variables within the dimension need no check.
+/// component or poison without a word. Loop variables within the dimension
+/// need no check, nor constants within it; a constant outside it (a folded
+/// `const` or scene constant: the frontend checks literals) fails the same
+/// way when it runs, and addresses component 0 meanwhile.
 static Value blockOffset(FunctionLowering &l, Location loc, Type type,
                          ValueRange indices) {
   SmallVector<int64_t> outer;
@@ -236,9 +238,11 @@ static Value blockOffset(FunctionLowering &l, Location loc, Type type,
       outer.push_back(cast<IntegerAttr>(dim).getInt());
   int64_t blockSize = numComponents(getBlockType(type));
   Value offset = l.indexConstant(0);
-  for (auto [d, index] : llvm::enumerate(indices)) {
-    if (!matchPattern(index, m_Constant()) &&
-        !isLoopVariableBelow(index, outer[d])) {
+  for (auto [d, originalIndex] : llvm::enumerate(indices)) {
+    Value index = originalIndex;
+    std::optional<int64_t> constant = getConstantIntValue(index);
+    bool outside = constant && (*constant < 0 || *constant >= outer[d]);
+    if (outside || (!constant && !isLoopVariableBelow(index, outer[d]))) {
       // One unsigned compare also rejects negative indices.
       Value inRange = arith::CmpIOp::create(l.b, loc, arith::CmpIPredicate::ult,
                                             index, l.indexConstant(outer[d]));
@@ -247,6 +251,8 @@ static Value blockOffset(FunctionLowering &l, Location loc, Type type,
                                std::to_string(outer[d]) +
                                sourcePositionSuffix(loc));
     }
+    if (outside)
+      index = l.indexConstant(0);
     int64_t stride = blockSize;
     for (int64_t e = d + 1; e < static_cast<int64_t>(outer.size()); ++e)
       stride *= outer[e];

@@ -444,7 +444,7 @@ llvm::Error SetBuilder::readFieldFile(const FieldSpec &field, size_t elements,
         return error(path, llvm::toString(reader->error(
                                "expected " + llvm::Twine(count) +
                                " values, found more")));
-      auto value = reader->parseDouble(token, "a field value");
+      auto value = reader->parseFiniteDouble(token, "a field value");
       if (!value)
         return error(path, llvm::toString(value.takeError()));
       std::string problem = componentProblem(field.type, *value);

@@ -79,7 +79,8 @@ llvm::Expected<long long> TextReader::parseInt(llvm::StringRef token,
 }
 
 bool simit::detail::parseDoubleToken(llvm::StringRef token, double &value) {
-  if (token.empty())
+  // Decimal notation only: strtod would also read hexadecimal ("0x10").
+  if (token.empty() || token.find_first_of("xX") != llvm::StringRef::npos)
     return false;
   std::string text = token.str();
   char *end = nullptr;

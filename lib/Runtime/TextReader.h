@@ -76,7 +76,8 @@ private:
   bool hashComments;
 };
 
-/// Parses a complete token as a finite or infinite double (strtod syntax).
+/// Parses a complete token as a finite or infinite double in decimal
+/// notation (strtod syntax without hexadecimal).
 bool parseDoubleToken(llvm::StringRef token, double &value);
 
 } // namespace detail

@@ -624,6 +624,14 @@ TEST_F(SceneTest, FieldFileErrors) {
   EXPECT_THAT(buildError(fieldScene(R"("w": {"file": "text.txt"})")),
               HasSubstr("text.txt:2: expected a number for a field value, "
                         "found 'three'"));
+  // Values are finite decimal numbers.
+  for (const char *bad : {"nan", "inf", "1e999", "0x10"}) {
+    dir.write("bad.txt", std::string("1 2\n3 ") + bad + " 5\n");
+    EXPECT_THAT(buildError(fieldScene(R"("w": {"file": "bad.txt"})")),
+                HasSubstr(std::string("bad.txt:2: expected a ") +
+                          (bad[1] == 'x' ? "number" : "finite number") +
+                          " for a field value, found '" + bad + "'"));
+  }
   dir.write("ints.txt", "1 2 3 4.5 5\n");
   EXPECT_THAT(buildError(fieldScene(R"("w": {"type": "int32", "file": "ints.txt"})")),
               HasSubstr("ints.txt:1: expected an int32 value, found 4.5"));

@@ -24,6 +24,9 @@
 namespace simit {
 
 struct ObjectCode {
+  /// Names per set, by set name.
+  using SetNames = std::map<std::string, std::vector<std::string>>;
+
   /// The host ABI and memref convention of every exported function (their
   /// entry points are unset until loaded).
   llvm::StringMap<CompiledFunction> functions;
@@ -35,10 +38,10 @@ struct ObjectCode {
   /// The field names of each extern set's elements, by set
   /// (Program::externSetFields()), so that a program loaded from the cache
   /// need not be imported.
-  std::map<std::string, std::vector<std::string>> externSetFields;
-  /// The endpoint sets of each extern edge set and grid, by set
+  SetNames externSetFields;
+  /// The endpoint sets of each extern set, one per endpoint position
   /// (Program::externSetEndpoints()).
-  std::map<std::string, std::vector<std::string>> externSetEndpoints;
+  SetNames externSetEndpoints;
 };
 
 /// The host CPU with all its features, at -O3, with the small code model and

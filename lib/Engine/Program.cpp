@@ -37,6 +37,23 @@ struct Source {
   Kind kind = Kind::Sim;
   std::string name, text;
 };
+
+/// The fields of a set's elements.
+std::vector<std::string> fieldNames(mlir::simit::SetType set) {
+  std::vector<std::string> names;
+  for (mlir::StringAttr name : set.getElement().getFieldNames())
+    names.push_back(name.str());
+  return names;
+}
+
+/// The set of each endpoint position of a set (a grid's point set at both);
+/// none for a vertex set.
+std::vector<std::string> endpointNames(mlir::simit::SetType set) {
+  std::vector<std::string> names;
+  for (unsigned i = 0; i < set.getCardinality(); ++i)
+    names.push_back(set.getEndpoint(i).str());
+  return names;
+}
 } // namespace
 
 struct Program::Impl {
@@ -232,33 +249,30 @@ struct Program::Impl {
     return std::move(*code);
   }
 
-  /// The endpoint sets of each extern edge set and grid, from the imported
-  /// module.
-  std::map<std::string, std::vector<std::string>> externSetEndpointsOfModule() {
-    std::map<std::string, std::vector<std::string>> endpoints;
-    for (auto global : module->getOps<mlir::simit::ExternOp>()) {
-      auto set = llvm::dyn_cast<mlir::simit::SetType>(global.getType());
-      if (!set || set.getEndpoints().empty())
-        continue;
-      std::vector<std::string> &names = endpoints[set.getName().str()];
-      for (mlir::StringAttr name : set.getEndpoints())
-        names.push_back(name.str());
-    }
-    return endpoints;
+  /// For each extern set of the imported module, by name, the names
+  /// `namesOf` gives its type.
+  ObjectCode::SetNames externSetNamesOfModule(
+      llvm::function_ref<std::vector<std::string>(mlir::simit::SetType)>
+          namesOf) {
+    ObjectCode::SetNames names;
+    for (auto global : module->getOps<mlir::simit::ExternOp>())
+      if (auto set = llvm::dyn_cast<mlir::simit::SetType>(global.getType()))
+        names[set.getName().str()] = namesOf(set);
+    return names;
   }
 
-  /// The fields of each extern set's elements, from the imported module.
-  std::map<std::string, std::vector<std::string>> externSetFieldsOfModule() {
-    std::map<std::string, std::vector<std::string>> fields;
-    for (auto global : module->getOps<mlir::simit::ExternOp>()) {
-      auto set = llvm::dyn_cast<mlir::simit::SetType>(global.getType());
-      if (!set)
-        continue;
-      std::vector<std::string> &names = fields[set.getName().str()];
-      for (mlir::StringAttr name : set.getElement().getFieldNames())
-        names.push_back(name.str());
-    }
-    return fields;
+  /// The names a program declares for each extern set: kept with the
+  /// compiled code, so that a program loaded from the cache need not be
+  /// imported.
+  llvm::Expected<ObjectCode::SetNames> externSetNames(
+      ObjectCode::SetNames ObjectCode::*kept,
+      llvm::function_ref<std::vector<std::string>(mlir::simit::SetType)>
+          namesOf) {
+    if (cachedCode)
+      return (*cachedCode).*kept;
+    if (llvm::Error err = requireModule())
+      return std::move(err);
+    return externSetNamesOfModule(namesOf);
   }
 
   llvm::Error compile() {
@@ -307,8 +321,8 @@ struct Program::Impl {
     auto code = compileToObject(*llvmModule, lowering.signatures, newTimes);
     if (!code)
       return code.takeError();
-    code->externSetFields = externSetFieldsOfModule();
-    code->externSetEndpoints = externSetEndpointsOfModule();
+    code->externSetFields = externSetNamesOfModule(fieldNames);
+    code->externSetEndpoints = externSetNamesOfModule(endpointNames);
     Stopwatch link;
     auto loaded = loadObjectCode(*code);
     if (!loaded)
@@ -409,22 +423,12 @@ llvm::Expected<std::vector<std::string>> Program::exportedFunctions() {
 
 const CompileTimes &Program::compileTimes() const { return impl->times; }
 
-llvm::Expected<std::map<std::string, std::vector<std::string>>>
-Program::externSetFields() {
-  if (impl->cachedCode)
-    return impl->cachedCode->externSetFields;
-  if (llvm::Error err = impl->requireModule())
-    return std::move(err);
-  return impl->externSetFieldsOfModule();
+llvm::Expected<ObjectCode::SetNames> Program::externSetFields() {
+  return impl->externSetNames(&ObjectCode::externSetFields, fieldNames);
 }
 
-llvm::Expected<std::map<std::string, std::vector<std::string>>>
-Program::externSetEndpoints() {
-  if (impl->cachedCode)
-    return impl->cachedCode->externSetEndpoints;
-  if (llvm::Error err = impl->requireModule())
-    return std::move(err);
-  return impl->externSetEndpointsOfModule();
+llvm::Expected<ObjectCode::SetNames> Program::externSetEndpoints() {
+  return impl->externSetNames(&ObjectCode::externSetEndpoints, endpointNames);
 }
 
 SolveSession &Program::solver() { return *impl->solver; }

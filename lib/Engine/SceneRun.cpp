@@ -109,21 +109,12 @@ llvm::Error checkSceneEndpoints(const SceneDescription &scene,
     return declared.takeError();
   for (const auto &[name, expected] : *declared) {
     Set *set = registry.find(name);
-    if (!set)
+    if (!set || expected.empty())
       continue;
     std::vector<std::string> given;
     for (Set *endpoints : set->endpointSetList())
       given.push_back(endpoints->name().str());
-    // A grid declares its point set once and carries it per endpoint.
-    auto unique = [](std::vector<std::string> names) {
-      llvm::sort(names);
-      names.erase(llvm::unique(names), names.end());
-      return names;
-    };
-    bool same = given.size() == expected.size()
-                    ? given == expected
-                    : unique(given) == unique(expected);
-    if (!same)
+    if (given != expected)
       return llvm::createStringError(
           scene.path + ": sets." + name + ".endpoints: set '" + name + "' in " +
           programPath + " has endpoints in (" + llvm::join(expected, ", ") +

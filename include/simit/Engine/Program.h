@@ -174,8 +174,9 @@ public:
   llvm::Expected<std::map<std::string, std::vector<std::string>>>
   externSetFields();
 
-  /// The endpoint sets the program declares for each extern edge set and
-  /// grid, by set name, in endpoint order.
+  /// The endpoint sets the program declares for each extern set, by set
+  /// name, one per endpoint position (none for a vertex set; a grid's point
+  /// set at both of its edges' ends).
   llvm::Expected<std::map<std::string, std::vector<std::string>>>
   externSetEndpoints();
 

@@ -528,6 +528,12 @@ int64_t numComponents(Type type);
 SmallVector<int64_t> localShape(Type type);
 /// Whether a type is a tensor with a set dimension (a system tensor).
 bool isSystem(Type type);
+/// The storage positions of a local tensor's components in the row-major
+/// order of its unblocked shape, which goes to `shape`: levels of (r_l x c_l)
+/// make a (prod r_l) x (prod c_l) matrix, vector levels a vector; a scalar
+/// is its one component. None when the levels mix ranks.
+std::optional<SmallVector<int64_t>> unblockedOrder(Type type,
+                                                   SmallVector<int64_t> &shape);
 
 } // namespace loops
 } // namespace simit

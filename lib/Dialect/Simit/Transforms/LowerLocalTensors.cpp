@@ -308,12 +308,10 @@ static SmallVector<int64_t> digits(int64_t flat, ArrayRef<int64_t> radices) {
   return result;
 }
 
-/// The storage positions of a local tensor's components in the row-major
-/// order of its unblocked shape, which goes to `shape`: levels of (r_l x c_l)
-/// make a (prod r_l) x (prod c_l) matrix, vector levels a vector; a scalar
-/// is its one component. None when the levels mix ranks.
-static std::optional<SmallVector<int64_t>>
-unblockedOrder(Type type, SmallVector<int64_t> &shape) {
+// The storage positions of a local tensor's components in row-major
+// order (LoopsLowering.h).
+std::optional<SmallVector<int64_t>>
+mlir::simit::loops::unblockedOrder(Type type, SmallVector<int64_t> &shape) {
   SmallVector<SmallVector<int64_t>> levels = levelShapes(type);
   shape.clear();
   if (levels.empty())

@@ -331,15 +331,11 @@ static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
                                      "one component of the map result's "
                                      "block");
       Value lowered = l.lookup(value);
-      int64_t n = computeProduct(shape);
-      for (int64_t c = 0; c < n; ++c) {
+      SmallVector<int64_t> strides = computeStrides(shape);
+      for (int64_t c = 0, n = computeProduct(shape); c < n; ++c) {
         SmallVector<Value> indices(at);
-        for (int64_t d = 0, rest = c; d < static_cast<int64_t>(shape.size());
-             ++d) {
-          int64_t stride = computeProduct(shape.drop_front(d + 1));
-          indices.push_back(l.indexConstant(rest / stride));
-          rest %= stride;
-        }
+        for (int64_t index : delinearize(c, strides))
+          indices.push_back(l.indexConstant(index));
         if (llvm::is_contained(done, indices))
           continue;
         combineInto(indices, l.component(value.getType(), lowered, c));

@@ -7,8 +7,6 @@
 #include "LoopsLowering.h"
 #include "StringConstant.h"
 
-#include "mlir/Dialect/Utils/IndexingUtils.h"
-
 using namespace mlir;
 using namespace mlir::simit;
 using namespace mlir::simit::loops;
@@ -85,30 +83,6 @@ LogicalResult FunctionLowering::printMatrix(
     }
   });
   return result;
-}
-
-/// The position among a blocked local tensor's components (row-major,
-/// blocks contiguous) of its scalar `i` counted row-major over the scalar
-/// dimensions; `levels[d]` are dimension d's extents from the outer
-/// dimension inwards, `extents[d]` their product.
-static Value flatComponent(ArrayRef<SmallVector<int64_t>> levels,
-                           ArrayRef<int64_t> extents, int64_t i,
-                           FunctionLowering &l) {
-  SmallVector<SmallVector<int64_t>> indices(levels.size());
-  for (int64_t d = levels.size() - 1; d >= 0; --d) {
-    int64_t scalar = i % extents[d];
-    i /= extents[d];
-    indices[d].resize(levels[d].size());
-    for (int64_t k = levels[d].size() - 1; k >= 0; --k) {
-      indices[d][k] = scalar % levels[d][k];
-      scalar /= levels[d][k];
-    }
-  }
-  int64_t flat = 0;
-  for (size_t k = 0; k < levels.front().size(); ++k)
-    for (size_t d = 0; d < levels.size(); ++d)
-      flat = flat * levels[d][k] + indices[d][k];
-  return l.indexConstant(flat);
 }
 
 LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {
@@ -215,29 +189,25 @@ LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {
     if (auto local = dyn_cast<SystemTensorType>(type);
         local && !local.isSystem()) {
       // A blocked local tensor: as a blocked system vector, one line per
-      // element of a vector; a matrix (or higher order) as the grid of its
-      // scalar rows, each the last dimension's scalars.
+      // element of a vector; a matrix as the grid of its scalar rows.
       Value lowered = lookup(value);
       if (!lowered)
         return op->emitError("print operand was not lowered");
-      SmallVector<SmallVector<int64_t>> levels;
-      for (unsigned d = 0; d < local.getOrder(); ++d)
-        levels.push_back(llvm::map_to_vector(
-            getDimensionHierarchy(type, d),
-            [](Attribute level) { return cast<IntegerAttr>(level).getInt(); }));
-      SmallVector<int64_t> extents =
-          llvm::map_to_vector(levels, [](const SmallVector<int64_t> &l) {
-            return computeProduct(l);
-          });
-      int64_t n = computeProduct(extents);
-      int64_t columns = local.getOrder() == 1
-                            ? computeProduct(ArrayRef(levels[0]).drop_front())
-                            : extents.back();
-      for (int64_t i = 0; i < n; ++i) {
+      SmallVector<int64_t> shape;
+      std::optional<SmallVector<int64_t>> order = unblockedOrder(type, shape);
+      if (!order)
+        return op->emitError("printing local tensors whose blocks are of "
+                             "another rank is not supported by the loop "
+                             "lowering");
+      int64_t columns =
+          shape.size() == 2
+              ? shape[1]
+              : shape[0] / cast<IntegerAttr>(local.getDims()[0]).getInt();
+      for (auto [i, position] : llvm::enumerate(*order)) {
         if (i > 0)
           printText(i % columns == 0 ? "\n" : " ");
-        if (failed(printScalar(component(
-                type, lowered, flatComponent(levels, extents, i, *this)))))
+        if (failed(
+                printScalar(component(type, lowered, indexConstant(position)))))
           return failure();
       }
       continue;

@@ -27,7 +27,7 @@ using namespace simit;
 namespace {
 constexpr llvm::StringLiteral kMagic = "SIMITOBJ";
 /// Changes whenever the header or the payload's layout does.
-constexpr uint32_t kFormatVersion = 3;
+constexpr uint32_t kFormatVersion = 4;
 using Hash = llvm::BLAKE3Result<32>;
 
 llvm::StringRef asText(const Hash &hash) {

@@ -73,20 +73,6 @@ struct HostBuffer {
   std::vector<int> shape;
 };
 
-std::string shapeString(llvm::ArrayRef<int64_t> shape) {
-  std::string text = "[";
-  for (size_t i = 0; i < shape.size(); ++i)
-    text += (i ? ", " : "") + (shape[i] == ValueType::kDynamic
-                                   ? std::string("?")
-                                   : std::to_string(shape[i]));
-  return text + "]";
-}
-
-std::string shapeString(llvm::ArrayRef<int> shape) {
-  return shapeString(llvm::to_vector(llvm::map_range(
-      shape, [](int d) { return static_cast<int64_t>(d); })));
-}
-
 /// Alignment and byte size of a value in memory, as LLVM lays it out on
 /// x86-64: a vector is aligned to its size rounded up to a power of two.
 /// A complex scalar is a struct of two parts; a complex vector
@@ -476,15 +462,19 @@ llvm::Error Function::Impl::prepareArgument(const ArgumentBinding &arg,
       return error(arg.describe() + " has host type " + type.str() +
                    ", which no host buffer provides");
     std::vector<int64_t> bufferShape(buffer.shape.begin(), buffer.shape.end());
-    // A vector is the lowering's flattened form of a local tensor: any
-    // buffer of as many numbers fits it.
+    // A vector is the lowering's flattened form of a local tensor, and a
+    // memref of static shape holds one row major: any buffer of as many
+    // numbers fits them (a 3x3 matrix given as nested rows or flat).
     int64_t bufferNumbers = 1;
     for (int64_t dim : bufferShape)
       bufferNumbers *= dim;
+    std::vector<int64_t> hostShape = type.hostShape();
+    bool flat = type.isVector || llvm::none_of(hostShape, [](int64_t dim) {
+                  return dim == ValueType::kDynamic;
+                });
     bool shapeFits =
-        type.isVector
-            ? bufferNumbers == type.numComponents() * type.partsPerComponent()
-            : bufferShape == type.hostShape();
+        flat ? bufferNumbers == type.numComponents() * type.partsPerComponent()
+             : bufferShape == hostShape;
     if (buffer.type != expected || !shapeFits)
       return error(arg.describe() + " is bound to " +
                    componentTypeName(buffer.type).str() + " of shape " +

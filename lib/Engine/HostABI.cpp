@@ -73,6 +73,20 @@ bool simit::componentTypeFor(ScalarKind kind, ComponentType &type) {
   llvm_unreachable("unknown scalar kind");
 }
 
+std::string simit::shapeString(llvm::ArrayRef<int64_t> shape) {
+  std::string text = "[";
+  for (size_t i = 0; i < shape.size(); ++i)
+    text += (i ? ", " : "") + (shape[i] == ValueType::kDynamic
+                                   ? std::string("?")
+                                   : std::to_string(shape[i]));
+  return text + "]";
+}
+
+std::string simit::shapeString(llvm::ArrayRef<int> shape) {
+  return shapeString(llvm::to_vector(
+      llvm::map_range(shape, [](int d) { return static_cast<int64_t>(d); })));
+}
+
 int64_t ValueType::numComponents() const {
   int64_t n = 1;
   for (int64_t dim : shape)

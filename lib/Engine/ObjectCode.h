@@ -13,6 +13,8 @@
 
 #include "CompiledModule.h"
 
+#include "simit/Engine/Program.h"
+
 #include "llvm/ExecutionEngine/Orc/JITTargetMachineBuilder.h"
 #include "llvm/Support/Error.h"
 
@@ -35,10 +37,10 @@ struct ObjectCode {
   std::string dataLayout;
   /// The relocatable object file.
   std::string object;
-  /// The field names of each extern set's elements, by set
+  /// The fields of each extern set's elements, by set
   /// (Program::externSetFields()), so that a program loaded from the cache
   /// need not be imported.
-  SetNames externSetFields;
+  DeclaredFields externSetFields;
   /// The endpoint sets of each extern set, one per endpoint position
   /// (Program::externSetEndpoints()).
   SetNames externSetEndpoints;

@@ -7,7 +7,8 @@
 //   arguments (kind, set, field, rows, cols, name, mid, the edge sets of
 //   union, gather and product bindings, index, chunk, type), results
 //   (type); a type is scalar, isMemRef, isVector, isComplex, shape; then
-//   extern sets, each a name and its field names.
+//   extern sets, each a name and its fields (name, type), then extern
+//   sets, each a name and its endpoint sets.
 //
 //===----------------------------------------------------------------------===//
 
@@ -139,14 +140,21 @@ std::string simit::serializeObjectCode(const ObjectCode &code) {
     for (const ValueType &result : function.signature.results)
       out.type(result);
   }
-  for (const auto *sets : {&code.externSetFields, &code.externSetEndpoints}) {
-    out.integer<uint64_t>(sets->size());
-    for (const auto &[set, names] : *sets) {
-      out.string(set);
-      out.integer<uint64_t>(names.size());
-      for (const std::string &name : names)
-        out.string(name);
+  out.integer<uint64_t>(code.externSetFields.size());
+  for (const auto &[set, fields] : code.externSetFields) {
+    out.string(set);
+    out.integer<uint64_t>(fields.size());
+    for (const DeclaredField &field : fields) {
+      out.string(field.name);
+      out.type(field.type);
     }
+  }
+  out.integer<uint64_t>(code.externSetEndpoints.size());
+  for (const auto &[set, names] : code.externSetEndpoints) {
+    out.string(set);
+    out.integer<uint64_t>(names.size());
+    for (const std::string &name : names)
+      out.string(name);
   }
   return std::move(out.bytes);
 }
@@ -193,14 +201,21 @@ llvm::Expected<ObjectCode> simit::deserializeObjectCode(llvm::StringRef bytes) {
       result = in.type();
     code.functions[name] = std::move(function);
   }
-  for (auto *sets : {&code.externSetFields, &code.externSetEndpoints}) {
-    uint64_t numSets = in.count(sizeof(uint64_t));
-    for (uint64_t i = 0; i < numSets && !in.failed; ++i) {
-      std::vector<std::string> &names = (*sets)[in.string()];
-      names.resize(in.count(sizeof(uint64_t)));
-      for (std::string &name : names)
-        name = in.string();
+  uint64_t numSets = in.count(sizeof(uint64_t));
+  for (uint64_t i = 0; i < numSets && !in.failed; ++i) {
+    std::vector<DeclaredField> &fields = code.externSetFields[in.string()];
+    fields.resize(in.count(sizeof(uint64_t)));
+    for (DeclaredField &field : fields) {
+      field.name = in.string();
+      field.type = in.type();
     }
+  }
+  numSets = in.count(sizeof(uint64_t));
+  for (uint64_t i = 0; i < numSets && !in.failed; ++i) {
+    std::vector<std::string> &names = code.externSetEndpoints[in.string()];
+    names.resize(in.count(sizeof(uint64_t)));
+    for (std::string &name : names)
+      name = in.string();
   }
   if (in.failed || !in.rest.empty())
     return llvm::createStringError("malformed compiled code");

@@ -38,12 +38,30 @@ struct Source {
   std::string name, text;
 };
 
-/// The fields of a set's elements.
-std::vector<std::string> fieldNames(mlir::simit::SetType set) {
-  std::vector<std::string> names;
-  for (mlir::StringAttr name : set.getElement().getFieldNames())
-    names.push_back(name.str());
-  return names;
+/// The fields of a set's elements, each with the type of its array over the
+/// set: memref<? x local shape x component>, complex components as pairs of
+/// their parts (ValueType::isComplex).
+std::vector<DeclaredField> fieldDeclarations(mlir::simit::SetType set) {
+  std::vector<DeclaredField> fields;
+  mlir::simit::ElementType element = set.getElement();
+  for (auto [name, type] :
+       llvm::zip(element.getFieldNames(), element.getFieldTypes())) {
+    llvm::SmallVector<int64_t> shape{mlir::ShapedType::kDynamic};
+    llvm::append_range(shape, mlir::simit::getLocalShape(type));
+    mlir::Type component = mlir::simit::getComponentType(type);
+    auto complex = llvm::dyn_cast<mlir::ComplexType>(component);
+    llvm::Expected<ValueType> array = toValueType(mlir::MemRefType::get(
+        shape, complex ? complex.getElementType() : component));
+    if (!array) {
+      // A component the runtime has no arrays of (e.g. i16 in hand-written
+      // IR): declared, but not a memref.
+      llvm::consumeError(array.takeError());
+      array = ValueType();
+    }
+    array->isComplex = static_cast<bool>(complex);
+    fields.push_back({name.str(), std::move(*array)});
+  }
+  return fields;
 }
 
 /// The set of each endpoint position of a set (a grid's point set at both);
@@ -249,30 +267,29 @@ struct Program::Impl {
     return std::move(*code);
   }
 
-  /// For each extern set of the imported module, by name, the names
-  /// `namesOf` gives its type.
-  ObjectCode::SetNames externSetNamesOfModule(
-      llvm::function_ref<std::vector<std::string>(mlir::simit::SetType)>
-          namesOf) {
-    ObjectCode::SetNames names;
+  /// For each extern set of the imported module, by name, what `of` gives
+  /// its type.
+  template <typename PerSet>
+  std::map<std::string, PerSet>
+  externSetsOfModule(llvm::function_ref<PerSet(mlir::simit::SetType)> of) {
+    std::map<std::string, PerSet> sets;
     for (auto global : module->getOps<mlir::simit::ExternOp>())
       if (auto set = llvm::dyn_cast<mlir::simit::SetType>(global.getType()))
-        names[set.getName().str()] = namesOf(set);
-    return names;
+        sets[set.getName().str()] = of(set);
+    return sets;
   }
 
-  /// The names a program declares for each extern set: kept with the
-  /// compiled code, so that a program loaded from the cache need not be
-  /// imported.
-  llvm::Expected<ObjectCode::SetNames> externSetNames(
-      ObjectCode::SetNames ObjectCode::*kept,
-      llvm::function_ref<std::vector<std::string>(mlir::simit::SetType)>
-          namesOf) {
+  /// What a program declares for each extern set: kept with the compiled
+  /// code, so that a program loaded from the cache need not be imported.
+  template <typename PerSet>
+  llvm::Expected<std::map<std::string, PerSet>>
+  externSets(std::map<std::string, PerSet> ObjectCode::*kept,
+             llvm::function_ref<PerSet(mlir::simit::SetType)> of) {
     if (cachedCode)
       return (*cachedCode).*kept;
     if (llvm::Error err = requireModule())
       return std::move(err);
-    return externSetNamesOfModule(namesOf);
+    return externSetsOfModule(of);
   }
 
   llvm::Error compile() {
@@ -321,8 +338,10 @@ struct Program::Impl {
     auto code = compileToObject(*llvmModule, lowering.signatures, newTimes);
     if (!code)
       return code.takeError();
-    code->externSetFields = externSetNamesOfModule(fieldNames);
-    code->externSetEndpoints = externSetNamesOfModule(endpointNames);
+    code->externSetFields =
+        externSetsOfModule<std::vector<DeclaredField>>(fieldDeclarations);
+    code->externSetEndpoints =
+        externSetsOfModule<std::vector<std::string>>(endpointNames);
     Stopwatch link;
     auto loaded = loadObjectCode(*code);
     if (!loaded)
@@ -423,12 +442,14 @@ llvm::Expected<std::vector<std::string>> Program::exportedFunctions() {
 
 const CompileTimes &Program::compileTimes() const { return impl->times; }
 
-llvm::Expected<ObjectCode::SetNames> Program::externSetFields() {
-  return impl->externSetNames(&ObjectCode::externSetFields, fieldNames);
+llvm::Expected<DeclaredFields> Program::externSetFields() {
+  return impl->externSets<std::vector<DeclaredField>>(
+      &ObjectCode::externSetFields, fieldDeclarations);
 }
 
 llvm::Expected<ObjectCode::SetNames> Program::externSetEndpoints() {
-  return impl->externSetNames(&ObjectCode::externSetEndpoints, endpointNames);
+  return impl->externSets<std::vector<std::string>>(
+      &ObjectCode::externSetEndpoints, endpointNames);
 }
 
 SolveSession &Program::solver() { return *impl->solver; }

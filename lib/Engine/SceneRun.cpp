@@ -85,16 +85,97 @@ llvm::Error checkSceneFields(const SceneDescription &scene, Program &program,
     auto it = declared->find(set.name);
     if (it == declared->end())
       continue;
-    for (const FieldSpec &field : set.fields)
-      if (!llvm::is_contained(it->second, field.name))
+    std::vector<std::string> names;
+    for (const DeclaredField &field : it->second)
+      names.push_back(field.name);
+    for (const FieldSpec &field : set.fields) {
+      const DeclaredField *declaration = nullptr;
+      for (const DeclaredField &candidate : it->second)
+        if (candidate.name == field.name)
+          declaration = &candidate;
+      if (!declaration)
         return llvm::createStringError(
             scene.path + ": " + field.jsonPath + ": the elements of set '" +
-            set.name + "' in " + programPath + " have no field '" +
-            field.name + "' (they have: " +
-            (it->second.empty() ? std::string("none")
-                                : llvm::join(it->second, ", ")) +
+            set.name + "' in " + programPath + " have no field '" + field.name +
+            "' (they have: " +
+            (names.empty() ? std::string("none") : llvm::join(names, ", ")) +
             ")");
+      // Also a field no called function uses must be what the program
+      // says, as the outputs write it. Float fields may be either width:
+      // the run's precision narrows them.
+      ComponentType declared;
+      const ValueType &array = declaration->type;
+      if (!array.isMemRef || array.isComplex ||
+          !componentTypeFor(array.scalar, declared))
+        continue;
+      auto isFloat = [](ComponentType type) {
+        return type == ComponentType::Float64 || type == ComponentType::Float32;
+      };
+      std::vector<int64_t> blockShape(array.shape.begin() + 1,
+                                      array.shape.end());
+      std::vector<int64_t> given(field.shape.begin(), field.shape.end());
+      bool typeFits =
+          field.type == declared || (isFloat(field.type) && isFloat(declared));
+      if (!typeFits || given != blockShape)
+        return llvm::createStringError(
+            scene.path + ": " + field.jsonPath + ": field '" + field.name +
+            "' of set '" + set.name + "' in " + programPath + " holds " +
+            componentTypeName(declared).str() + " components of shape " +
+            shapeString(blockShape) + ", but the scene gives " +
+            componentTypeName(field.type).str() + " of shape " +
+            shapeString(given) + (typeFits ? "" : " (give its \"type\")"));
+    }
   }
+  return llvm::Error::success();
+}
+
+/// The (set, field) pairs the scene's outputs write.
+std::set<std::pair<std::string, std::string>>
+outputFields(const SceneDescription &scene) {
+  std::set<std::pair<std::string, std::string>> fields;
+  for (const OutputSpec &output : scene.outputs) {
+    for (const std::string &field : output.fields)
+      fields.insert({output.set, field});
+    if (output.kind == OutputSpec::VTK)
+      fields.insert({output.set, output.position});
+    for (const std::string &cells : output.cells)
+      for (const std::string &field : output.cellFields)
+        fields.insert({cells, field});
+  }
+  return fields;
+}
+
+/// Adds, zero-filled with their declared type, the fields that an output
+/// names and the program declares but neither the scene nor any called
+/// function gives (a field the program never uses is zero throughout).
+llvm::Error provideOutputFields(const SceneDescription &scene,
+                                SetRegistry &registry, Program &program) {
+  auto declared = program.externSetFields();
+  if (!declared)
+    return declared.takeError();
+  auto provide = [&](const std::string &setName,
+                     const std::string &fieldName) -> llvm::Error {
+    Set *set = registry.find(setName);
+    auto fields = declared->find(setName);
+    if (!set || set->fieldDescriptor(fieldName) || fields == declared->end())
+      return llvm::Error::success();
+    for (const DeclaredField &field : fields->second) {
+      ComponentType type;
+      if (field.name != fieldName || !field.type.isMemRef ||
+          field.type.isComplex || !componentTypeFor(field.type.scalar, type))
+        continue;
+      std::vector<int> shape(field.type.shape.begin() + 1,
+                             field.type.shape.end());
+      if (llvm::Error err = set->addField(fieldName, type, shape))
+        return llvm::createStringError(scene.path + ": outputs: field '" +
+                                       fieldName + "' of set '" + setName +
+                                       "': " + llvm::toString(std::move(err)));
+    }
+    return llvm::Error::success();
+  };
+  for (const auto &[set, field] : outputFields(scene))
+    if (llvm::Error err = provide(set, field))
+      return err;
   return llvm::Error::success();
 }
 
@@ -261,15 +342,7 @@ withUsedFields(const SceneDescription &scene,
       for (const ArgumentBinding &arg : named.function.signature().arguments)
         if (arg.kind == ArgumentBinding::Kind::Field)
           used.insert({arg.set, arg.field});
-  for (const OutputSpec &output : scene.outputs) {
-    for (const std::string &field : output.fields)
-      used.insert({output.set, field});
-    if (output.kind == OutputSpec::VTK)
-      used.insert({output.set, output.position});
-    for (const std::string &cells : output.cells)
-      for (const std::string &field : output.cellFields)
-        used.insert({cells, field});
-  }
+  used.merge(outputFields(scene));
   SceneDescription kept = scene;
   for (SetSpec &set : kept.sets)
     llvm::erase_if(set.fields, [&](const FieldSpec &field) {
@@ -363,6 +436,8 @@ SceneRunner::create(SceneDescription scene, const SceneRunOptions &options) {
       if (llvm::Error err =
               bindFromScene(desc, registry, named.name, named.function))
         return std::move(err);
+  if (llvm::Error err = provideOutputFields(desc, registry, program))
+    return std::move(err);
   times.bindMs = millisecondsSince(bindStart);
 
   if (options.outputDirectory) {

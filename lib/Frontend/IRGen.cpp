@@ -20,13 +20,14 @@
 
 #include "mlir/Dialect/Arith/IR/Arith.h"
 #include "mlir/Dialect/Complex/IR/Complex.h"
+#include "mlir/Dialect/ControlFlow/IR/ControlFlow.h"
 #include "mlir/Dialect/Math/IR/Math.h"
 #include "mlir/Dialect/SCF/IR/SCF.h"
 #include "mlir/Dialect/UB/IR/UBOps.h"
 #include "mlir/IR/Diagnostics.h"
 #include "mlir/IR/Dominance.h"
-#include "mlir/IR/PatternMatch.h"
 #include "mlir/IR/Iterators.h"
+#include "mlir/IR/PatternMatch.h"
 #include "mlir/IR/Verifier.h"
 #include "mlir/Interfaces/SideEffectInterfaces.h"
 #include "mlir/Transforms/CSE.h"
@@ -39,7 +40,8 @@ namespace frontend = ::simit::frontend;
 void frontend::loadIRGenDialects(MLIRContext &context) {
   context.loadDialect<dialect::SimitDialect, func::FuncDialect, scf::SCFDialect,
                       arith::ArithDialect, math::MathDialect,
-                      complex::ComplexDialect, ub::UBDialect>();
+                      complex::ComplexDialect, ub::UBDialect,
+                      cf::ControlFlowDialect>();
 }
 
 OwningOpRef<ModuleOp>

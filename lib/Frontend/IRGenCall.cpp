@@ -230,7 +230,9 @@ SmallVector<Value> IRGenerator::genMap(const MapExpr &e) {
   Value grid = e.grid ? genSet(e.grid, e.throughLoc) : Value();
   TypeRange results = function.getResultTypes();
   Location l = loc(e.loc);
-  if (e.reduce)
+  // `reduce +` of a function without results (mapped as a statement) has
+  // nothing to reduce: the map runs it for its effects.
+  if (e.reduce && !results.empty())
     return SmallVector<Value>(
         dialect::AssembleOp::create(builder, l, results, symbolOf(callee),
                                   extras, set, grid,

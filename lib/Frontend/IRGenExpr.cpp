@@ -12,8 +12,11 @@
 
 #include "IRGenImpl.h"
 
+#include "simit/Dialect/Simit/IR/SourcePosition.h"
+
 #include "mlir/Dialect/Arith/IR/Arith.h"
 #include "mlir/Dialect/Complex/IR/Complex.h"
+#include "mlir/Dialect/ControlFlow/IR/ControlFlowOps.h"
 #include "mlir/IR/Matchers.h"
 
 using namespace simit::frontend;
@@ -479,8 +482,15 @@ Value IRGenerator::genTupleRead(const TupleReadExpr &e) {
   if (std::optional<int64_t> constant = constantInt(index))
     return dialect::TupleGetOp::create(builder, l, elementType, tuple,
                                      *constant);
-  // A computed position selects among the components.
+  // A computed position selects among the components, once it is known to
+  // name one (one unsigned compare also rejects negative positions).
   unsigned size = cast<dialect::TupleType>(tuple.getType()).size();
+  Value inRange = arith::CmpIOp::create(builder, l, arith::CmpIPredicate::ult,
+                                        index, intConstant(size, e.loc));
+  cf::AssertOp::create(builder, l, inRange,
+                       "endpoint index out of range for a tuple of " +
+                           std::to_string(size) + " endpoints" +
+                           dialect::sourcePositionSuffix(l));
   Value result = dialect::TupleGetOp::create(builder, l, elementType, tuple, 0);
   for (unsigned k = 1; k < size; ++k) {
     Value component =

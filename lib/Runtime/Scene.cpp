@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <functional>
 #include <map>
+#include <set>
 
 using namespace simit;
 using Json = nlohmann::ordered_json;
@@ -827,6 +828,8 @@ llvm::Error SceneParser::parseExterns(const Json &value,
                                             "int32 or bool, found \"" +
                                                 *text + "\"");
         tensor.type = *type;
+      } else if (it.value()["value"].is_boolean()) {
+        tensor.type = ComponentType::Bool;
       }
       constant = &it.value()["value"];
       path = child(path, "value");
@@ -1031,8 +1034,14 @@ llvm::Error SceneParser::parse(const Json &root, SceneDescription &scene) {
     auto libraries = getNames(root["libraries"], "libraries");
     if (!libraries)
       return libraries.takeError();
-    for (const std::string &library : *libraries)
-      scene.libraries.push_back(resolve(library));
+    // dlopen looks for a bare file name on the system's library path, not
+    // beside the scene (`--scene scene.json` has no directory).
+    for (const std::string &library : *libraries) {
+      std::string path = resolve(library);
+      if (!llvm::StringRef(path).contains('/'))
+        path = "./" + path;
+      scene.libraries.push_back(std::move(path));
+    }
   }
   if (root.contains("meshes"))
     if (auto err = parseMeshes(root["meshes"], scene))
@@ -1097,6 +1106,9 @@ constexpr int kMaxJsonNesting = 64;
 class JsonPathTracker {
 public:
   struct TooDeep {};
+  /// A key given twice in one object: JSON readers keep one of the values,
+  /// so the other would be ignored without a word.
+  struct DuplicateKey {};
 
   bool operator()(int depth, nlohmann::detail::parse_event_t event,
                   Json &parsed) {
@@ -1106,10 +1118,12 @@ public:
     case Event::array_start:
       if (depth >= kMaxJsonNesting)
         throw TooDeep();
-      frames.push_back({event == Event::array_start, "", 0});
+      frames.push_back({event == Event::array_start, "", 0, {}});
       break;
     case Event::key:
       frames.back().key = parsed.get<std::string>();
+      if (!frames.back().keys.insert(frames.back().key).second)
+        throw DuplicateKey();
       break;
     case Event::object_end:
     case Event::array_end:
@@ -1140,6 +1154,7 @@ private:
     bool isArray;
     std::string key;
     size_t index;
+    std::set<std::string> keys;
   };
   void finishedValue() {
     if (!frames.empty() && frames.back().isArray)
@@ -1165,6 +1180,9 @@ llvm::Expected<SceneDescription> simit::parseScene(llvm::StringRef text,
                                    ": arrays and objects nested too deeply "
                                    "(more than " +
                                    llvm::Twine(kMaxJsonNesting) + " levels)");
+  } catch (const JsonPathTracker::DuplicateKey &) {
+    return llvm::createStringError(name + ": " + tracker->path() +
+                                   ": the key is given twice in one object");
   } catch (const Json::parse_error &e) {
     // Turn the byte offset into line:column.
     size_t offset = std::min<size_t>(e.byte ? e.byte - 1 : 0, text.size());

@@ -286,6 +286,17 @@ llvm::Expected<SolverResult> SolveSession::factorPreconditioned(
   return refreshed;
 }
 
+llvm::Expected<SolveReport>
+SolveSession::countFailure(SolveStatementStats &stats, SolveMethod method,
+                           llvm::Expected<SolveReport> result) {
+  if (!result) {
+    if (!llvm::is_contained(stats.methods, method))
+      stats.methods.push_back(method);
+    ++stats.failed;
+  }
+  return result;
+}
+
 template <typename T>
 llvm::Expected<SolveReport>
 SolveSession::iterative(const SquareBCSRView<T> &a, const T *b, T *x,
@@ -353,6 +364,16 @@ llvm::Expected<SolveReport>
 SolveSession::solve(const SquareBCSRView<T> &a, const T *b, T *x,
                     llvm::StringRef statement) {
   SolveStatementStats &stats = statsOf(statement);
+  SolveMethod attempted = current.method;
+  llvm::Expected<SolveReport> result = solveRecorded(a, b, x, stats, attempted);
+  return countFailure(stats, attempted, std::move(result));
+}
+
+template <typename T>
+llvm::Expected<SolveReport>
+SolveSession::solveRecorded(const SquareBCSRView<T> &a, const T *b, T *x,
+                            SolveStatementStats &stats,
+                            SolveMethod &attempted) {
   int64_t n = a.size();
   double bNorm = norm(b, n);
   if (!std::isfinite(bNorm))
@@ -394,6 +415,7 @@ SolveSession::solve(const SquareBCSRView<T> &a, const T *b, T *x,
   }
   if (!report) {
     // `auto` on a non-symmetric matrix, or after CG failed.
+    attempted = SolveMethod::LU;
     std::fill(x, x + n, T(0));
     auto solved = direct(FactorKind::LU, a, b, x);
     if (!solved)
@@ -506,6 +528,17 @@ SolveSession::woodbury(const SquareBCSRView<T> &a, llvm::ArrayRef<const T *> u,
                        llvm::ArrayRef<const T *> w, const T *c, T *x,
                        llvm::StringRef statement) {
   SolveStatementStats &stats = statsOf(statement);
+  SolveMethod attempted = SolveMethod::ShermanMorrison;
+  llvm::Expected<SolveReport> result =
+      woodburyRecorded(a, u, v, b, w, c, x, stats, attempted);
+  return countFailure(stats, attempted, std::move(result));
+}
+
+template <typename T>
+llvm::Expected<SolveReport> SolveSession::woodburyRecorded(
+    const SquareBCSRView<T> &a, llvm::ArrayRef<const T *> u,
+    llvm::ArrayRef<const T *> v, const T *b, llvm::ArrayRef<const T *> w,
+    const T *c, T *x, SolveStatementStats &stats, SolveMethod &attempted) {
   int64_t n = a.size(), k = u.size();
   Clock::time_point start = Clock::now();
   // The capacitance matrix I + V^T W and V^T c; a pivot of it small
@@ -534,6 +567,7 @@ SolveSession::woodbury(const SquareBCSRView<T> &a, llvm::ArrayRef<const T *> u,
     report.solveMs = millisecondsSince(start);
   } else {
     // Solve the bordered system instead, whose LU pivots around it.
+    attempted = SolveMethod::BorderedLU;
     BorderedMatrix<T> bordered(a, u, v);
     std::vector<T> rhs(b, b + n), solution(static_cast<size_t>(n + k));
     rhs.resize(n + k, T(0));
@@ -609,20 +643,22 @@ SolveSession::solveWith(const SparseFactorisation &factor, const double *b,
                         double *x, llvm::StringRef statement) {
   SolveStatementStats &stats = statsOf(statement);
   int64_t n = factor.size();
-  if (!std::isfinite(norm(b, n)))
-    return llvm::createStringError(
-        "the right-hand side holds a NaN or an infinity");
   SolveReport report;
   report.method = factor.kind() == FactorKind::LU ? SolveMethod::LU
                                                    : SolveMethod::Cholesky;
+  if (!std::isfinite(norm(b, n)))
+    return countFailure(stats, report.method,
+                        llvm::createStringError(
+                            "the right-hand side holds a NaN or an infinity"));
   report.reused = true;
   Clock::time_point start = Clock::now();
   if (llvm::Error err = factor.solve(b, x))
-    return std::move(err);
+    return countFailure(stats, report.method, std::move(err));
   report.solveMs = millisecondsSince(start);
   report.relativeResidual = factor.relativeResidual(b, x);
   if (!(report.relativeResidual <= Tolerances<double>::accept))
-    return notAccepted(report.relativeResidual);
+    return countFailure(stats, report.method,
+                        notAccepted(report.relativeResidual));
   // The factorisation was counted where it was made.
   report.reused = false;
   record(stats, report);

@@ -431,7 +431,7 @@ simit::conjugateGradient(const SquareBCSRView<T> &a, const T *bIn, T *x,
     double curvature = multiplyAndDot(a, dir.data(), ad.data(), dir.data());
     if (!(curvature > 0))
       return llvm::createStringError(
-          "conjugate gradients: p.Ap = " + llvm::formatv("{0:g}", curvature) +
+          "conjugate gradients: p.Ap = " + llvm::formatv("{0:e2}", curvature) +
           " at iteration " + llvm::Twine(result.iterations) +
           "; the matrix is not positive definite");
     T alpha = static_cast<T>(rz / curvature);

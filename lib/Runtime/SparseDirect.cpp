@@ -150,19 +150,28 @@ std::vector<double> columnValuesOf(const SquareBCSRView<T> &a,
 
 llvm::Error cholmodError(FactorKind kind, const cholmod_common &c,
                          const cholmod_factor *factor) {
-  if (c.status == CHOLMOD_NOT_POSDEF || (factor && factor->minor < factor->n))
+  if (c.status == CHOLMOD_NOT_POSDEF || (factor && factor->minor < factor->n)) {
+    // CHOLMOD counts the failed column in its fill-reducing order; the user
+    // knows the matrix's own.
+    size_t column = 0;
+    if (factor && factor->minor < factor->n)
+      column = factor->Perm
+                   ? static_cast<size_t>(static_cast<const SuiteSparse_long *>(
+                         factor->Perm)[factor->minor])
+                   : factor->minor;
     return llvm::createStringError(
         kind == FactorKind::Cholesky
             ? llvm::formatv("the matrix is not positive definite (Cholesky "
                             "factorisation fails at scalar column {0}; "
                             "choose ldlt or lu for indefinite matrices)",
-                            factor ? factor->minor : 0)
+                            column)
                   .str()
             : llvm::formatv("the matrix is singular or needs pivoting (LDL^T "
                             "factorisation has a zero pivot at scalar column "
                             "{0}; choose lu)",
-                            factor ? factor->minor : 0)
+                            column)
                   .str());
+  }
   return llvm::createStringError(
       llvm::formatv("CHOLMOD {0} factorisation failed (status {1})",
                     kindName(kind), c.status)

@@ -392,6 +392,7 @@ factorises its own matrix.)doc",
               entry["iterations"] = stats.iterations;
               entry["max_iterations"] = stats.maxIterations;
               entry["not_converged"] = stats.notConverged;
+              entry["failed"] = stats.failed;
               entry["last_relative_residual"] = stats.lastRelativeResidual;
               entry["max_relative_residual"] = stats.maxRelativeResidual;
               entry["analyses"] = stats.analyses;
@@ -409,38 +410,52 @@ factorises its own matrix.)doc",
                  py::str(py::module_::import("os").attr("fspath")(path));
              check(self.program.loadFile(file));
            })
-      .def("load_string",
-           [](PyProgram &self, const std::string &source,
-              const std::string &name) {
-             check(self.program.loadString(source, name));
-           },
-           py::arg("source"), py::arg("name") = "<string>")
-      .def("load_mlir",
-           [](PyProgram &self, const std::string &text, const std::string &name) {
-             check(self.program.loadMLIR(text, name));
-           },
-           py::arg("text"), py::arg("name") = "<mlir>")
-      .def("emit",
-           [](PyProgram &self, const std::string &stage) {
-             Stage value = stage == "simit"   ? Stage::Simit
-                           : stage == "loops" ? Stage::Loops
-                           : stage == "llvm"
-                               ? Stage::LLVM
-                               : throw py::value_error(
-                                     "emit: stage is 'simit', 'loops' or "
-                                     "'llvm', not '" + stage + "'");
-             return check(self.program.emit(value));
-           },
-           py::arg("stage") = "simit", "The program's IR at a stage, as text.")
-      .def_property_readonly("functions",
-                             [](PyProgram &self) {
-                               return check(self.program.exportedFunctions());
-                             },
-                             "The names of the exported functions.")
-      .def_property_readonly("extern_set_fields",
-                             [](PyProgram &self) {
-                               return check(self.program.externSetFields());
-                             })
+      .def(
+          "load_string",
+          [](PyProgram &self, const std::string &source,
+             const std::string &name) {
+            check(self.program.loadString(source, name));
+          },
+          py::arg("source"), py::arg("name") = "<string>")
+      .def(
+          "load_mlir",
+          [](PyProgram &self, const std::string &text,
+             const std::string &name) {
+            check(self.program.loadMLIR(text, name));
+          },
+          py::arg("text"), py::arg("name") = "<mlir>")
+      .def(
+          "emit",
+          [](PyProgram &self, const std::string &stage) {
+            Stage value = stage == "simit"   ? Stage::Simit
+                          : stage == "loops" ? Stage::Loops
+                          : stage == "llvm"
+                              ? Stage::LLVM
+                              : throw py::value_error(
+                                    "emit: stage is 'simit', 'loops' or "
+                                    "'llvm', not '" +
+                                    stage + "'");
+            return check(self.program.emit(value));
+          },
+          py::arg("stage") = "simit", "The program's IR at a stage, as text.")
+      .def_property_readonly(
+          "functions",
+          [](PyProgram &self) {
+            return check(self.program.exportedFunctions());
+          },
+          "The names of the exported functions.")
+      .def_property_readonly(
+          "extern_set_fields",
+          [](PyProgram &self) {
+            std::map<std::string, std::vector<std::string>> names;
+            for (const auto &[set, fields] :
+                 check(self.program.externSetFields()))
+              for (const DeclaredField &field : fields)
+                names[set].push_back(field.name);
+            return names;
+          },
+          "The field names of each extern set's "
+          "elements, by set name.")
       .def("bind", &bindAll,
            "Binds extern sets and tensors by name, as Function.bind does, to "
            "every exported function that uses them (an extern tensor's "

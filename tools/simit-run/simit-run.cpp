@@ -274,6 +274,7 @@ static void printSolveStats(const SolveSession &solver) {
                        stats.lastRelativeResidual,
                        stats.maxRelativeResidual);
     os << "  not converged:     " << stats.notConverged << "\n";
+    os << "  failed:            " << stats.failed << "\n";
     os << llvm::format("  symbolic:          %lld (%.3f ms)\n",
                        static_cast<long long>(stats.analyses),
                        stats.analysisMs);

@@ -83,6 +83,10 @@ struct ValueType {
 /// or a `vector<N x 2 x f32/f64>` of complex pairs) as a ValueType.
 llvm::Expected<ValueType> toValueType(mlir::Type type);
 
+/// "[?, 3]": a shape as errors print it (kDynamic as '?').
+std::string shapeString(llvm::ArrayRef<int64_t> shape);
+std::string shapeString(llvm::ArrayRef<int> shape);
+
 /// What one argument carries.
 struct ArgumentBinding {
   /// The kinds are spelled once for the lowering and the engine.

@@ -104,6 +104,18 @@ struct ProgramOptions {
   Target target = Target::CPU;
 };
 
+/// A field that the elements of an extern set declare: its name and the
+/// host type of its array over the set (memref<?x3xf64>), as a function
+/// that uses the field binds it; not a memref (ValueType::isMemRef) when
+/// the runtime has no arrays of its component type (i16 in hand-written
+/// IR).
+struct DeclaredField {
+  std::string name;
+  ValueType type;
+};
+/// The declared fields of each extern set, by set name.
+using DeclaredFields = std::map<std::string, std::vector<DeclaredField>>;
+
 /// The number of threads `requested` stands for: itself when positive;
 /// when 0, $SIMIT_NUM_THREADS when it is set (it must be a positive
 /// integer), else the number of cores this process may run on. A negative
@@ -171,8 +183,7 @@ public:
 
   /// The fields the element type of each extern set declares, by set name
   /// (empty when the loaded IR has no simit.extern sets, e.g. loops IR).
-  llvm::Expected<std::map<std::string, std::vector<std::string>>>
-  externSetFields();
+  llvm::Expected<DeclaredFields> externSetFields();
 
   /// The endpoint sets the program declares for each extern set, by set
   /// name, one per endpoint position (none for a vertex set; a grid's point

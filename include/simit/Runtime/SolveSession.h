@@ -123,6 +123,9 @@ struct SolveStatementStats {
   /// The methods its solves used, in first-use order.
   std::vector<SolveMethod> methods;
   int64_t solves = 0, iterations = 0, maxIterations = 0, notConverged = 0;
+  /// Solves that stopped the program (singular, indefinite, ...): their
+  /// method is among `methods`, their figures are not counted above.
+  int64_t failed = 0;
   double lastRelativeResidual = 0, maxRelativeResidual = 0;
   int64_t analyses = 0, factorisations = 0, reuses = 0;
   double analysisMs = 0, factorisationMs = 0, solveMs = 0;
@@ -216,6 +219,24 @@ public:
 private:
   SolveStatementStats &statsOf(llvm::StringRef statement);
   void record(SolveStatementStats &stats, const SolveReport &report);
+  /// Counts `result` in `stats` as a failure of `method` when it is an
+  /// error (a successful one was recorded where it was made).
+  llvm::Expected<SolveReport> countFailure(SolveStatementStats &stats,
+                                           SolveMethod method,
+                                           llvm::Expected<SolveReport> result);
+  /// solve() but for counting its failure: `attempted` becomes the method
+  /// that failed (LU when `auto` fell back to it).
+  template <typename T>
+  llvm::Expected<SolveReport>
+  solveRecorded(const SquareBCSRView<T> &a, const T *b, T *x,
+                SolveStatementStats &stats, SolveMethod &attempted);
+  /// woodbury() but for counting its failure (as `attempted`).
+  template <typename T>
+  llvm::Expected<SolveReport>
+  woodburyRecorded(const SquareBCSRView<T> &a, llvm::ArrayRef<const T *> u,
+                   llvm::ArrayRef<const T *> v, const T *b,
+                   llvm::ArrayRef<const T *> w, const T *c, T *x,
+                   SolveStatementStats &stats, SolveMethod &attempted);
   template <typename T>
   llvm::Expected<SolveReport> iterative(const SquareBCSRView<T> &a,
                                         const T *b, T *x, double bNorm,

@@ -43,6 +43,19 @@ int dgemv(int rows, int cols, const int *rowptr, const int *colidx,
   return 0;
 }
 
+// An opaque handle: a result by pointer, a parameter by value.
+int make_counter(int start, void **handle) {
+  static int counter;
+  counter = start;
+  *handle = &counter;
+  return 0;
+}
+
+int bump_counter(void *handle, int *n) {
+  *n = ++*static_cast<int *>(handle);
+  return 0;
+}
+
 // A status other than 0 ends the run.
 int dfails(double a, double *b) {
   *b = a;

@@ -41,6 +41,18 @@ Type mlir::simit::getComponentType(Type type) {
   return type;
 }
 
+SmallVector<int64_t> mlir::simit::getLocalShape(Type type) {
+  if (auto tensor = dyn_cast<RankedTensorType>(type))
+    return SmallVector<int64_t>(tensor.getShape());
+  SmallVector<int64_t> shape;
+  if (auto system = dyn_cast<SystemTensorType>(type)) {
+    for (Attribute dim : system.getDims())
+      shape.push_back(cast<IntegerAttr>(dim).getInt());
+    llvm::append_range(shape, getLocalShape(system.getBlockType()));
+  }
+  return shape;
+}
+
 Type mlir::simit::getBlockType(Type type) {
   if (auto tensor = dyn_cast<RankedTensorType>(type))
     return tensor.getElementType();

@@ -8,7 +8,7 @@
 //
 //===----------------------------------------------------------------------===//
 
-#include "SourcePosition.h"
+#include "simit/Dialect/Simit/IR/SourcePosition.h"
 
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 

@@ -11,7 +11,7 @@
 
 #include "LoopsLowering.h"
 #include "StorageAnalysis.h"
-#include "SourcePosition.h"
+#include "simit/Dialect/Simit/IR/SourcePosition.h"
 
 #include "mlir/IR/IRMapping.h"
 #include "llvm/ADT/StringExtras.h"
@@ -45,20 +45,6 @@ int64_t mlir::simit::loops::numComponents(Type type) {
     return n;
   }
   return 1;
-}
-
-/// The shape of a local tensor's components: the builtin shape, or the
-/// integer dimensions of a `!simit.tensor` followed by its block's.
-SmallVector<int64_t> mlir::simit::loops::localShape(Type type) {
-  if (auto tensor = dyn_cast<RankedTensorType>(type))
-    return SmallVector<int64_t>(tensor.getShape());
-  SmallVector<int64_t> shape;
-  if (auto system = dyn_cast<SystemTensorType>(type)) {
-    for (Attribute dim : system.getDims())
-      shape.push_back(cast<IntegerAttr>(dim).getInt());
-    llvm::append_range(shape, localShape(system.getBlockType()));
-  }
-  return shape;
 }
 
 /// Whether a type is a tensor with a set dimension (a system tensor).
@@ -283,7 +269,16 @@ Value FunctionLowering::allocSystem(Location loc, Type type,
 }
 
 StringAttr FunctionLowering::elementSetOf(Value original) {
-  return elementSets.lookup(original);
+  if (StringAttr set = elementSets.lookup(original))
+    return set;
+  // A computed endpoint (the frontend selects among a tuple's endpoints)
+  // belongs to the set its choices share.
+  if (auto select = original.getDefiningOp<arith::SelectOp>()) {
+    StringAttr set = elementSetOf(select.getTrueValue());
+    if (set && set == elementSetOf(select.getFalseValue()))
+      return set;
+  }
+  return {};
 }
 
 bool FunctionLowering::canAlias(Operation *read,
@@ -662,20 +657,26 @@ struct ConvertSimitToLoops
     // bindings: every other function on simit values is gone.
     // Declarations of runtime functions that no lowered call uses (those
     // replaced by their _bcsr forms) still have simit types: gone too.
-    SmallVector<Operation *> dead;
-    for (Operation &op : module.getOps()) {
+    // The declarations go second: an element function's calls of host
+    // functions were uses of them until the element function went.
+    for (Operation &op : llvm::make_early_inc_range(module.getOps())) {
       auto function = dyn_cast<func::FuncOp>(op);
-      bool unusedRuntime =
-          function && function.isExternal() &&
+      if ((function && !function.isExternal() && usesSimitDialect(function)) ||
+          isa<ExternOp>(op))
+        op.erase();
+    }
+    // Runtime and host functions are only ever called.
+    DenseSet<StringAttr> called;
+    module.walk([&](func::CallOp call) {
+      called.insert(call.getCalleeAttr().getAttr());
+    });
+    for (auto function :
+         llvm::make_early_inc_range(module.getOps<func::FuncOp>()))
+      if (function.isExternal() &&
           (function->hasAttr("simit.runtime_function") ||
            function->hasAttr("simit.extern_function")) &&
-          SymbolTable::symbolKnownUseEmpty(function, module);
-      if ((function && !function.isExternal() && usesSimitDialect(function)) ||
-          unusedRuntime || isa<ExternOp>(op))
-        dead.push_back(&op);
-    }
-    for (Operation *op : dead)
-      op->erase();
+          !called.contains(function.getSymNameAttr()))
+        function.erase();
   }
 };
 } // namespace

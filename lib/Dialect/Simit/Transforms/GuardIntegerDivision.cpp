@@ -1,6 +1,6 @@
 //===- GuardIntegerDivision.cpp - Divisions that cannot trap --------------===//
 
-#include "SourcePosition.h"
+#include "simit/Dialect/Simit/IR/SourcePosition.h"
 
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 

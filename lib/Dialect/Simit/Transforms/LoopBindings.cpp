@@ -70,7 +70,7 @@ Value FunctionLowering::getSetSize(StringAttr set) {
 Value FunctionLowering::getField(StringAttr set, StringAttr field,
                                  Type fieldType) {
   SmallVector<int64_t> shape{ShapedType::kDynamic};
-  llvm::append_range(shape, localShape(fieldType));
+  llvm::append_range(shape, getLocalShape(fieldType));
   return getBinding(BindingKind::Field, {set.getValue(), field.getValue()},
                     MemRefType::get(shape, getComponentType(fieldType)));
 }

@@ -315,6 +315,10 @@ public:
   /// Prefetches block `block` of the block array `array`: a component in
   /// each cache line the block covers, and its last.
   void prefetchBlock(Location loc, Value array, Value block, bool isWrite);
+  /// A stack slot of `type` at the start of `allocaBlock`: allocated once
+  /// per function (or set loop body), however often the code that needs it
+  /// runs, so the stack does not grow with a loop's iterations.
+  Value allocaSlot(Location loc, MemRefType type);
   /// Fills an array with a scalar.
   void fill(Location loc, Value array, Value scalar);
   /// The set of element value `original`, if known.
@@ -523,9 +527,6 @@ private:
 
 /// Flat component count of a builtin tensor type (1 for a scalar).
 int64_t numComponents(Type type);
-/// The shape of a local tensor's components: the builtin shape, or the
-/// integer dimensions of a `!simit.tensor` followed by its block's.
-SmallVector<int64_t> localShape(Type type);
 /// Whether a type is a tensor with a set dimension (a system tensor).
 bool isSystem(Type type);
 /// The storage positions of a local tensor's components in the row-major

@@ -42,7 +42,7 @@ static Type systemArrayType(SystemTensorType system) {
     return nullptr;
   if (hasSetDimension(system.getBlockType()))
     return nullptr;
-  llvm::append_range(shape, loops::localShape(system.getBlockType()));
+  llvm::append_range(shape, getLocalShape(system.getBlockType()));
   return MemRefType::get(shape, component);
 }
 

@@ -84,25 +84,30 @@ LogicalResult FunctionLowering::scanForNonFinite(Operation *op) {
     if (!callee)
       return op->emitError("@") << calleeName
                                 << " is declared with another type";
-    func::CallOp::create(
-        b, loc, callee,
-        ValueRange{memref::CastOp::create(b, loc, values, array),
-                   arith::ConstantIntOp::create(b, loc, b.getI32Type(),
-                                                layout),
-                   perRow ? perRow
-                          : arith::ConstantIntOp::create(b, loc,
-                                                         b.getI64Type(), 0)
-                                .getResult(),
-                   rowptr ? rowptr : emptyIndexArray(),
-                   colidx ? colidx : emptyIndexArray(),
-                   stringConstant(loc, what.getValue()),
-                   stringConstant(loc, name),
-                   stringConstant(loc, rowSet ? rowSet.getValue() : ""),
-                   stringConstant(loc, colSet ? colSet.getValue() : ""),
-                   mapEndpoints ? mapEndpoints : emptyIndexArray(),
-                   arith::ConstantIntOp::create(b, loc, b.getI64Type(),
-                                                mapCardinality),
-                   stringConstant(loc, mapSet ? mapSet.getValue() : "")});
+    SmallVector<Value> args{
+        array,
+        arith::ConstantIntOp::create(b, loc, b.getI32Type(), layout),
+        perRow ? perRow
+               : arith::ConstantIntOp::create(b, loc, b.getI64Type(), 0)
+                     .getResult(),
+        rowptr ? rowptr : emptyIndexArray(),
+        colidx ? colidx : emptyIndexArray(),
+        stringConstant(loc, what.getValue()),
+        stringConstant(loc, name),
+        stringConstant(loc, rowSet ? rowSet.getValue() : ""),
+        stringConstant(loc, colSet ? colSet.getValue() : ""),
+        mapEndpoints ? mapEndpoints : emptyIndexArray(),
+        arith::ConstantIntOp::create(b, loc, b.getI64Type(), mapCardinality),
+        stringConstant(loc, mapSet ? mapSet.getValue() : "")};
+    // The unranked descriptor of the values is a stack slot made where it
+    // is cast: the scope frees it after the call, so a scan in a loop does
+    // not grow the stack with every iteration.
+    auto scope = memref::AllocaScopeOp::create(b, loc, TypeRange{});
+    OpBuilder::InsertionGuard guard(b);
+    b.setInsertionPointToStart(&scope.getBodyRegion().emplaceBlock());
+    args.front() = memref::CastOp::create(b, loc, values, array);
+    func::CallOp::create(b, loc, callee, args);
+    memref::AllocaScopeReturnOp::create(b, loc, ValueRange{});
     return success();
   };
 

@@ -164,6 +164,12 @@ LogicalResult FunctionLowering::lowerWhile(scf::WhileOp op) {
   return success();
 }
 
+Value FunctionLowering::allocaSlot(Location loc, MemRefType type) {
+  OpBuilder::InsertionGuard guard(b);
+  b.setInsertionPointToStart(allocaBlock);
+  return memref::AllocaOp::create(b, loc, type);
+}
+
 LogicalResult FunctionLowering::lowerGeneric(Operation *op) {
   if (op->getNumRegions() != 0)
     return op->emitError("the loop lowering does not support '")

@@ -23,7 +23,9 @@
 //===----------------------------------------------------------------------===//
 
 #include "LoopsLowering.h"
-#include "SourcePosition.h"
+#include "simit/Dialect/Simit/IR/SourcePosition.h"
+
+#include "mlir/Interfaces/DataLayoutInterfaces.h"
 
 using namespace mlir;
 using namespace mlir::simit;
@@ -68,8 +70,12 @@ func::FuncOp getOrCreateShim(OpBuilder &b, ModuleOp module, Location loc,
     }
     auto metadata = memref::ExtractStridedMetadataOp::create(b, loc, arg);
     Value base = memref::ExtractAlignedPointerAsIndexOp::create(b, loc, arg);
-    Value width = arith::ConstantIndexOp::create(
-        b, loc, memref.getElementTypeBitWidth() / 8);
+    // Bytes per component: an opaque result's slot holds !llvm.ptr.
+    Value width =
+        arith::ConstantIndexOp::create(b, loc,
+                                       DataLayout(module)
+                                           .getTypeSize(memref.getElementType())
+                                           .getFixedValue());
     Value offset =
         arith::MulIOp::create(b, loc, metadata.getOffset(), width);
     Value address = arith::IndexCastOp::create(
@@ -124,7 +130,8 @@ LogicalResult FunctionLowering::lowerHostCall(func::CallOp call,
            << " cannot cross to the host";
   };
 
-  // Local tensors go through a stack slot (vector values have no address).
+  // Local tensors go through a stack slot (vector values have no address),
+  // allocated once however often the call runs.
   SmallVector<Value> args;
   SmallVector<std::function<Value()>> readResults;
 
@@ -148,7 +155,7 @@ LogicalResult FunctionLowering::lowerHostCall(func::CallOp call,
         return unsupported(type, "a parameter");
       auto slotType = MemRefType::get(vector.getShape(),
                                       vector.getElementType());
-      Value slot = memref::AllocaOp::create(b, loc, slotType);
+      Value slot = allocaSlot(loc, slotType);
       vector::StoreOp::create(b, loc, lowered, slot,
                               ValueRange{indexConstant(0)});
       args.append({i32Constant(vector.getNumElements()),
@@ -183,8 +190,7 @@ LogicalResult FunctionLowering::lowerHostCall(func::CallOp call,
       Type slotElement = convertType(type);
       if (type.isInteger(1))
         slotElement = i32;
-      Value slot =
-          memref::AllocaOp::create(b, loc, MemRefType::get({1}, slotElement));
+      Value slot = allocaSlot(loc, MemRefType::get({1}, slotElement));
       args.push_back(flatten(b, loc, slot));
       readResults.push_back([&, slot, type]() -> Value {
         Value v = memref::LoadOp::create(b, loc, slot,
@@ -200,8 +206,8 @@ LogicalResult FunctionLowering::lowerHostCall(func::CallOp call,
       auto vector = dyn_cast_or_null<VectorType>(convertType(type));
       if (!vector)
         return unsupported(type, "a result");
-      Value slot = memref::AllocaOp::create(
-          b, loc, MemRefType::get(vector.getShape(), vector.getElementType()));
+      Value slot = allocaSlot(
+          loc, MemRefType::get(vector.getShape(), vector.getElementType()));
       args.append({i32Constant(vector.getNumElements()),
                    flatten(b, loc, slot)});
       readResults.push_back([&, slot, vector]() -> Value {

@@ -12,7 +12,7 @@
 //===----------------------------------------------------------------------===//
 
 #include "LoopsLowering.h"
-#include "SourcePosition.h"
+#include "simit/Dialect/Simit/IR/SourcePosition.h"
 
 #include "mlir/Dialect/ControlFlow/IR/ControlFlowOps.h"
 #include "mlir/Dialect/Tensor/IR/Tensor.h"
@@ -463,12 +463,7 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
     if (!type)
       return op->emitError("variables of type ")
              << alloc.getType() << " are not supported by the loop lowering";
-    Value slot;
-    {
-      OpBuilder::InsertionGuard guard(b);
-      b.setInsertionPointToStart(allocaBlock);
-      slot = memref::AllocaOp::create(b, loc, type);
-    }
+    Value slot = allocaSlot(loc, type);
     // Every execution of the declaration starts from zero.
     fill(loc, slot, zeroOf(type.getElementType()));
     map(alloc, slot);

@@ -218,37 +218,41 @@ static bool feedsComponentWrites(ExtractOp read) {
   return false;
 }
 
-/// Lowers an insert into result slot `r` of the element function: the
-/// block is combined into (or stored to) its place in the output.
-static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
-                             unsigned r, bool &scatters) {
+/// The memref indices of the block at `indices` of map result `r` in its
+/// output array: where `write` (an insert into the result slot) combines
+/// its block, recording the pattern blocks it accumulates into for the
+/// prefetch, or, without `write`, where `op` reads the accumulator.
+/// `shared`: other elements may write the block too.
+static FailureOr<SmallVector<Value>> resultBlock(FunctionLowering &l,
+                                                 Operation *op,
+                                                 ValueRange indices, unsigned r,
+                                                 InsertOp write, bool &shared) {
   ElementContext &ctx = *l.element;
   OpBuilder &b = l.b;
-  Location loc = insert.getLoc();
+  Location loc = op->getLoc();
   const Storage &storage = ctx.outputStorages[r];
-  Value output = ctx.outputs[r];
   SmallVector<Value> prefix;
   switch (storage.kind) {
   case Storage::Kind::Dense:
-    for (Value index : insert.getIndices())
+    for (Value index : indices)
       prefix.push_back(l.lookup(index));
     if (prefix.front() != ctx.element)
-      scatters = true;
+      shared = true;
     break;
   case Storage::Kind::Diagonal: {
-    Value row = l.lookup(insert.getIndices()[0]);
-    if (row != l.lookup(insert.getIndices()[1]))
-      return insert.emitError("a map over a vertex set can only write the "
-                              "diagonal block of its element");
+    Value row = l.lookup(indices[0]);
+    if (row != l.lookup(indices[1]))
+      return op->emitError("a map over a vertex set can only write the "
+                           "diagonal block of its element");
     prefix.push_back(row);
     break;
   }
   case Storage::Kind::Pattern: {
-    Value i = l.endpointPositions.lookup(insert.getIndices()[0]);
-    Value j = l.endpointPositions.lookup(insert.getIndices()[1]);
+    Value i = l.endpointPositions.lookup(indices[0]);
+    Value j = l.endpointPositions.lookup(indices[1]);
     if (!i || !j)
-      return insert.emitError("a matrix assembled from an edge set can only "
-                              "be written at pairs of the edge's endpoints");
+      return op->emitError("a matrix assembled from an edge set can only "
+                           "be written at pairs of the edge's endpoints");
     int64_t c = ctx.set.getCardinality();
     Value locations =
         l.getPatternArray(BindingKind::PatternLocations, storage.edges,
@@ -259,8 +263,8 @@ static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
         memref::LoadOp::create(b, loc, locations, ValueRange{ctx.element, flat});
     prefix.push_back(
         arith::IndexCastOp::create(b, loc, b.getIndexType(), block));
-    scatters = true;
-    if (ctx.accumulate) {
+    shared = true;
+    if (write && ctx.accumulate) {
       auto &written = ctx.patternAccumulations[r];
       std::optional<int64_t> ci = getConstantIntValue(i);
       std::optional<int64_t> cj = getConstantIntValue(j);
@@ -271,8 +275,11 @@ static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
     break;
   }
   case Storage::Kind::Stencil: {
+    if (!write)
+      return op->emitError("an element function cannot read a result "
+                           "assembled through a grid");
     // Each point writes its own row: no location is shared.
-    FailureOr<Value> block = l.stencilWriteBlock(insert, storage);
+    FailureOr<Value> block = l.stencilWriteBlock(write, storage);
     if (failed(block))
       return failure();
     prefix.push_back(*block);
@@ -281,13 +288,12 @@ static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
   case Storage::Kind::Incidence: {
     // (the edge, its endpoint k), or (endpoint k, the edge) when
     // transposed: block e * c + k, written by this edge only.
-    Value edge = insert.getIndices()[storage.transposed ? 1 : 0];
-    Value k = l.endpointPositions.lookup(
-        insert.getIndices()[storage.transposed ? 0 : 1]);
+    Value edge = indices[storage.transposed ? 1 : 0];
+    Value k = l.endpointPositions.lookup(indices[storage.transposed ? 0 : 1]);
     if (l.lookup(edge) != ctx.element || !k)
-      return insert.emitError("a matrix over (edges, endpoints) or "
-                              "(endpoints, edges) can only be written at "
-                              "the edge and one of its endpoints");
+      return op->emitError("a matrix over (edges, endpoints) or "
+                           "(endpoints, edges) can only be written at "
+                           "the edge and one of its endpoints");
     prefix.push_back(arith::AddIOp::create(
         b, loc,
         arith::MulIOp::create(b, loc, ctx.element,
@@ -297,9 +303,25 @@ static LogicalResult scatter(FunctionLowering &l, InsertOp insert,
   }
   case Storage::Kind::Union:
   case Storage::Kind::DenseMatrix:
-    return insert.emitError("a map result cannot be stored as ")
+    return op->emitError("a map result cannot be stored as ")
            << storage.describe();
   }
+  return prefix;
+}
+
+/// Lowers an insert into result slot `r` of the element function: the
+/// block is combined into (or stored to) its place in the output.
+static LogicalResult scatter(FunctionLowering &l, InsertOp insert, unsigned r,
+                             bool &scatters) {
+  ElementContext &ctx = *l.element;
+  OpBuilder &b = l.b;
+  Location loc = insert.getLoc();
+  Value output = ctx.outputs[r];
+  FailureOr<SmallVector<Value>> block =
+      resultBlock(l, insert, insert.getIndices(), r, insert, scatters);
+  if (failed(block))
+    return failure();
+  SmallVector<Value> &prefix = *block;
   auto type = cast<MemRefType>(output.getType());
   auto combineInto = [&](ArrayRef<Value> indices, Value component) {
     if (ctx.accumulate) {
@@ -464,6 +486,25 @@ LogicalResult FunctionLowering::lowerElementAccess(Operation *op,
     map(read, fromComponents(blockType, zeros));
     return success();
   }
+  // Reading a result sees the accumulator (§8.2): the block in the output
+  // array. A block that component writes also start from may be read so:
+  // only its written components are combined back (scatter).
+  if (auto read = dyn_cast<ExtractOp>(op); read && isSink(read.getTensor())) {
+    unsigned r = element->sinks.lookup(read.getTensor());
+    bool shared = false;
+    FailureOr<SmallVector<Value>> prefix =
+        resultBlock(*this, read, read.getIndices(), r, nullptr, shared);
+    if (failed(prefix))
+      return failure();
+    Value output = element->outputs[r];
+    auto type = cast<MemRefType>(output.getType());
+    SmallVector<Value> components;
+    for (int64_t c = 0, n = numComponents(read.getType()); c < n; ++c)
+      components.push_back(memref::LoadOp::create(
+          b, read.getLoc(), output, blockIndices(type, *prefix, c)));
+    map(read, fromComponents(convertType(read.getType()), components));
+    return success();
+  }
   if (element && !isa<StoreOp, scf::YieldOp, func::ReturnOp>(op))
     for (Value operand : op->getOperands())
       if (isSink(operand))
@@ -554,12 +595,7 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
       // starts at zero, laid out as a variable of the result's type.
       auto slotType = cast<MemRefType>(
           convertType(RefType::get(result.getContext(), result.getType())));
-      Value slot;
-      {
-        OpBuilder::InsertionGuard guard(b);
-        b.setInsertionPointToStart(allocaBlock);
-        slot = memref::AllocaOp::create(b, loc, slotType);
-      }
+      Value slot = allocaSlot(loc, slotType);
       fill(loc, slot, zeroOf(slotType.getElementType()));
       ctx.outputs.push_back(slot);
       ctx.outputStorages.push_back(Storage::dense());

@@ -11,7 +11,7 @@
 //===----------------------------------------------------------------------===//
 
 #include "LoopsLowering.h"
-#include "SourcePosition.h"
+#include "simit/Dialect/Simit/IR/SourcePosition.h"
 
 using namespace mlir;
 using namespace mlir::simit;

@@ -42,7 +42,7 @@ LogicalResult FunctionLowering::printMatrix(
                      "printing a system matrix of unknown sparsity")
                : failure();
   auto type = cast<SystemTensorType>(matrix.getType());
-  SmallVector<int64_t> shape = localShape(type.getBlockType());
+  SmallVector<int64_t> shape = getLocalShape(type.getBlockType());
   int64_t blockRows = shape.empty() ? 1 : shape[0];
   int64_t blockCols = shape.size() < 2 ? 1 : shape[1];
   Value array = lookup(matrix);

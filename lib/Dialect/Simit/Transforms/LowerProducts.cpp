@@ -13,7 +13,7 @@
 //===----------------------------------------------------------------------===//
 
 #include "LoopsLowering.h"
-#include "SourcePosition.h"
+#include "simit/Dialect/Simit/IR/SourcePosition.h"
 
 #include <array>
 

@@ -7,7 +7,7 @@
 //===----------------------------------------------------------------------===//
 
 #include "LoopsLowering.h"
-#include "SourcePosition.h"
+#include "simit/Dialect/Simit/IR/SourcePosition.h"
 
 using namespace mlir;
 using namespace mlir::simit;
@@ -419,10 +419,7 @@ LogicalResult FunctionLowering::lowerFactorisation(Operation *op) {
   // Local tensors (vectors) are stored to a stack buffer passed as
   // memref<?xf64>; tensor results come back through one.
   auto buffer = [&](int64_t size) {
-    OpBuilder::InsertionGuard guard(b);
-    b.setInsertionPointToStart(allocaBlock);
-    return memref::AllocaOp::create(b, loc, MemRefType::get({size}, f64))
-        .getResult();
+    return allocaSlot(loc, MemRefType::get({size}, f64));
   };
   Value zero = free ? Value() : indexConstant(0);
   SmallVector<Value> args;

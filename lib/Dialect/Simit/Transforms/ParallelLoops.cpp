@@ -33,6 +33,8 @@
 #include "mlir/Interfaces/SideEffectInterfaces.h"
 #include "mlir/Interfaces/ViewLikeInterface.h"
 
+#include <set>
+
 namespace mlir {
 namespace simit {
 #define GEN_PASS_DEF_SIMITPARALLELLOOPS
@@ -136,6 +138,10 @@ private:
   bool isElementLoop();
   std::optional<SmallVector<Place>> ownedPlaces(const Access &access) const;
   std::optional<Place> endpointPlace(const Access &access) const;
+  /// Whether no iteration can read what another writes through the
+  /// element's endpoints (each memref of `byMemref` that is written only
+  /// at its endpoint place).
+  bool independentThroughEndpoints(ArrayRef<const Access *> uses) const;
 
   // Op handles: their accessors are not const.
   mutable func::FuncOp function;
@@ -280,6 +286,34 @@ LoopClassifier::endpointPlace(const Access &access) const {
   return std::nullopt;
 }
 
+/// The column k of `table[iv, k]` (an endpoint or location table) that
+/// indexes `access` at `place`.
+int64_t tableColumn(const Access &access, const Place &place) {
+  memref::LoadOp load = castLoad(access.indices[place.position]);
+  APInt column;
+  bool constant = matchPattern(load.getIndices()[1], m_ConstantInt(&column));
+  assert(constant && "ownerOf accepts constant columns only");
+  (void)constant;
+  return column.getSExtValue();
+}
+
+/// Elements run colour by colour, not in set order, so an element must not
+/// see another's writes: the endpoint columns it reads are the ones it
+/// writes (an accumulation, whose only writer of a location is then itself
+/// or, with `reduce +`, a sum in a fixed order). An element reading an
+/// endpoint it does not write (`p(1).x = p(0).x`), or overwriting one it
+/// does not read (a map without `reduce`, where the last writer in set
+/// order wins), runs in set order.
+bool LoopClassifier::independentThroughEndpoints(
+    ArrayRef<const Access *> uses) const {
+  std::set<int64_t> read, written;
+  for (const Access *access : uses) {
+    std::optional<Place> place = endpointPlace(*access);
+    (access->writes ? written : read).insert(tableColumn(*access, *place));
+  }
+  return read == written;
+}
+
 /// A loop over all elements of a set, in order: `for e = 0 to |set|`.
 bool LoopClassifier::isElementLoop() {
   if (loop.getNumLoops() != 1 || !matchPattern(loop.getLowerBound()[0], m_Zero()) ||
@@ -316,6 +350,8 @@ LoopKind LoopClassifier::classify() {
     if (!shared || llvm::any_of(uses, [&](const Access *a) {
           return !(endpointPlace(*a) == shared);
         }))
+      return LoopKind::Serial;
+    if (!independentThroughEndpoints(uses))
       return LoopKind::Serial;
     scatters = true;
   }

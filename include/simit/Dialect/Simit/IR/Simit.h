@@ -47,6 +47,11 @@ unsigned getTensorOrder(Type type);
 /// The innermost scalar type of a tensor (the type itself for a scalar).
 Type getComponentType(Type type);
 
+/// The shape of a local tensor's components: the builtin shape, or the
+/// integer dimensions of a `!simit.tensor` followed by its block's; empty
+/// for a scalar.
+SmallVector<int64_t> getLocalShape(Type type);
+
 /// The block of a tensor: what one index per outer dimension selects. The
 /// component type for builtin tensors and unblocked system tensors.
 Type getBlockType(Type type);

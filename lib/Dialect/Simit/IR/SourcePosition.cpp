@@ -1,6 +1,6 @@
 //===- SourcePosition.cpp - Source positions in run-time messages ---------===//
 
-#include "SourcePosition.h"
+#include "simit/Dialect/Simit/IR/SourcePosition.h"
 
 #include "mlir/IR/Location.h"
 #include "llvm/Support/Path.h"

@@ -5,8 +5,8 @@
 //
 //===----------------------------------------------------------------------===//
 
-#ifndef SIMIT_LIB_DIALECT_SIMIT_TRANSFORMS_SOURCEPOSITION_H
-#define SIMIT_LIB_DIALECT_SIMIT_TRANSFORMS_SOURCEPOSITION_H
+#ifndef SIMIT_DIALECT_SIMIT_IR_SOURCEPOSITION_H
+#define SIMIT_DIALECT_SIMIT_IR_SOURCEPOSITION_H
 
 #include "mlir/IR/Operation.h"
 
@@ -23,4 +23,4 @@ std::string sourcePositionSuffix(Location loc);
 } // namespace simit
 } // namespace mlir
 
-#endif // SIMIT_LIB_DIALECT_SIMIT_TRANSFORMS_SOURCEPOSITION_H
+#endif // SIMIT_DIALECT_SIMIT_IR_SOURCEPOSITION_H

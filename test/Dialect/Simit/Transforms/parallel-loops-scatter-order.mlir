@@ -1,0 +1,68 @@
+// RUN: simit-opt %s --simit-parallel-loops=scatter-chunk=32 | FileCheck %s
+
+// Colour-by-colour order differs from set order, so an element loop runs
+// by colours only when no element can see another's writes: it reads at an
+// endpoint column only what it writes there (an accumulation). Reading
+// endpoint 0 of a field written at endpoint 1 (`p(1).x = p(0).x` in an
+// apply), or storing at an endpoint without reading it (a map without
+// `reduce`, where the last writer in set order wins), stays sequential.
+
+// CHECK-LABEL: func.func @accumulates(
+// CHECK: } {simit.parallel = "scatter"}
+func.func @accumulates(%ne : index, %ends : memref<?x2xi32>, %x : memref<?xf64>, %w : memref<?xf64>) attributes {simit.bindings = [{kind = "set_size", set = "springs"}, {kind = "endpoints", set = "springs"}, {field = "x", kind = "field", set = "points"}, {field = "w", kind = "field", set = "springs"}]} {
+  %c0 = arith.constant 0 : index
+  %c1 = arith.constant 1 : index
+  scf.parallel (%e) = (%c0) to (%ne) step (%c1) {
+    %a32 = memref.load %ends[%e, %c0] : memref<?x2xi32>
+    %a = arith.index_cast %a32 : i32 to index
+    %b32 = memref.load %ends[%e, %c1] : memref<?x2xi32>
+    %b = arith.index_cast %b32 : i32 to index
+    %we = memref.load %w[%e] : memref<?xf64>
+    %xa = memref.load %x[%a] : memref<?xf64>
+    %na = arith.addf %xa, %we : f64
+    memref.store %na, %x[%a] : memref<?xf64>
+    %xb = memref.load %x[%b] : memref<?xf64>
+    %nb = arith.subf %xb, %we : f64
+    memref.store %nb, %x[%b] : memref<?xf64>
+    scf.reduce
+  } {simit.scatter}
+  return
+}
+
+// CHECK-LABEL: func.func @reads_another_endpoint(
+// CHECK-NOT: element_colours
+// CHECK-NOT: simit.parallel
+// CHECK: return
+func.func @reads_another_endpoint(%ne : index, %ends : memref<?x2xi32>, %x : memref<?xf64>, %w : memref<?xf64>) attributes {simit.bindings = [{kind = "set_size", set = "springs"}, {kind = "endpoints", set = "springs"}, {field = "x", kind = "field", set = "points"}, {field = "w", kind = "field", set = "springs"}]} {
+  %c0 = arith.constant 0 : index
+  %c1 = arith.constant 1 : index
+  scf.parallel (%e) = (%c0) to (%ne) step (%c1) {
+    %a32 = memref.load %ends[%e, %c0] : memref<?x2xi32>
+    %a = arith.index_cast %a32 : i32 to index
+    %b32 = memref.load %ends[%e, %c1] : memref<?x2xi32>
+    %b = arith.index_cast %b32 : i32 to index
+    %we = memref.load %w[%e] : memref<?xf64>
+    %xa = memref.load %x[%a] : memref<?xf64>
+    %nb = arith.addf %xa, %we : f64
+    memref.store %nb, %x[%b] : memref<?xf64>
+    scf.reduce
+  } {simit.scatter}
+  return
+}
+
+// CHECK-LABEL: func.func @overwrites(
+// CHECK-NOT: element_colours
+// CHECK-NOT: simit.parallel
+// CHECK: return
+func.func @overwrites(%ne : index, %ends : memref<?x2xi32>, %x : memref<?xf64>, %w : memref<?xf64>) attributes {simit.bindings = [{kind = "set_size", set = "springs"}, {kind = "endpoints", set = "springs"}, {field = "x", kind = "field", set = "points"}, {field = "w", kind = "field", set = "springs"}]} {
+  %c0 = arith.constant 0 : index
+  %c1 = arith.constant 1 : index
+  scf.parallel (%e) = (%c0) to (%ne) step (%c1) {
+    %a32 = memref.load %ends[%e, %c0] : memref<?x2xi32>
+    %a = arith.index_cast %a32 : i32 to index
+    %we = memref.load %w[%e] : memref<?xf64>
+    memref.store %we, %x[%a] : memref<?xf64>
+    scf.reduce
+  } {simit.scatter}
+  return
+}

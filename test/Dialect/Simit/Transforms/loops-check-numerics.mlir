@@ -24,12 +24,14 @@
 // CHECK-LABEL: func.func @step(
 // CHECK-SAME: %[[ENDS:[^:]*]]: memref<?x2xi32>, %[[XARG:[^:]*]]: memref<?xf64>
 // CHECK-SAME: %[[ROWPTR:[^:]*]]: memref<?xi32>, %[[COLIDX:[^:]*]]: memref<?xi32>, %{{[^:]*}}: memref<?x4xi32>)
+// Each scan casts its array to an unranked memref inside an alloca scope:
+// the descriptor's stack slot is freed after the call, so scans in a loop
+// do not grow the stack.
 // One empty index array serves every scan that needs none.
 // CHECK: %[[EMPTY:.*]] = memref.cast %{{.*}} : memref<0xi32> to memref<?xi32>
 // The assembly over springs: K (BCSR), then f (vector), each with the
 // springs' endpoints.
 // CHECK: %[[KENDS:.*]] = memref.collapse_shape %[[ENDS]] {{\[\[}}0, 1]] : memref<?x2xi32> into memref<?xi32>
-// CHECK-NEXT: %[[KARRAY:.*]] = memref.cast %{{.*}} : memref<?xf64> to memref<*xf64>
 // CHECK-NEXT: %[[PATTERN:.*]] = arith.constant 2 : i32
 // CHECK-NEXT: %[[ZERO:.*]] = arith.constant 0 : i64
 // CHECK-NEXT: %[[WHAT:.*]] = llvm.mlir.addressof @[[ASM]]
@@ -38,9 +40,10 @@
 // CHECK-NEXT: %[[COLS:.*]] = llvm.mlir.addressof @[[POINTS]]
 // CHECK-NEXT: %[[CARD:.*]] = arith.constant 2 : i64
 // CHECK-NEXT: %[[MAPSET:.*]] = llvm.mlir.addressof @[[SPRINGS]]
+// CHECK-NEXT: memref.alloca_scope {
+// CHECK-NEXT: %[[KARRAY:.*]] = memref.cast %{{.*}} : memref<?xf64> to memref<*xf64>
 // CHECK-NEXT: call @simit_rt_check_numerics_f64(%[[KARRAY]], %[[PATTERN]], %[[ZERO]], %[[ROWPTR]], %[[COLIDX]], %[[WHAT]], %[[NAME]], %[[ROWS]], %[[COLS]], %[[KENDS]], %[[CARD]], %[[MAPSET]])
 // CHECK: %[[FENDS:.*]] = memref.collapse_shape %[[ENDS]]
-// CHECK-NEXT: %[[FARRAY:.*]] = memref.cast %{{.*}} : memref<?xf64> to memref<*xf64>
 // CHECK-NEXT: %[[VECTOR:.*]] = arith.constant 0 : i32
 // CHECK-NEXT: %[[ZERO:.*]] = arith.constant 0 : i64
 // CHECK-NEXT: %[[WHAT:.*]] = llvm.mlir.addressof @[[ASM]]
@@ -49,10 +52,11 @@
 // CHECK-NEXT: %[[COLS:.*]] = llvm.mlir.addressof @[[NONE]]
 // CHECK-NEXT: %[[CARD:.*]] = arith.constant 2 : i64
 // CHECK-NEXT: %[[MAPSET:.*]] = llvm.mlir.addressof @[[SPRINGS]]
+// CHECK-NEXT: memref.alloca_scope {
+// CHECK-NEXT: %[[FARRAY:.*]] = memref.cast %{{.*}} : memref<?xf64> to memref<*xf64>
 // CHECK-NEXT: call @simit_rt_check_numerics_f64(%[[FARRAY]], %[[VECTOR]], %[[ZERO]], %[[EMPTY]], %[[EMPTY]], %[[WHAT]], %[[NAME]], %[[ROWS]], %[[COLS]], %[[FENDS]], %[[CARD]], %[[MAPSET]])
 // The solve's result, after the call of the solver.
 // CHECK: call @simit_rt_solve_bcsr(
-// CHECK-NEXT: %[[X:.*]] = memref.cast %{{.*}} : memref<?xf64> to memref<*xf64>
 // CHECK-NEXT: %[[VECTOR:.*]] = arith.constant 0 : i32
 // CHECK-NEXT: %[[ZERO:.*]] = arith.constant 0 : i64
 // CHECK-NEXT: %[[WHAT:.*]] = llvm.mlir.addressof @[[SOLVE]]
@@ -61,12 +65,13 @@
 // CHECK-NEXT: %[[COLS:.*]] = llvm.mlir.addressof @[[NONE]]
 // CHECK-NEXT: %[[NOCARD:.*]] = arith.constant 0 : i64
 // CHECK-NEXT: %[[NOSET:.*]] = llvm.mlir.addressof @[[NONE]]
+// CHECK-NEXT: memref.alloca_scope {
+// CHECK-NEXT: %[[X:.*]] = memref.cast %{{.*}} : memref<?xf64> to memref<*xf64>
 // CHECK-NEXT: call @simit_rt_check_numerics_f64(%[[X]], %[[VECTOR]], %[[ZERO]], %[[EMPTY]], %[[EMPTY]], %[[WHAT]], %[[NAME]], %[[ROWS]], %[[COLS]], %[[EMPTY]], %[[NOCARD]], %[[NOSET]])
 // The apply of shift writes the field points.x (the bound array): scanned
 // as a vector over points, named "points.x".
 // CHECK: scf.parallel
-// CHECK: %[[XFIELD:.*]] = memref.cast %[[XARG]] : memref<?xf64> to memref<*xf64>
-// CHECK-NEXT: %[[VECTOR:.*]] = arith.constant 0 : i32
+// CHECK: %[[VECTOR:.*]] = arith.constant 0 : i32
 // CHECK-NEXT: %[[ZERO:.*]] = arith.constant 0 : i64
 // CHECK-NEXT: %[[WHAT:.*]] = llvm.mlir.addressof @[[APPLY]]
 // CHECK-NEXT: %[[NAME:.*]] = llvm.mlir.addressof @[[POINTSX]]
@@ -74,6 +79,8 @@
 // CHECK-NEXT: %[[COLS:.*]] = llvm.mlir.addressof @[[NONE]]
 // CHECK-NEXT: %[[NOCARD:.*]] = arith.constant 0 : i64
 // CHECK-NEXT: %[[NOSET:.*]] = llvm.mlir.addressof @[[NONE]]
+// CHECK-NEXT: memref.alloca_scope {
+// CHECK-NEXT: %[[XFIELD:.*]] = memref.cast %[[XARG]] : memref<?xf64> to memref<*xf64>
 // CHECK-NEXT: call @simit_rt_check_numerics_f64(%[[XFIELD]], %[[VECTOR]], %[[ZERO]], %[[EMPTY]], %[[EMPTY]], %[[WHAT]], %[[NAME]], %[[ROWS]], %[[COLS]], %[[EMPTY]], %[[NOCARD]], %[[NOSET]])
 // CHECK-NOT: call @simit_rt_check_numerics
 // CHECK: return
@@ -83,8 +90,9 @@
 // CHECK: call @simit_rt_lu_bcsr(
 // CHECK-NOT: call @simit_rt_check_numerics
 // CHECK: call @simit_rt_lusolve_bcsr(
+// CHECK: memref.alloca_scope {
 // CHECK-NEXT: memref.cast %{{.*}} : memref<?xf64> to memref<*xf64>
-// CHECK: call @simit_rt_check_numerics_f64(
+// CHECK-NEXT: call @simit_rt_check_numerics_f64(
 
 // A diagonal matrix (layout 1) and an incidence matrix (layout 3, two
 // blocks a row, the endpoints as column indices). Neither names assembling
@@ -97,10 +105,11 @@
 // CHECK: call @simit_rt_check_numerics_f64(%{{[^,]*}}, %[[DIAGONAL]], %[[ZERO]],
 // CHECK: %[[TWO:.*]] = arith.constant 2 : i64
 // CHECK-NEXT: %[[COLUMNS:.*]] = memref.collapse_shape %[[ENDPOINTS]] {{\[\[}}0, 1]] : memref<?x2xi32> into memref<?xi32>
-// CHECK-NEXT: memref.cast %{{.*}} : memref<?xf64> to memref<*xf64>
 // CHECK-NEXT: %[[INCIDENCE:.*]] = arith.constant 3 : i32
 // CHECK: %[[NOCARD:.*]] = arith.constant 0 : i64
 // CHECK-NEXT: %[[NOSET:.*]] = llvm.mlir.addressof @[[NONE]]
+// CHECK-NEXT: memref.alloca_scope {
+// CHECK-NEXT: memref.cast %{{.*}} : memref<?xf64> to memref<*xf64>
 // CHECK-NEXT: call @simit_rt_check_numerics_f64(%{{[^,]*}}, %[[INCIDENCE]], %[[TWO]], %{{[^,]*}}, %[[COLUMNS]], %{{[^,]*}}, %{{[^,]*}}, %{{[^,]*}}, %{{[^,]*}}, %{{[^,]*}}, %[[NOCARD]], %[[NOSET]])
 
 // CHECK: func.func private @simit_rt_check_numerics_f64(memref<*xf64>, i32, i64, memref<?xi32>, memref<?xi32>, !llvm.ptr, !llvm.ptr, !llvm.ptr, !llvm.ptr, memref<?xi32>, i64, !llvm.ptr) attributes {llvm.emit_c_interface}

@@ -4,16 +4,18 @@
 // memref parameters keep the arrays alive up to the call, and which passes
 // them as pointers to the C symbol: the name with the precision's prefix,
 // parameters then results, local tensors as (n, pointer), scalar results by
-// pointer, an int status that must be 0.
+// pointer, an int status that must be 0. Their stack slots are made at
+// the function's entry (once, however often the call runs), each new one
+// first.
 // CHECK-LABEL: func.func @scale(
 // CHECK-SAME: %[[A:[^:]*]]: f64, %[[V:[^:]*]]: vector<3xf64>)
-// CHECK: %[[IN:.*]] = memref.alloca() : memref<3xf64>
-// CHECK: vector.store %[[V]], %[[IN]]
-// CHECK: %[[INP:.*]] = memref.cast %[[IN]] : memref<3xf64> to memref<?xf64>
-// CHECK: %[[OUT:.*]] = memref.alloca() : memref<3xf64>
-// CHECK: %[[OUTP:.*]] = memref.cast %[[OUT]]
 // CHECK: %[[SUM:.*]] = memref.alloca() : memref<1xf64>
-// CHECK: %[[SUMP:.*]] = memref.cast %[[SUM]]
+// CHECK-NEXT: %[[OUT:.*]] = memref.alloca() : memref<3xf64>
+// CHECK-NEXT: %[[IN:.*]] = memref.alloca() : memref<3xf64>
+// CHECK-NEXT: vector.store %[[V]], %[[IN]]
+// CHECK-NEXT: %[[INP:.*]] = memref.cast %[[IN]] : memref<3xf64> to memref<?xf64>
+// CHECK-NEXT: %[[OUTP:.*]] = memref.cast %[[OUT]]
+// CHECK-NEXT: %[[SUMP:.*]] = memref.cast %[[SUM]]
 // CHECK: %[[STATUS:.*]] = call @simit_host.dscaled(%[[A]], %c3_i32, %[[INP]], %c3_i32, %[[OUTP]], %[[SUMP]])
 // CHECK: %[[OK:.*]] = arith.cmpi eq, %[[STATUS]], %c0_i32
 // CHECK: cf.assert %[[OK]], "extern func 'scaled' (host symbol 'dscaled') returned a non-zero status (h.sim:5:3)"

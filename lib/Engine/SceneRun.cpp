@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <set>
 
 using namespace simit;
@@ -74,6 +75,33 @@ llvm::Error provideFields(const SceneDescription &scene, SetRegistry &registry,
   return llvm::Error::success();
 }
 
+/// The declaration of field `name` among `fields`, or null.
+const DeclaredField *findField(const std::vector<DeclaredField> &fields,
+                               llvm::StringRef name) {
+  for (const DeclaredField &field : fields)
+    if (field.name == name)
+      return &field;
+  return nullptr;
+}
+
+/// What a set holds per element for a declared field.
+struct FieldBlock {
+  ComponentType type;
+  std::vector<int> shape;
+};
+
+/// The block of a declared field (its array's type without the set
+/// dimension); none for components no set field holds (complex).
+std::optional<FieldBlock> blockOf(const DeclaredField &field) {
+  FieldBlock block;
+  const ValueType &array = field.type;
+  if (!array.isMemRef || array.isComplex ||
+      !componentTypeFor(array.scalar, block.type))
+    return std::nullopt;
+  block.shape.assign(array.shape.begin() + 1, array.shape.end());
+  return block;
+}
+
 /// A scene field that the program's element type does not declare is a
 /// typo or a leftover: either way the program would silently not see it.
 llvm::Error checkSceneFields(const SceneDescription &scene, Program &program,
@@ -89,10 +117,7 @@ llvm::Error checkSceneFields(const SceneDescription &scene, Program &program,
     for (const DeclaredField &field : it->second)
       names.push_back(field.name);
     for (const FieldSpec &field : set.fields) {
-      const DeclaredField *declaration = nullptr;
-      for (const DeclaredField &candidate : it->second)
-        if (candidate.name == field.name)
-          declaration = &candidate;
+      const DeclaredField *declaration = findField(it->second, field.name);
       if (!declaration)
         return llvm::createStringError(
             scene.path + ": " + field.jsonPath + ": the elements of set '" +
@@ -103,27 +128,23 @@ llvm::Error checkSceneFields(const SceneDescription &scene, Program &program,
       // Also a field no called function uses must be what the program
       // says, as the outputs write it. Float fields may be either width:
       // the run's precision narrows them.
-      ComponentType declared;
-      const ValueType &array = declaration->type;
-      if (!array.isMemRef || array.isComplex ||
-          !componentTypeFor(array.scalar, declared))
+      std::optional<FieldBlock> declared = blockOf(*declaration);
+      if (!declared)
         continue;
       auto isFloat = [](ComponentType type) {
         return type == ComponentType::Float64 || type == ComponentType::Float32;
       };
-      std::vector<int64_t> blockShape(array.shape.begin() + 1,
-                                      array.shape.end());
-      std::vector<int64_t> given(field.shape.begin(), field.shape.end());
-      bool typeFits =
-          field.type == declared || (isFloat(field.type) && isFloat(declared));
-      if (!typeFits || given != blockShape)
+      bool typeFits = field.type == declared->type ||
+                      (isFloat(field.type) && isFloat(declared->type));
+      if (!typeFits || field.shape != declared->shape)
         return llvm::createStringError(
             scene.path + ": " + field.jsonPath + ": field '" + field.name +
             "' of set '" + set.name + "' in " + programPath + " holds " +
-            componentTypeName(declared).str() + " components of shape " +
-            shapeString(blockShape) + ", but the scene gives " +
+            componentTypeName(declared->type).str() + " components of shape " +
+            shapeString(declared->shape) + ", but the scene gives " +
             componentTypeName(field.type).str() + " of shape " +
-            shapeString(given) + (typeFits ? "" : " (give its \"type\")"));
+            shapeString(field.shape) +
+            (typeFits ? "" : " (give its \"type\")"));
     }
   }
   return llvm::Error::success();
@@ -159,18 +180,14 @@ llvm::Error provideOutputFields(const SceneDescription &scene,
     auto fields = declared->find(setName);
     if (!set || set->fieldDescriptor(fieldName) || fields == declared->end())
       return llvm::Error::success();
-    for (const DeclaredField &field : fields->second) {
-      ComponentType type;
-      if (field.name != fieldName || !field.type.isMemRef ||
-          field.type.isComplex || !componentTypeFor(field.type.scalar, type))
-        continue;
-      std::vector<int> shape(field.type.shape.begin() + 1,
-                             field.type.shape.end());
-      if (llvm::Error err = set->addField(fieldName, type, shape))
-        return llvm::createStringError(scene.path + ": outputs: field '" +
-                                       fieldName + "' of set '" + setName +
-                                       "': " + llvm::toString(std::move(err)));
-    }
+    const DeclaredField *field = findField(fields->second, fieldName);
+    std::optional<FieldBlock> block = field ? blockOf(*field) : std::nullopt;
+    if (!block)
+      return llvm::Error::success();
+    if (llvm::Error err = set->addField(fieldName, block->type, block->shape))
+      return llvm::createStringError(scene.path + ": outputs: field '" +
+                                     fieldName + "' of set '" + setName +
+                                     "': " + llvm::toString(std::move(err)));
     return llvm::Error::success();
   };
   for (const auto &[set, field] : outputFields(scene))

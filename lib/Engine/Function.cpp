@@ -373,7 +373,8 @@ llvm::Error Function::Impl::prepareArgument(const ArgumentBinding &arg,
   }
   case Kind::IncidenceRowPtr:
   case Kind::IncidenceColIdx:
-  case Kind::IncidencePositions: {
+  case Kind::IncidencePositions:
+  case Kind::IncidenceEndpoints: {
     llvm::Expected<Set *> edges = boundSet(arg.set);
     if (!edges)
       return edges.takeError();
@@ -386,7 +387,15 @@ llvm::Error Function::Impl::prepareArgument(const ArgumentBinding &arg,
       return error(arg.describe() + ": " + llvm::toString(view.takeError()));
     incidences.push_back(*view);
     const IncidenceView &v = **view;
-    if (arg.kind == Kind::IncidenceRowPtr)
+    if (arg.kind == Kind::IncidenceEndpoints) {
+      // Row e of the incidence is edge e's endpoints in `cols`.
+      int64_t perEdge = type.shape[1];
+      if (transposed ||
+          static_cast<int64_t>(v.colIdx.size()) != v.rows * perEdge)
+        return error(arg.describe() + ": expected " + std::to_string(perEdge) +
+                     " endpoints in '" + arg.cols + "' per edge");
+      pushMemRef(word, v.colIdx.data(), {v.rows, perEdge});
+    } else if (arg.kind == Kind::IncidenceRowPtr)
       pushMemRef(word, v.rowPtr.data(), {v.rows + 1});
     else
       pushMemRef(word, (arg.kind == Kind::IncidenceColIdx ? v.colIdx

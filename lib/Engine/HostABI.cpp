@@ -206,6 +206,7 @@ std::string ArgumentBinding::describe() const {
   case Kind::IncidenceRowPtr:
   case Kind::IncidenceColIdx:
   case Kind::IncidencePositions:
+  case Kind::IncidenceEndpoints:
     return "rows of the incidence of set '" + set + "' over ('" + rows +
            "', '" + cols + "')";
   case Kind::StencilRowPtr:
@@ -310,6 +311,7 @@ public:
     case Kind::IncidenceRowPtr:
     case Kind::IncidenceColIdx:
     case Kind::IncidencePositions:
+    case Kind::IncidenceEndpoints:
       if (llvm::Error err = get("set", binding.set))
         return err;
       if (llvm::Error err = get("rows", binding.rows))
@@ -425,6 +427,7 @@ static llvm::Error checkKindType(const HostSignature &signature,
     return llvm::Error::success();
   case Kind::Endpoints:
   case Kind::PatternLocations:
+  case Kind::IncidenceEndpoints:
     if (!type.isMemRef || type.rank() != 2 || type.scalar != ScalarKind::Int32)
       return fail("memref<?xNxi32>");
     return llvm::Error::success();

@@ -12,45 +12,52 @@ IncidenceView::get(const Set &edges, const Set &endpoints, bool transposed) {
   if (c == 0)
     return llvm::createStringError("'" + edges.name() +
                                    "' is not an edge set");
+  std::vector<int> held;
   for (int k = 0; k < c; ++k)
-    if (&edges.endpointSet(k) != &endpoints)
-      return llvm::createStringError(
-          "the incidence of '" + edges.name() + "' over '" +
-          endpoints.name() + "' needs every endpoint in '" +
-          endpoints.name() + "'; endpoint " + llvm::Twine(k) + " is in '" +
-          edges.endpointSet(k).name() + "'");
+    if (&edges.endpointSet(k) == &endpoints)
+      held.push_back(k);
+  if (held.empty())
+    return llvm::createStringError("no endpoint of '" + edges.name() +
+                                   "' is in '" + endpoints.name() + "'");
   auto view = std::make_shared<IncidenceView>();
   int numEdges = edges.size();
-  size_t numBlocks = static_cast<size_t>(numEdges) * c;
+  int m = static_cast<int>(held.size());
+  size_t numBlocks = static_cast<size_t>(numEdges) * m;
   const int32_t *endpointData = edges.endpointData();
+  // Block b = e * m + j is edge e's endpoint at position held[j].
+  auto endpointOf = [&](size_t block) {
+    return endpointData[block / m * c + held[block % m]];
+  };
   if (!transposed) {
-    // Row e is edge e's blocks in endpoint order: the array itself.
+    // Row e is edge e's blocks in endpoint order.
     view->rows = numEdges;
     view->cols = endpoints.size();
     view->rowPtr.resize(numEdges + 1);
     for (int e = 0; e <= numEdges; ++e)
-      view->rowPtr[e] = e * c;
-    view->colIdx.assign(endpointData, endpointData + numBlocks);
+      view->rowPtr[e] = e * m;
+    view->colIdx.resize(numBlocks);
     view->positions.resize(numBlocks);
-    for (size_t k = 0; k < numBlocks; ++k)
+    for (size_t k = 0; k < numBlocks; ++k) {
+      view->colIdx[k] = endpointOf(k);
       view->positions[k] = static_cast<int32_t>(k);
+    }
     return view;
   }
-  // Row v holds block e * c + k of every edge e whose k-th endpoint is v,
-  // by increasing edge (a counting sort on v, stable in e and k).
+  // Row v holds block e * m + j of every edge e whose held[j]-th endpoint
+  // is v, by increasing edge (a counting sort on v, stable in e and j).
   view->rows = endpoints.size();
   view->cols = numEdges;
   view->rowPtr.assign(view->rows + 1, 0);
   for (size_t k = 0; k < numBlocks; ++k)
-    ++view->rowPtr[endpointData[k] + 1];
+    ++view->rowPtr[endpointOf(k) + 1];
   for (int v = 0; v < view->rows; ++v)
     view->rowPtr[v + 1] += view->rowPtr[v];
   std::vector<int32_t> next(view->rowPtr.begin(), view->rowPtr.end() - 1);
   view->colIdx.resize(numBlocks);
   view->positions.resize(numBlocks);
   for (size_t k = 0; k < numBlocks; ++k) {
-    int32_t at = next[endpointData[k]]++;
-    view->colIdx[at] = static_cast<int32_t>(k / c);
+    int32_t at = next[endpointOf(k)]++;
+    view->colIdx[at] = static_cast<int32_t>(k / m);
     view->positions[at] = static_cast<int32_t>(k);
   }
   return view;

@@ -58,16 +58,54 @@ TEST(IncidenceView, PatternMergesRepeatedColumns) {
   EXPECT_THAT((*pattern)->columnIndices(), ElementsAre(0, 1, 0, 1, 2));
 }
 
-TEST(IncidenceView, RejectsEndpointsOfAnotherSet) {
-  Set verts("verts"), nodes("nodes");
-  verts.add();
-  nodes.add();
-  Set links("links", {&verts, &nodes});
-  links.add(0, 0);
-  auto view = IncidenceView::get(links, verts, /*transposed=*/false);
+/// Links (verts, nodes, nodes): the incidence over nodes holds positions 1
+/// and 2, over verts position 0.
+struct Links {
+  Set verts{"verts"}, nodes{"nodes"};
+  Set links{"links", {&verts, &nodes, &nodes}};
+  Links() {
+    for (int i = 0; i < 2; ++i)
+      verts.add();
+    for (int i = 0; i < 3; ++i)
+      nodes.add();
+    links.add(1, 2, 0);
+    links.add(0, 1, 1);
+  }
+};
+
+TEST(IncidenceView, HoldsTheEndpointPositionsInItsColumnSet) {
+  Links l;
+  auto nodes = IncidenceView::get(l.links, l.nodes, /*transposed=*/false);
+  ASSERT_TRUE(bool(nodes)) << llvm::toString(nodes.takeError());
+  EXPECT_EQ((*nodes)->cols, 3);
+  EXPECT_THAT((*nodes)->rowPtr, ElementsAre(0, 2, 4));
+  EXPECT_THAT((*nodes)->colIdx, ElementsAre(2, 0, 1, 1));
+  EXPECT_THAT((*nodes)->positions, ElementsAre(0, 1, 2, 3));
+  auto verts = IncidenceView::get(l.links, l.verts, /*transposed=*/false);
+  ASSERT_TRUE(bool(verts)) << llvm::toString(verts.takeError());
+  EXPECT_THAT((*verts)->rowPtr, ElementsAre(0, 1, 2));
+  EXPECT_THAT((*verts)->colIdx, ElementsAre(1, 0));
+}
+
+TEST(IncidenceView, TransposedHoldsTheSamePositions) {
+  Links l;
+  auto view = IncidenceView::get(l.links, l.nodes, /*transposed=*/true);
+  ASSERT_TRUE(bool(view)) << llvm::toString(view.takeError());
+  // Node 0: link 0 (block 1); 1: link 1 twice (blocks 2, 3); 2: link 0
+  // (block 0).
+  EXPECT_THAT((*view)->rowPtr, ElementsAre(0, 1, 3, 4));
+  EXPECT_THAT((*view)->colIdx, ElementsAre(0, 1, 1, 0));
+  EXPECT_THAT((*view)->positions, ElementsAre(1, 2, 3, 0));
+}
+
+TEST(IncidenceView, RejectsASetOfNoEndpoint) {
+  Links l;
+  Set other("other");
+  other.add();
+  auto view = IncidenceView::get(l.links, other, /*transposed=*/false);
   ASSERT_FALSE(bool(view));
   EXPECT_THAT(llvm::toString(view.takeError()),
-              testing::HasSubstr("endpoint 1 is in 'nodes'"));
+              testing::HasSubstr("no endpoint of 'links' is in 'other'"));
 }
 
 // D' D of the incidence D over (springs, verts), through the view of D'

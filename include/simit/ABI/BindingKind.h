@@ -35,50 +35,63 @@ constexpr std::string_view kBarePointerConvention = "bare_pointer";
 /// What one argument of a lowered function carries (docs/lowering.md,
 /// "Host ABI of an entry point").
 enum class BindingKind {
-  SetSize,          // index: the number of elements of `set`
-  GridDims,         // memref<d x i32>: the extents of grid `set`
-  Field,            // memref<?x b...>: field `field` of `set`
-  Endpoints,        // memref<?xc x i32>: the endpoints of edge set `set`
-  PatternRowPtr,    // memref<?xi32>: BCSR row pointers of (set; rows, cols)
-  PatternColIdx,    // memref<?xi32>: BCSR block columns
-  PatternLocations, // memref<?x(c*c)xi32>: per-edge block locations
-  UnionRowPtr,      // memref<?xi32>: BCSR row pointers of the union of the
-                    // patterns of the '+'-joined `set` over (rows, cols)
-  UnionColIdx,      // memref<?xi32>: its block columns
-  UnionGather,      // memref<?xi32>: per union block, its position in the
-                    // pattern (or union) `part` ('~' first: read
-                    // transposed), or -1
-  ProductRowPtr,    // memref<?xi32>: BCSR row pointers of the product of
-                    // the patterns `left*right` over (rows, mid, cols)
-  ProductColIdx,    // memref<?xi32>: its block columns
-  IncidenceRowPtr,  // memref<?xi32>: per row of the incidence of edge set
-                    // `set` over (rows, cols) (one of them the edge set
-                    // itself), its first block (simit::IncidenceView)
-  IncidenceColIdx,  // memref<?xi32>: per block, its column
+  SetSize,            // index: the number of elements of `set`
+  GridDims,           // memref<d x i32>: the extents of grid `set`
+  Field,              // memref<?x b...>: field `field` of `set`
+  Endpoints,          // memref<?xc x i32>: the endpoints of edge set `set`
+  PatternRowPtr,      // memref<?xi32>: BCSR row pointers of (set; rows, cols)
+  PatternColIdx,      // memref<?xi32>: BCSR block columns
+  PatternLocations,   // memref<?x(c*c)xi32>: per-edge block locations
+  UnionRowPtr,        // memref<?xi32>: BCSR row pointers of the union of the
+                      // patterns of the '+'-joined `set` over (rows, cols)
+  UnionColIdx,        // memref<?xi32>: its block columns
+  UnionGather,        // memref<?xi32>: per union block, its position in the
+                      // pattern (or union) `part` ('~' first: read
+                      // transposed), or -1
+  ProductRowPtr,      // memref<?xi32>: BCSR row pointers of the product of
+                      // the patterns `left*right` over (rows, mid, cols)
+  ProductColIdx,      // memref<?xi32>: its block columns
+  IncidenceRowPtr,    // memref<?xi32>: per row of the incidence of edge set
+                      // `set` over (rows, cols) (one of them the edge set
+                      // itself), its first block (simit::IncidenceView)
+  IncidenceColIdx,    // memref<?xi32>: per block, its column
   IncidencePositions, // memref<?xi32>: per block, its value position
-  StencilRowPtr,    // memref<?xi32>: BCSR row pointers of the stencil of
-                    // grid `set` with `offsets` (simit::StencilPattern)
-  StencilColIdx,    // memref<?xi32>: its block columns
-  StencilPositions, // memref<?xi32>: per stencil block, its BCSR position
-  ElementColours,   // memref<?xi32>: the colouring of edge set `set` in
-                    // chunks of `chunk` elements
-  Extern,           // an extern tensor `name`
-  Parameter,        // the function's own parameter number `index`
+  IncidenceEndpoints, // memref<?xm x i32>: per edge of `set`, its m
+                      // endpoints in `cols` (rows == set), at the
+                      // positions whose endpoint set is `cols`
+  StencilRowPtr,      // memref<?xi32>: BCSR row pointers of the stencil of
+                      // grid `set` with `offsets` (simit::StencilPattern)
+  StencilColIdx,      // memref<?xi32>: its block columns
+  StencilPositions,   // memref<?xi32>: per stencil block, its BCSR position
+  ElementColours,     // memref<?xi32>: the colouring of edge set `set` in
+                      // chunks of `chunk` elements
+  Extern,             // an extern tensor `name`
+  Parameter,          // the function's own parameter number `index`
 };
 
 /// The kinds in the order of their spellings' table.
-inline constexpr BindingKind kBindingKinds[] = {
-    BindingKind::SetSize,          BindingKind::GridDims,
-    BindingKind::Field,            BindingKind::Endpoints,
-    BindingKind::PatternRowPtr,    BindingKind::PatternColIdx,
-    BindingKind::PatternLocations, BindingKind::UnionRowPtr,
-    BindingKind::UnionColIdx,      BindingKind::UnionGather,
-    BindingKind::ProductRowPtr,    BindingKind::ProductColIdx,
-    BindingKind::IncidenceRowPtr,  BindingKind::IncidenceColIdx,
-    BindingKind::IncidencePositions, BindingKind::StencilRowPtr,
-    BindingKind::StencilColIdx,    BindingKind::StencilPositions,
-    BindingKind::ElementColours,   BindingKind::Extern,
-    BindingKind::Parameter};
+inline constexpr BindingKind kBindingKinds[] = {BindingKind::SetSize,
+                                                BindingKind::GridDims,
+                                                BindingKind::Field,
+                                                BindingKind::Endpoints,
+                                                BindingKind::PatternRowPtr,
+                                                BindingKind::PatternColIdx,
+                                                BindingKind::PatternLocations,
+                                                BindingKind::UnionRowPtr,
+                                                BindingKind::UnionColIdx,
+                                                BindingKind::UnionGather,
+                                                BindingKind::ProductRowPtr,
+                                                BindingKind::ProductColIdx,
+                                                BindingKind::IncidenceRowPtr,
+                                                BindingKind::IncidenceColIdx,
+                                                BindingKind::IncidencePositions,
+                                                BindingKind::IncidenceEndpoints,
+                                                BindingKind::StencilRowPtr,
+                                                BindingKind::StencilColIdx,
+                                                BindingKind::StencilPositions,
+                                                BindingKind::ElementColours,
+                                                BindingKind::Extern,
+                                                BindingKind::Parameter};
 
 /// The spelling of `kind` in `simit.bindings`.
 constexpr std::string_view spelling(BindingKind kind) {
@@ -113,6 +126,8 @@ constexpr std::string_view spelling(BindingKind kind) {
     return "incidence_colidx";
   case BindingKind::IncidencePositions:
     return "incidence_positions";
+  case BindingKind::IncidenceEndpoints:
+    return "incidence_endpoints";
   case BindingKind::StencilRowPtr:
     return "stencil_rowptr";
   case BindingKind::StencilColIdx:

@@ -308,7 +308,7 @@ IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
       ub = l.indexConstant(storage.offsets.size());
     } else if (storage.kind == Storage::Kind::Incidence) {
       // Row u (an edge) has a block per endpoint k: column endpoints[u, k].
-      colIdx = l.getEndpoints(storage.edges, storage.cardinality);
+      colIdx = l.incidenceEndpoints(storage);
       ub = l.indexConstant(storage.cardinality);
     } else {
       rowPtr = l.rowPointers(storage);

@@ -50,8 +50,7 @@ private:
                           ? resultStorage
                           : l.storageOf(op.getInputs()[i]);
     if (storage.kind == Storage::Kind::Incidence && storage.transposed)
-      return Storage::incidence(storage.edges, storage.rows,
-                                storage.cardinality);
+      return Storage::incidenceTransposed(storage);
     return storage;
   }
   /// The variables of input `i` (or of the result) in storageOf's order.

@@ -85,6 +85,18 @@ Value FunctionLowering::getEndpoints(StringAttr set, int64_t cardinality) {
       MemRefType::get({ShapedType::kDynamic, cardinality}, b.getI32Type()));
 }
 
+Value FunctionLowering::incidenceEndpoints(const Storage &storage) {
+  if (storage.positions.empty())
+    return getEndpoints(storage.edges, storage.cardinality);
+  // Some positions only: the runtime selects them by their endpoint set.
+  StringAttr endpoints = storage.transposed ? storage.rows : storage.cols;
+  return getBinding(BindingKind::IncidenceEndpoints,
+                    {storage.edges.getValue(), storage.edges.getValue(),
+                     endpoints.getValue()},
+                    MemRefType::get({ShapedType::kDynamic, storage.cardinality},
+                                    b.getI32Type()));
+}
+
 Value FunctionLowering::getPatternArray(BindingKind kind, StringAttr edges,
                                         StringAttr rows, StringAttr cols,
                                         int64_t cardinality) {

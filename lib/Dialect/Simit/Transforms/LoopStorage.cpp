@@ -367,11 +367,13 @@ struct EncodingReader {
                               ArrayAttr::get(e.getContext(), offsets));
     }
     case StorageKind::Incidence: {
-      // The layout holds a block per endpoint position of each edge.
+      // The layout holds a block per endpoint position in `cols` of each
+      // edge.
       SetType set = sets.lookup(e.getSet());
-      if (!set || e.getCols().size() != set.getCardinality())
+      if (!set || e.getCols().empty())
         return std::nullopt;
-      return Storage::incidence(e.getSet(), cols, set.getCardinality());
+      return Storage::incidence(e.getSet(), cols, set.getCardinality(),
+                                e.getCols());
     }
     case StorageKind::Transpose: {
       StorageAttr inner = e.getOperand();
@@ -379,8 +381,7 @@ struct EncodingReader {
         std::optional<Storage> stored = read(inner, cols, rows);
         if (!stored)
           return std::nullopt;
-        return Storage::incidenceTransposed(stored->edges, rows,
-                                            stored->cardinality);
+        return Storage::incidenceTransposed(*stored);
       }
       std::optional<Storage> stored = read(inner, cols, rows);
       return stored ? transposedStorage(*stored) : std::nullopt;

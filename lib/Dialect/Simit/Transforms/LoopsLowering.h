@@ -102,8 +102,13 @@ struct Storage {
   /// Stencil: the point offsets (one DenseI64ArrayAttr of grid-rank
   /// entries each), sorted and unique.
   ArrayAttr offsets;
-  /// Incidence: the edge set's cardinality (blocks per row).
+  /// Incidence: blocks per row, one per endpoint position of the edge set
+  /// in the endpoint set: the cardinality, or the size of `positions`.
   int64_t cardinality = 0;
+  /// Incidence: the endpoint positions in the endpoint set, ascending, when
+  /// they are not all of them (a heterogeneous edge set: `matrix[E,W]` of
+  /// `E(V,W)` holds position 1); empty for all.
+  SmallVector<int64_t, 4> positions;
   /// Incidence: stored over (endpoint set, edges).
   bool transposed = false;
   /// Union: the member edge sets, sorted by name, at least two.
@@ -125,16 +130,25 @@ struct Storage {
   static Storage denseMatrix(StringAttr rows, StringAttr cols) {
     return Storage{Kind::DenseMatrix, nullptr, rows, cols};
   }
+  /// The incidence of an edge set of `cardinality` endpoints over (edges,
+  /// cols), cols at endpoint `positions` (all when empty).
   static Storage incidence(StringAttr edges, StringAttr cols,
-                           int64_t cardinality) {
-    return Storage{Kind::Incidence, edges, edges, cols, nullptr, cardinality};
+                           int64_t cardinality,
+                           ArrayRef<int64_t> positions = {}) {
+    Storage s{Kind::Incidence, edges, edges, cols, nullptr, cardinality};
+    if (!positions.empty() &&
+        static_cast<int64_t>(positions.size()) != cardinality) {
+      s.cardinality = positions.size();
+      s.positions.assign(positions.begin(), positions.end());
+    }
+    return s;
   }
   /// The incidence over (rows, edges): the transpose of incidence(edges,
-  /// rows) in the same layout.
-  static Storage incidenceTransposed(StringAttr edges, StringAttr rows,
-                                     int64_t cardinality) {
-    Storage s{Kind::Incidence, edges, rows, edges, nullptr, cardinality};
-    s.transposed = true;
+  /// rows, ...) in the same layout.
+  static Storage incidenceTransposed(const Storage &incidence) {
+    Storage s = incidence;
+    std::swap(s.rows, s.cols);
+    s.transposed = !incidence.transposed;
     return s;
   }
   /// The union of the patterns of `edgeSets` over (rows, cols): a pattern
@@ -160,8 +174,9 @@ struct Storage {
   bool operator==(const Storage &o) const {
     return kind == o.kind && edges == o.edges && rows == o.rows &&
            cols == o.cols && offsets == o.offsets &&
-           cardinality == o.cardinality && transposed == o.transposed &&
-           members == o.members && chains == o.chains;
+           cardinality == o.cardinality && positions == o.positions &&
+           transposed == o.transposed && members == o.members &&
+           chains == o.chains;
   }
   bool operator!=(const Storage &o) const { return !(*this == o); }
   /// Whether every block of `o` is a block of this storage (an edge pattern
@@ -265,6 +280,9 @@ public:
   Value getField(StringAttr set, StringAttr field, Type fieldType);
   Value getEndpoints(SetType set);
   Value getEndpoints(StringAttr set, int64_t cardinality);
+  /// The columns of an incidence storage, or its rows when transposed: per
+  /// edge its endpoints at the storage's positions (memref<?x c x i32>).
+  Value incidenceEndpoints(const Storage &storage);
   /// A BCSR array of the pattern of (edges; rows, cols); the location table
   /// needs the edge set's cardinality.
   Value getPatternArray(BindingKind kind, StringAttr edges, StringAttr rows,
@@ -460,8 +478,8 @@ private:
   /// H G of the transposed incidence H and the incidence G (stored as `g`)
   /// of one edge set, on the edge set's pattern `result`: a loop over the
   /// edges adding the products of their blocks.
-  LogicalResult lowerIncidenceGram(MatMulOp op, const Storage &g,
-                                   const Storage &result);
+  LogicalResult lowerIncidenceGram(MatMulOp op, const Storage &h,
+                                   const Storage &g, const Storage &result);
   /// The incidence (stored as `incidence`) times a block diagonal matrix,
   /// or the diagonal times the incidence: each block of the incidence
   /// scaled by the diagonal's block at its column or row.

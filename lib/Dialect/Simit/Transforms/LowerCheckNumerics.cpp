@@ -131,9 +131,9 @@ LogicalResult FunctionLowering::scanForNonFinite(Operation *op) {
       // The edge set's endpoint array is the column index, row by row.
       perRow = constantPerRow(storage.cardinality);
       ReassociationIndices both = {0, 1};
-      colidx = memref::CollapseShapeOp::create(
-          b, loc, getEndpoints(storage.edges, storage.cardinality),
-          ArrayRef<ReassociationIndices>{both});
+      colidx =
+          memref::CollapseShapeOp::create(b, loc, incidenceEndpoints(storage),
+                                          ArrayRef<ReassociationIndices>{both});
     } else if (layout == SIMIT_NUMERICS_STENCIL) {
       perRow = constantPerRow(storage.offsets.size());
     } else if (layout == SIMIT_NUMERICS_DENSE) {

@@ -294,6 +294,17 @@ static FailureOr<SmallVector<Value>> resultBlock(FunctionLowering &l,
       return op->emitError("a matrix over (edges, endpoints) or "
                            "(endpoints, edges) can only be written at "
                            "the edge and one of its endpoints");
+    // Of some positions only (a heterogeneous edge set), block j holds the
+    // j-th of them; the endpoint's set type makes k one of them.
+    if (!storage.positions.empty()) {
+      std::optional<int64_t> position = getConstantIntValue(k);
+      const int64_t *at =
+          position ? llvm::find(storage.positions, *position) : nullptr;
+      if (!position || at == storage.positions.end())
+        return op->emitError("cannot tell which endpoint position of '")
+               << storage.edges.getValue() << "' this block is written at";
+      k = l.indexConstant(at - storage.positions.begin());
+    }
     prefix.push_back(arith::AddIOp::create(
         b, loc,
         arith::MulIOp::create(b, loc, ctx.element,

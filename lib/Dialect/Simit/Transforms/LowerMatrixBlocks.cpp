@@ -104,7 +104,7 @@ Value FunctionLowering::findBlock(Location loc, const Storage &storage,
 void FunctionLowering::forEachEdgeBlock(
     Location loc, const Storage &storage, Value edge,
     function_ref<void(Value endpoint, Value position)> body) {
-  Value ends = getEndpoints(storage.edges, storage.cardinality);
+  Value ends = incidenceEndpoints(storage);
   Value first =
       arith::MulIOp::create(b, loc, edge, indexConstant(storage.cardinality));
   for (int64_t k = 0; k < storage.cardinality; ++k) {

@@ -92,35 +92,50 @@ static std::pair<bool, std::array<int64_t, 3>> productShape(MatMulOp op) {
 }
 
 LogicalResult FunctionLowering::lowerIncidenceGram(MatMulOp op,
+                                                   const Storage &h,
                                                    const Storage &g,
                                                    const Storage &result) {
-  // Row e of g holds a block per endpoint position k (block e * c + k), and
-  // h = the transposed incidence holds (endpoint_k(e), e) there too; an
-  // edge adds h_i g_j at (endpoint_i(e), endpoint_j(e)) for every pair of
-  // positions, which is where an assembly over the edge set writes (the
-  // bind-time pattern_locations). Products of blocks are bilinear, so an
-  // edge naming a vertex twice adds each of its blocks there.
+  // Row e of g holds a block per endpoint position k in its columns' set
+  // (block e * m + j for the j-th such k), and h = a transposed incidence
+  // holds (endpoint_k(e), e) the same way for its rows' set; an edge adds
+  // h_i g_j at (endpoint_i(e), endpoint_j(e)) for every pair of positions,
+  // which is where an assembly over the edge set writes (the bind-time
+  // pattern_locations, indexed by the edge set's own positions). Products
+  // of blocks are bilinear, so an edge naming a vertex twice adds each of
+  // its blocks there.
   Location loc = op.getLoc();
   auto type = cast<SystemTensorType>(op.getType());
   auto [blocked, shape] = productShape(op);
-  int64_t c = g.cardinality;
-  Value h = lookup(op.getLhs()), gArray = lookup(op.getRhs());
+  int64_t c = setTypes.lookup(g.edges).getCardinality();
+  auto positionsOf = [&](const Storage &s) {
+    if (!s.positions.empty())
+      return SmallVector<int64_t, 4>(s.positions);
+    return llvm::to_vector<4>(llvm::seq<int64_t>(0, c));
+  };
+  SmallVector<int64_t, 4> hPositions = positionsOf(h),
+                          gPositions = positionsOf(g);
+  Value hArray = lookup(op.getLhs()), gArray = lookup(op.getRhs());
   Value out = allocSystem(loc, type, result, /*zeroFill=*/true);
   Value locations = getPatternArray(BindingKind::PatternLocations,
                                     result.edges, result.rows, result.cols, c);
   // Edges write shared blocks: the loop stays sequential.
   forLoop(loc, getSetSize(g.edges), [&](Value e) {
-    Value first = arith::MulIOp::create(b, loc, e, indexConstant(c));
-    for (int64_t i = 0; i < c; ++i) {
-      Value hAt = arith::AddIOp::create(b, loc, first, indexConstant(i));
-      for (int64_t j = 0; j < c; ++j) {
-        Value gAt = arith::AddIOp::create(b, loc, first, indexConstant(j));
+    Value hFirst =
+        arith::MulIOp::create(b, loc, e, indexConstant(h.cardinality));
+    Value gFirst =
+        g.cardinality == h.cardinality
+            ? hFirst
+            : arith::MulIOp::create(b, loc, e, indexConstant(g.cardinality));
+    for (auto [i, hk] : llvm::enumerate(hPositions)) {
+      Value hAt = arith::AddIOp::create(b, loc, hFirst, indexConstant(i));
+      for (auto [j, gk] : llvm::enumerate(gPositions)) {
+        Value gAt = arith::AddIOp::create(b, loc, gFirst, indexConstant(j));
         Value at = arith::IndexCastOp::create(
             b, loc, b.getIndexType(),
             memref::LoadOp::create(b, loc, locations,
-                                   ValueRange{e, indexConstant(i * c + j)}));
-        emitBlockProduct(*this, loc, blocked, shape, out, at, h, hAt, gArray,
-                         gAt, /*accumulate=*/true);
+                                   ValueRange{e, indexConstant(hk * c + gk)}));
+        emitBlockProduct(*this, loc, blocked, shape, out, at, hArray, hAt,
+                         gArray, gAt, /*accumulate=*/true);
       }
     }
   });
@@ -216,7 +231,7 @@ LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
   Type component = type.getComponentType();
   if (isa<FloatType>(component)) {
     if (isIncidenceGram(a, b2, storage))
-      return lowerIncidenceGram(op, b2, storage);
+      return lowerIncidenceGram(op, a, b2, storage);
     // A diagonal factor keeps an incidence's storage.
     auto isIncidence = [](const Storage &s) {
       return s.kind == Storage::Kind::Incidence;

@@ -118,25 +118,3 @@ func.func @scalar_not_a_variable() -> f64 attributes {simit.export} {
   return %t : f64
 }
 
-// -----
-
-// An incidence matrix needs every endpoint in its column set.
-!Particle = !simit.element<"Particle", {q : f64}>
-!Node = !simit.element<"Node", {x : f64}>
-!Link = !simit.element<"Link", {w : f64}>
-!D = !simit.tensor<["links", "nodes"] x f64>
-!Links = !simit.set<"links", !Link, ["particles", "nodes"]>
-simit.extern @links : !Links
-func.func @weights(%l : !Link, %ends : !simit.tuple<{p : !Particle, n : !Node}>) -> !D {
-  %n = simit.tuple_get %ends[1] : !simit.tuple<{p : !Particle, n : !Node}> -> !Node
-  %w = simit.elem_read %l["w"] : !Link -> f64
-  %D0 = simit.zeros : !D
-  %D1 = simit.insert %w into %D0[%l, %n] : f64 into !D, (!Link, !Node)
-  return %D1 : !D
-}
-func.func @mixed() attributes {simit.export} {
-  %links = simit.get_set @links : !Links
-  // expected-error @below {{a matrix stored as 'incidence("links", cols [1])' is not supported by the loop lowering yet}}
-  %D = simit.assemble @weights() to %links reduce <add> : (!Links) -> !D
-  return
-}

@@ -478,20 +478,30 @@ llvm::Error Function::Impl::prepareArgument(const ArgumentBinding &arg,
     for (int64_t dim : bufferShape)
       bufferNumbers *= dim;
     std::vector<int64_t> hostShape = type.hostShape();
+    std::vector<int64_t> sizes = type.shape;
+    // A vector over a set has a block per element of the set bound now.
+    if (!arg.set.empty()) {
+      llvm::Expected<Set *> set = boundSet(arg.set);
+      if (!set)
+        return set.takeError();
+      hostShape[0] = sizes[0] = (*set)->size();
+    }
+    int64_t hostNumbers = 1;
+    for (int64_t dim : hostShape)
+      hostNumbers *= dim;
     bool flat = type.isVector || llvm::none_of(hostShape, [](int64_t dim) {
                   return dim == ValueType::kDynamic;
                 });
     bool shapeFits =
-        flat ? bufferNumbers == type.numComponents() * type.partsPerComponent()
-             : bufferShape == hostShape;
+        flat ? bufferNumbers == hostNumbers : bufferShape == hostShape;
     if (buffer.type != expected || !shapeFits)
       return error(arg.describe() + " is bound to " +
                    componentTypeName(buffer.type).str() + " of shape " +
                    shapeString(buffer.shape) + ", but the program expects " +
                    componentTypeName(expected).str() + " of shape " +
-                   shapeString(type.hostShape()));
+                   shapeString(hostShape));
     if (type.isMemRef) {
-      pushMemRef(word, buffer.data, type.shape);
+      pushMemRef(word, buffer.data, sizes);
     } else if (type.isVector) {
       size_t align = valueAlignment(type);
       size_t offset = (vectorBytes + align - 1) / align * align;

@@ -247,7 +247,8 @@ std::string ArgumentBinding::describe() const {
     return "element colouring of set '" + set + "' in chunks of " +
            std::to_string(chunk);
   case Kind::Extern:
-    return "extern '" + name + "'";
+    return "extern '" + name + "'" +
+           (set.empty() ? "" : " (a vector over set '" + set + "')");
   case Kind::Parameter:
     return "parameter " + std::to_string(index);
   }
@@ -384,6 +385,10 @@ public:
       return get("set", binding.set);
     }
     case Kind::Extern:
+      // A vector over a set also names the set.
+      if (dict.get("set"))
+        if (llvm::Error err = get("set", binding.set))
+          return err;
       return get("name", binding.name);
     case Kind::Parameter: {
       auto index = dict.getAs<mlir::IntegerAttr>("index");
@@ -455,9 +460,13 @@ static llvm::Error checkKindType(const HostSignature &signature,
     return llvm::Error::success();
   case Kind::Extern:
   case Kind::Parameter:
-    for (int64_t dim : type.shape)
-      if (dim == ValueType::kDynamic)
-        return fail("a statically shaped memref or a scalar");
+    // A vector over a set has one block per element of `set`.
+    for (auto [d, dim] : llvm::enumerate(type.shape))
+      if (dim == ValueType::kDynamic &&
+          (d != 0 || !type.isMemRef || binding.set.empty()))
+        return fail(binding.set.empty()
+                        ? "a statically shaped memref or a scalar"
+                        : "a memref of one dimension per element");
     return llvm::Error::success();
   }
   llvm_unreachable("unknown binding kind");

@@ -1,6 +1,7 @@
 """Functions with parameters and results, called from Python."""
 
 import numpy as np
+import pytest
 
 import simit
 
@@ -22,3 +23,28 @@ def test_parameters_in_and_results_out():
     np.testing.assert_array_equal(program.scale(3.0, v), 3.0 * v)
     assert program.scale.num_parameters == 2
     assert program.both(21, [0.25, 0.5]) == (42, 0.75)
+
+
+EXTERN_VECTOR = """
+element P a : float; end
+extern ps : set{P};
+extern u : vector[ps](vector[2](float));
+export func step()
+  u = 2.0 * u;
+end
+"""
+
+
+def test_an_extern_vector_over_a_set_is_bound_in_place():
+    program = simit.compile(EXTERN_VECTOR)
+    ps = simit.Set("ps", size=3)
+    ps.add_field("a")
+    u = np.arange(6.0).reshape(3, 2)
+    program.bind(ps=ps, u=u)
+    # -1: one block per element of the set bound.
+    assert program.step.externs == {"u": (np.dtype("float64"), (-1, 2))}
+    program.step()
+    np.testing.assert_array_equal(u, 2.0 * np.arange(6.0).reshape(3, 2))
+    program.step.bind(u=np.zeros((2, 2)))
+    with pytest.raises(simit.Error, match=r"expects float64 of shape \[3, 2\]"):
+        program.step()

@@ -416,9 +416,10 @@ LogicalResult FunctionLowering::lowerOp(Operation *op) {
     auto global = module.lookupSymbol<ExternOp>(ref.getGlobalAttr());
     if (!global)
       return op->emitError("no simit.extern named ") << ref.getGlobalAttr();
-    if (isSystem(global.getType()))
-      return op->emitError("extern system tensors are not supported by the "
-                           "loop lowering");
+    if (auto system = dyn_cast<SystemTensorType>(global.getType());
+        system && system.isSystem() && system.getOrder() != 1)
+      return op->emitError("extern system matrices are not supported by the "
+                           "loop lowering: they have no storage");
     if (isa<ComplexType>(getComponentType(global.getType())))
       return op->emitError("complex externs are not supported by the loop "
                            "lowering yet");

@@ -38,6 +38,10 @@ Value FunctionLowering::getBinding(BindingKind kind, ArrayRef<StringRef> names,
   case BindingKind::Extern:
     entries.emplace_back(StringAttr::get(ctx, "name"),
                          StringAttr::get(ctx, names[0]));
+    // A vector over a set names the set its size comes from.
+    if (names.size() > 1)
+      entries.emplace_back(StringAttr::get(ctx, "set"),
+                           StringAttr::get(ctx, names[1]));
     break;
   case BindingKind::Field:
   case BindingKind::StencilRowPtr:
@@ -263,6 +267,12 @@ Value FunctionLowering::emptyIndexArray() {
 
 Value FunctionLowering::getExtern(ExternOp global) {
   Type type = global.getType();
+  // A vector over a set: one block per element of its set, as a field.
+  if (auto system = dyn_cast<SystemTensorType>(type); system && isSystem(type))
+    return getBinding(
+        BindingKind::Extern,
+        {global.getSymName(), cast<StringAttr>(system.getDims()[0]).getValue()},
+        convertType(type));
   Type memref = isa<FloatType, IntegerType>(type)
                     ? MemRefType::get({}, type)
                     : MemRefType::get({numComponents(type)},

@@ -46,28 +46,47 @@ Value FunctionLowering::asRuntimeBlocks(Location loc, Value array,
 }
 
 /// The row pointers and column indices of a BCSR matrix, or of a diagonal
-/// one seen as BCSR (row r holds one block, at column r): the runtime's
-/// sparse factorisations take both.
+/// or dense one seen as BCSR (row r holds the block at column r, or the
+/// blocks at every column: r * n + c is the dense layout's block (r, c)):
+/// the runtime's sparse factorisations take both.
 static std::pair<Value, Value> bcsrIndices(FunctionLowering &l, Location loc,
                                            const Storage &storage) {
   if (storage.isBCSR())
     return {l.rowPointers(storage), l.columnIndices(storage)};
   OpBuilder &b = l.b;
+  bool dense = storage.kind == Storage::Kind::DenseMatrix;
   Value n = l.getSetSize(storage.rows);
   Value one = l.indexConstant(1);
   auto array = MemRefType::get({ShapedType::kDynamic}, b.getI32Type());
   Value rowPtr = memref::AllocOp::create(
       b, loc, array, ValueRange{arith::AddIOp::create(b, loc, n, one)});
-  Value colIdx = memref::AllocOp::create(b, loc, array, ValueRange{n});
+  Value colIdx = memref::AllocOp::create(
+      b, loc, array,
+      ValueRange{dense ? arith::MulIOp::create(b, loc, n, n).getResult() : n});
+  auto i32 = [&](OpBuilder &nb, Value index) -> Value {
+    return arith::IndexCastOp::create(nb, loc, nb.getI32Type(), index);
+  };
   scf::ForOp::create(
       b, loc, l.indexConstant(0), arith::AddIOp::create(b, loc, n, one), one,
-      ValueRange{}, [&](OpBuilder &nb, Location, Value i, ValueRange) {
-        Value i32 = arith::IndexCastOp::create(nb, loc, nb.getI32Type(), i);
-        memref::StoreOp::create(nb, loc, i32, rowPtr, ValueRange{i});
+      ValueRange{}, [&](OpBuilder &nb, Location, Value r, ValueRange) {
+        Value first =
+            dense ? arith::MulIOp::create(nb, loc, r, n).getResult() : r;
+        Value first32 = i32(nb, first);
+        memref::StoreOp::create(nb, loc, first32, rowPtr, ValueRange{r});
         Value inRange =
-            arith::CmpIOp::create(nb, loc, arith::CmpIPredicate::slt, i, n);
+            arith::CmpIOp::create(nb, loc, arith::CmpIPredicate::slt, r, n);
         scf::IfOp::create(nb, loc, inRange, [&](OpBuilder &ib, Location) {
-          memref::StoreOp::create(ib, loc, i32, colIdx, ValueRange{i});
+          if (dense)
+            scf::ForOp::create(
+                ib, loc, l.indexConstant(0), n, one, ValueRange{},
+                [&](OpBuilder &cb, Location, Value c, ValueRange) {
+                  memref::StoreOp::create(
+                      cb, loc, i32(cb, c), colIdx,
+                      ValueRange{arith::AddIOp::create(cb, loc, first, c)});
+                  scf::YieldOp::create(cb, loc);
+                });
+          else
+            memref::StoreOp::create(ib, loc, first32, colIdx, ValueRange{r});
           scf::YieldOp::create(ib, loc);
         });
         scf::YieldOp::create(nb, loc);
@@ -79,7 +98,8 @@ static std::pair<Value, Value> bcsrIndices(FunctionLowering &l, Location loc,
 /// stencil through its bind-time BCSR pattern).
 static bool isSparseSquare(const Storage &s) {
   return (s.isBCSR() || s.kind == Storage::Kind::Diagonal ||
-          s.kind == Storage::Kind::Stencil) &&
+          s.kind == Storage::Kind::Stencil ||
+          s.kind == Storage::Kind::DenseMatrix) &&
          s.rows == s.cols;
 }
 

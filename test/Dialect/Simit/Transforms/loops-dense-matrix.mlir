@@ -88,3 +88,37 @@ func.func @dense_product() attributes {simit.export} {
   simit.field_write %y, %points["y"] : !V, !Points
   return
 }
+
+// A dense matrix is factorised as BCSR with every block: row r's blocks
+// start at r * |points| and hold the columns 0 .. |points| - 1, the dense
+// layout's order, so the values array is passed as it is.
+// CHECK-LABEL: func.func @dense_factorised(
+// CHECK-SAME: %[[NP:[^:]*]]: index
+// CHECK: %[[BLOCKS:.*]] = arith.muli %[[NP]], %[[NP]] : index
+// CHECK: %[[X:.*]] = memref.alloc(%[[BLOCKS]]) : memref<?xf64>
+// CHECK: call @simit_rt_lufree(
+// CHECK: %[[ROWPTR:.*]] = memref.alloc(%{{.*}}) : memref<?xi32>
+// CHECK: %[[ALL:.*]] = arith.muli %[[NP]], %[[NP]] : index
+// CHECK: %[[COLIDX:.*]] = memref.alloc(%[[ALL]]) : memref<?xi32>
+// CHECK: scf.for %[[R:[^ ]*]] =
+// CHECK:   %[[FIRST:.*]] = arith.muli %[[R]], %[[NP]] : index
+// CHECK:   %[[FIRST32:.*]] = arith.index_cast %[[FIRST]] : index to i32
+// CHECK:   memref.store %[[FIRST32]], %[[ROWPTR]][%[[R]]]
+// CHECK:   scf.if
+// CHECK:     scf.for %[[C:[^ ]*]] = %{{.*}} to %[[NP]]
+// CHECK:       %[[AT:.*]] = arith.addi %[[FIRST]], %[[C]] : index
+// CHECK:       %[[C32:.*]] = arith.index_cast %[[C]] : index to i32
+// CHECK:       memref.store %[[C32]], %[[COLIDX]][%[[AT]]]
+// CHECK: %[[VALUES:.*]] = memref.expand_shape %[[X]]
+// CHECK: %[[CAST:.*]] = memref.cast %[[VALUES]]
+// CHECK: call @simit_rt_lu_bcsr(%[[ROWPTR]], %[[COLIDX]], %[[CAST]],
+func.func @dense_factorised() attributes {simit.export} {
+  %springs = simit.get_set @springs : !Springs
+  %A = simit.assemble @link() to %springs reduce <add> : (!Springs) -> !A
+  %h = simit.factorize lu %A : !A
+  %X = simit.factor_solve lu %h, %A : !A -> !A
+  simit.factor_free lu %h
+  %g = simit.factorize lu %X : !A
+  simit.factor_free lu %g
+  return
+}

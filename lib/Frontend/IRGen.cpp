@@ -156,20 +156,37 @@ FunctionType IRGenerator::functionType(const FuncDecl &func) {
   return builder.getFunctionType(inputs, results);
 }
 
-void IRGenerator::genFunction(const FuncDecl &func) {
+void IRGenerator::genFunction(const FuncDecl &func,
+                              ArrayRef<unsigned> inoutResults) {
   currentFunc = &func;
   bindings.clear();
-  auto function = func::FuncOp::create(builder, loc(func.loc), symbolOf(func),
-                                       functionType(func));
-  if (func.isExport)
+  FunctionType type = functionType(func);
+  std::string symbol = symbolOf(func);
+  if (!inoutResults.empty()) {
+    // The `inout` parameters become leading results, their parameters the
+    // values they start from (a map's `simit.result_inits`).
+    SmallVector<mlir::Type> inputs(type.getInputs()), results;
+    for (unsigned i : inoutResults) {
+      inputs[i] = cast<dialect::RefType>(inputs[i]).getValueType();
+      results.push_back(inputs[i]);
+    }
+    llvm::append_range(results, type.getResults());
+    type = builder.getFunctionType(inputs, results);
+    symbol = inoutVariantOf(func);
+  }
+  auto function = func::FuncOp::create(builder, loc(func.loc), symbol, type);
+  if (func.isExport && inoutResults.empty())
     function->setAttr("simit.export", builder.getUnitAttr());
   mlir::Block *entry = function.addEntryBlock();
   OpBuilder::InsertionGuard guard(builder);
   builder.setInsertionPointToStart(entry);
-  for (auto [param, argument] :
-       llvm::zip(func.params, entry->getArguments())) {
+  for (auto [i, param, argument] :
+       llvm::enumerate(func.params, entry->getArguments())) {
     argument.setLoc(loc(param->loc));
-    bindings[param.get()] = {argument, isSlotParam(*param)};
+    if (llvm::is_contained(inoutResults, i))
+      allocSlot(*param);
+    else
+      bindings[param.get()] = {argument, isSlotParam(*param)};
   }
   for (const auto &result : func.results)
     allocSlot(*result);
@@ -179,13 +196,21 @@ void IRGenerator::genFunction(const FuncDecl &func) {
   SMLoc end = func.body ? func.body->loc : func.loc;
   // The result's name travels in the location of its final load, for
   // messages about the value (simit-check-numerics).
-  for (const auto &result : func.results)
+  auto loadResult = [&](const VarDecl &var) {
     results.push_back(dialect::LoadOp::create(
-        builder,
-        NameLoc::get(builder.getStringAttr(result->name), loc(result->loc)),
-        bindings[result.get()].value));
+        builder, NameLoc::get(builder.getStringAttr(var.name), loc(var.loc)),
+        bindings[&var].value));
+  };
+  for (unsigned i : inoutResults)
+    loadResult(*func.params[i]);
+  for (const auto &result : func.results)
+    loadResult(*result);
   func::ReturnOp::create(builder, loc(end), results);
   currentFunc = nullptr;
+}
+
+std::string IRGenerator::inoutVariantOf(const FuncDecl &func) const {
+  return symbolOf(func) + ".inout";
 }
 
 func::FuncOp IRGenerator::declareRuntimeFunction(llvm::StringRef base,

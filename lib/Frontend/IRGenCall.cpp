@@ -221,10 +221,33 @@ SmallVector<Value> IRGenerator::genMap(const MapExpr &e) {
     return {unsupported(e.funcLoc, "a map of '" + callee.name +
                                        "' before its definition")};
   SmallVector<Value> extras;
-  for (auto [param, arg] : llvm::zip(callee.params, e.args)) {
-    if (isSlotParam(*param))
-      return {unsupported(arg->loc, "an inout extra argument of a map")};
+  // `inout` extra arguments: the map runs the variant of the function
+  // that returns them as leading results, each starting from the
+  // argument's value (reads inside see the map's accumulator, writes store
+  // as in a map without reduce), and stores them back to the arguments.
+  SmallVector<unsigned> inoutExtras;
+  for (auto [i, arg] : llvm::enumerate(e.args)) {
+    if (isSlotParam(*callee.params[i]))
+      inoutExtras.push_back(i);
     extras.push_back(genExpr(*arg));
+  }
+  if (!inoutExtras.empty()) {
+    if (e.reduce)
+      return {unsupported(e.args[inoutExtras.front()]->loc,
+                          "an inout extra argument of a map with reduce")};
+    function = module.lookupSymbol<func::FuncOp>(inoutVariantOf(callee));
+    if (!function) {
+      // Generated once, where the generation of the current function can
+      // resume afterwards.
+      auto savedBindings = std::move(bindings);
+      const FuncDecl *savedFunc = currentFunc;
+      OpBuilder::InsertionGuard guard(builder);
+      builder.setInsertionPointToEnd(module.getBody());
+      genFunction(callee, inoutExtras);
+      bindings = std::move(savedBindings);
+      currentFunc = savedFunc;
+      function = module.lookupSymbol<func::FuncOp>(inoutVariantOf(callee));
+    }
   }
   Value set = genSet(e.targetSet, e.targetLoc);
   Value grid = e.grid ? genSet(e.grid, e.throughLoc) : Value();
@@ -234,12 +257,19 @@ SmallVector<Value> IRGenerator::genMap(const MapExpr &e) {
   // nothing to reduce: the map runs it for its effects.
   if (e.reduce && !results.empty())
     return SmallVector<Value>(
-        dialect::AssembleOp::create(builder, l, results, symbolOf(callee),
-                                  extras, set, grid,
-                                  dialect::ReductionKind::Add)
+        dialect::AssembleOp::create(builder, l, results, function.getSymName(),
+                                    extras, set, grid,
+                                    dialect::ReductionKind::Add)
             .getResults());
-  return SmallVector<Value>(
-      dialect::MapOp::create(builder, l, results, symbolOf(callee), extras, set,
-                           grid)
-          .getResults());
+  auto map = dialect::MapOp::create(builder, l, results, function.getSymName(),
+                                    extras, set, grid);
+  if (inoutExtras.empty())
+    return SmallVector<Value>(map.getResults());
+  SmallVector<int64_t> inits(results.size(), -1);
+  for (auto [r, i] : llvm::enumerate(inoutExtras)) {
+    inits[r] = i;
+    writeTarget(*e.args[i], map.getResult(r), e.args[i]->loc);
+  }
+  map.setResultInitsAttr(builder.getDenseI64ArrayAttr(inits));
+  return SmallVector<Value>(map.getResults().drop_front(inoutExtras.size()));
 }

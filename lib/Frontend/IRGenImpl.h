@@ -70,7 +70,15 @@ public:
 private:
   //===--- IRGen.cpp ------------------------------------------------------===//
   void genExtern(const VarDecl &global);
-  void genFunction(const FuncDecl &func);
+  /// Generates `func`; with `inoutResults` (positions of `inout` tensor
+  /// parameters), its variant for a map passing them as extra arguments:
+  /// each such parameter is a leading result, which the map starts from
+  /// the argument's value.
+  void genFunction(const FuncDecl &func,
+                   llvm::ArrayRef<unsigned> inoutResults = {});
+  /// The symbol of the variant of `func` for maps with `inout` extra
+  /// arguments.
+  std::string inoutVariantOf(const FuncDecl &func) const;
   /// The symbol of a function (its instance name for generic instances).
   std::string symbolOf(const FuncDecl &func) const;
   mlir::FunctionType functionType(const FuncDecl &func);

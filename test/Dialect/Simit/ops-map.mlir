@@ -134,3 +134,18 @@ func.func @control_flow(%c : i1) -> !F {
   %f = simit.assemble @looped(%c) to %springs reduce <add> : (i1, !simit.set<"springs", !Spring, ["points", "points"]>) -> !F
   return %f : !F
 }
+
+// An `inout` extra argument: the result starts from extra argument 1.
+func.func @clamp(%lo : f64, %w : !simit.tensor<["points"] x f64>, %p : !Point)
+    -> !simit.tensor<["points"] x f64> {
+  %w1 = simit.insert %lo into %w[%p] : f64 into !simit.tensor<["points"] x f64>, (!Point)
+  return %w1 : !simit.tensor<["points"] x f64>
+}
+
+// CHECK-LABEL: func.func @result_inits
+func.func @result_inits(%lo : f64, %w : !simit.tensor<["points"] x f64>) -> !simit.tensor<["points"] x f64> {
+  %points = simit.get_set @points : !simit.set<"points", !Point>
+  // CHECK: simit.map @clamp(%{{.*}}, %{{.*}}) to %{{.*}} {result_inits = array<i64: 1>} : (f64, !simit.tensor<["points"] x f64>, !simit.set<"points", !Point>) -> !simit.tensor<["points"] x f64>
+  %w2 = simit.map @clamp(%lo, %w) to %points {result_inits = array<i64: 1>} : (f64, !simit.tensor<["points"] x f64>, !simit.set<"points", !Point>) -> !simit.tensor<["points"] x f64>
+  return %w2 : !simit.tensor<["points"] x f64>
+}

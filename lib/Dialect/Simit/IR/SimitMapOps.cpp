@@ -282,6 +282,26 @@ LogicalResult AssembleOp::verifySymbolUses(SymbolTableCollection &symbolTable) {
                        getSet().getType(), getGrid(), getResultTypes());
 }
 
+LogicalResult MapOp::verify() {
+  std::optional<ArrayRef<int64_t>> inits = getResultInits();
+  if (!inits)
+    return success();
+  if (inits->size() != getResults().size())
+    return emitOpError() << "has " << inits->size() << " result_inits for "
+                         << getResults().size() << " results";
+  for (auto [i, extra] : llvm::enumerate(*inits)) {
+    if (extra == -1)
+      continue;
+    if (extra < 0 || extra >= static_cast<int64_t>(getExtras().size()))
+      return emitOpError() << "result_inits[" << i << "] = " << extra
+                           << " names no extra argument";
+    if (getExtras()[extra].getType() != getResult(i).getType())
+      return emitOpError() << "result #" << i << " starts from extra argument #"
+                           << extra << " of another type";
+  }
+  return success();
+}
+
 LogicalResult AssembleOp::verify() {
   if (getResults().empty())
     return emitOpError() << "assembles at least one result; use simit.map to "

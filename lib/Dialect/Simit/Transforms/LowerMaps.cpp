@@ -598,16 +598,29 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
   if (failed(collectSinks(callee, ctx.sinks, ctx.scalarSlots)))
     return failure();
 
-  // Outputs, zero-filled, stored as the sparsity analysis says.
+  // Outputs, zero-filled or copied from the extra argument they start
+  // from (an `inout` extra argument), stored as the sparsity analysis says.
   SmallVector<std::pair<Value, Value>> scalarResults;
-  for (Value result : op->getResults()) {
+  std::optional<ArrayRef<int64_t>> inits =
+      mapOp ? mapOp.getResultInits() : std::nullopt;
+  auto initOf = [&](unsigned r) {
+    return inits && (*inits)[r] >= 0 ? lookup(extras[(*inits)[r]]) : Value();
+  };
+  for (auto [r, result] : llvm::enumerate(op->getResults())) {
+    Value init = initOf(r);
     if (isSlotResult(result.getType())) {
       // Each write combines into (or, for a map, stores to) one slot that
       // starts at zero, laid out as a variable of the result's type.
       auto slotType = cast<MemRefType>(
           convertType(RefType::get(result.getContext(), result.getType())));
       Value slot = allocaSlot(loc, slotType);
-      fill(loc, slot, zeroOf(slotType.getElementType()));
+      if (!init)
+        fill(loc, slot, zeroOf(slotType.getElementType()));
+      else if (slotType.getRank() == 0)
+        memref::StoreOp::create(b, loc, init, slot, ValueRange{});
+      else
+        vector::StoreOp::create(b, loc, init, slot,
+                                ValueRange{indexConstant(0)});
       ctx.outputs.push_back(slot);
       ctx.outputStorages.push_back(Storage::dense());
       scalarResults.push_back({result, slot});
@@ -625,7 +638,13 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
         (type.getOrder() != 1 || !isa<StringAttr>(type.getDims()[0])))
       return op->emitError("map result ")
              << type << " is not supported by the loop lowering";
-    Value output = allocSystem(loc, type, storage);
+    if (init && storage != storageOf(extras[(*inits)[r]]))
+      return op->emitError("an inout extra argument stored as ")
+             << storageOf(extras[(*inits)[r]]).describe()
+             << " cannot be written by a map as " << storage.describe();
+    Value output = allocSystem(loc, type, storage, /*zeroFill=*/!init);
+    if (init)
+      memref::CopyOp::create(b, loc, init, output);
     ctx.outputs.push_back(output);
     ctx.outputStorages.push_back(storage);
     storages[result] = storage;

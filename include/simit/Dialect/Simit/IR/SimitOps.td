@@ -420,10 +420,16 @@ def Simit_MapOp : Simit_MapLikeOp<"map", [MemoryEffects<[MemRead, MemWrite]>]> {
 
     Results start at zero and every write stores: the last writer in set
     order wins. Without results this is `apply`, run for the function's
-    effects on fields.
+    effects on fields. With `result_inits`, result `i` starts as a copy of
+    extra argument `result_inits[i]` of its type instead (-1: zero): the
+    frontend's form of an `inout` extra argument, which `@f` writes as a
+    result.
 
     ```mlir
     simit.map @move(%dt) to %points : (f64, !simit.set<"points", !Point>) -> ()
+    %w2 = simit.map @clamp(%w) to %points {result_inits = array<i64: 0>}
+        : (!simit.tensor<["points"] x f64>, !simit.set<"points", !Point>)
+          -> !simit.tensor<["points"] x f64>
     %w = simit.map @weight() to %springs
         : (!simit.set<"springs", !Spring, ["points", "points"]>)
           -> !simit.tensor<["springs"] x f64>
@@ -433,12 +439,21 @@ def Simit_MapOp : Simit_MapLikeOp<"map", [MemoryEffects<[MemRead, MemWrite]>]> {
     ```
   }];
   let arguments = (ins FlatSymbolRefAttr:$callee, Variadic<AnyType>:$extras,
-                       Simit_SetType:$set, Optional<Simit_SetType>:$grid);
+                       Simit_SetType:$set, Optional<Simit_SetType>:$grid,
+                       OptionalAttr<DenseI64ArrayAttr>:$result_inits);
   let results = (outs Variadic<Simit_TensorOrScalar>:$results);
   let assemblyFormat = [{
     $callee `(` $extras `)` `to` $set (`through` $grid^)? attr-dict `:`
     functional-type(operands, results)
   }];
+  let builders = [
+    OpBuilder<(ins "TypeRange":$results, "StringRef":$callee,
+                   "ValueRange":$extras, "Value":$set, "Value":$grid), [{
+      build($_builder, $_state, results, callee, extras, set, grid,
+            DenseI64ArrayAttr());
+    }]>
+  ];
+  let hasVerifier = 1;
 }
 
 def Simit_AssembleOp : Simit_MapLikeOp<"assemble", [MemoryEffects<[MemRead, MemWrite]>]> {

@@ -107,19 +107,21 @@ TEST(IRGen, UnsupportedConstructIsAPositionedError) {
   m : float;
 end
 extern verts : set{V};
-func add(inout s : float, v : V)
+func add(inout s : float, v : V) -> (r : float)
   s = s + v.m;
+  r = v.m;
 end
 export func main()
   var t = 0.0;
-  map add(t) to verts;
+  r = map add(t) to verts reduce +;
 end
 )",
               context);
   ASSERT_TRUE(g.checked) << g.errors();
   EXPECT_FALSE(g.module);
-  EXPECT_NE(g.errors().find("test.sim:10:11: error: not supported by the IR "
-                            "generator: an inout extra argument of a map"),
+  EXPECT_NE(g.errors().find("test.sim:11:15: error: not supported by the IR "
+                            "generator: an inout extra argument of a map "
+                            "with reduce"),
             std::string::npos)
       << g.errors();
 }

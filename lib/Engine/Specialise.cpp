@@ -40,7 +40,14 @@ static mlir::TypedAttr constantOf(mlir::Type type,
 
 void simit::specialiseModule(mlir::ModuleOp module,
                              const ProgramSpecialisation &specialisation) {
-  if (!specialisation.entryFunctions.empty())
+  // Functions the scene does not call are not compiled, unless it names one
+  // the program does not export: its error then lists them all.
+  auto exports = [&](llvm::StringRef name) {
+    auto function = module.lookupSymbol<mlir::func::FuncOp>(name);
+    return function && mlir::simit::isExportedFunction(function);
+  };
+  if (!specialisation.entryFunctions.empty() &&
+      llvm::all_of(specialisation.entryFunctions, exports))
     for (auto function : module.getOps<mlir::func::FuncOp>())
       if (mlir::simit::isExportedFunction(function) &&
           !llvm::is_contained(specialisation.entryFunctions,

@@ -51,6 +51,10 @@ struct GpuPipeline : public simit::impl::SimitGpuPipelineBase<GpuPipeline> {
     // Complex arithmetic on the parts, before kernels are outlined: the
     // NVVM conversions handle complex.create/re/im but not the arithmetic.
     pm.addPass(createConvertComplexToStandardPass());
+    // Elements that read what others write run in set order, on one thread.
+    simit::SimitParallelLoopsOptions setOrder;
+    setOrder.setOrderOnly = true;
+    pm.addPass(simit::createSimitParallelLoops(setOrder));
     pm.addPass(simit::createSimitGpuScatterAtomics());
     pm.addPass(simit::createSimitParallelLoopsToGpu({blockSize, fpContract}));
     // Host code's assertions end the run; those in launches stay for the

@@ -102,6 +102,7 @@ struct IndexOwner {
 
 /// One read or write of a memref defined outside the loop.
 struct Access {
+  Operation *op;
   Value memref;
   SmallVector<Value> indices;
   /// Trailing dimensions a vector load or store spans.
@@ -139,9 +140,9 @@ private:
   std::optional<SmallVector<Place>> ownedPlaces(const Access &access) const;
   std::optional<Place> endpointPlace(const Access &access) const;
   /// Whether no iteration can read what another writes through the
-  /// element's endpoints (each memref of `byMemref` that is written only
-  /// at its endpoint place).
-  bool independentThroughEndpoints(ArrayRef<const Access *> uses) const;
+  /// element's endpoints (the accesses of a memref that is written only at
+  /// its endpoint place).
+  static bool onlyAccumulates(ArrayRef<const Access *> uses);
 
   // Op handles: their accessors are not const.
   mutable func::FuncOp function;
@@ -151,12 +152,13 @@ private:
 };
 
 LogicalResult LoopClassifier::collectAccesses() {
-  auto record = [&](Value memref, ValueRange indices, unsigned vectorRank,
-                    bool writes) {
-    if (!isPrivate(memref))
-      accesses.push_back({memref, llvm::to_vector(indices), vectorRank, writes});
-  };
   WalkResult result = loop.getRegion().walk([&](Operation *op) {
+    auto record = [&](Value memref, ValueRange indices, unsigned vectorRank,
+                      bool writes) {
+      if (!isPrivate(memref))
+        accesses.push_back(
+            {op, memref, llvm::to_vector(indices), vectorRank, writes});
+    };
     if (auto load = dyn_cast<memref::LoadOp>(op)) {
       record(load.getMemRef(), load.getIndices(), 0, false);
     } else if (auto store = dyn_cast<memref::StoreOp>(op)) {
@@ -286,32 +288,62 @@ LoopClassifier::endpointPlace(const Access &access) const {
   return std::nullopt;
 }
 
-/// The column k of `table[iv, k]` (an endpoint or location table) that
-/// indexes `access` at `place`.
-int64_t tableColumn(const Access &access, const Place &place) {
-  memref::LoadOp load = castLoad(access.indices[place.position]);
-  APInt column;
-  bool constant = matchPattern(load.getIndices()[1], m_ConstantInt(&column));
-  assert(constant && "ownerOf accepts constant columns only");
-  (void)constant;
-  return column.getSExtValue();
+/// The memref and indices `op` (a memref or vector load or store)
+/// accesses.
+static std::pair<Value, ValueRange> locationOf(Operation *op) {
+  if (auto load = dyn_cast<memref::LoadOp>(op))
+    return {load.getMemRef(), load.getIndices()};
+  if (auto store = dyn_cast<memref::StoreOp>(op))
+    return {store.getMemRef(), store.getIndices()};
+  if (auto load = dyn_cast<vector::LoadOp>(op))
+    return {load.getBase(), load.getIndices()};
+  auto store = cast<vector::StoreOp>(op);
+  return {store.getBase(), store.getIndices()};
+}
+
+/// The load whose value `store` adds to (`store (load + x)`, `load - x`)
+/// at the location it reads, if any.
+static Operation *accumulatedLoad(Operation *store) {
+  Value stored = isa<memref::StoreOp>(store)
+                     ? cast<memref::StoreOp>(store).getValueToStore()
+                     : cast<vector::StoreOp>(store).getValueToStore();
+  Operation *combine = stored.getDefiningOp();
+  if (!combine || !combine->hasOneUse() ||
+      !isa<arith::AddFOp, arith::SubFOp, arith::AddIOp, arith::SubIOp>(combine))
+    return nullptr;
+  bool subtracts = isa<arith::SubFOp, arith::SubIOp>(combine);
+  for (unsigned operand = 0; operand < (subtracts ? 1 : 2); ++operand) {
+    Operation *load = combine->getOperand(operand).getDefiningOp();
+    if (load && isa<memref::LoadOp, vector::LoadOp>(load) &&
+        load->hasOneUse() &&
+        locationOf(load).first == locationOf(store).first &&
+        llvm::equal(locationOf(load).second, locationOf(store).second))
+      return load;
+  }
+  return nullptr;
 }
 
 /// Elements run colour by colour, not in set order, so an element must not
-/// see another's writes: the endpoint columns it reads are the ones it
-/// writes (an accumulation, whose only writer of a location is then itself
-/// or, with `reduce +`, a sum in a fixed order). An element reading an
-/// endpoint it does not write (`p(1).x = p(0).x`), or overwriting one it
-/// does not read (a map without `reduce`, where the last writer in set
-/// order wins), runs in set order.
-bool LoopClassifier::independentThroughEndpoints(
-    ArrayRef<const Access *> uses) const {
-  std::set<int64_t> read, written;
+/// see another's writes: every write adds to the value read at its own
+/// location (an accumulation, whose other writers' contributions then
+/// commute, or with `reduce +` are summed in a fixed order), and every read
+/// is such an accumulation's, used for nothing else. An element reading an
+/// endpoint other than to add to it (`p(1).x = p(0).x`, `p(1).h = p(1).h +
+/// p(0).h`, `w(p(0)) = k * w(p(0))`), or overwriting one (a map without
+/// `reduce`, where the last writer in set order wins), runs in set order.
+bool LoopClassifier::onlyAccumulates(ArrayRef<const Access *> uses) {
+  SmallPtrSet<Operation *, 8> accumulationLoads;
   for (const Access *access : uses) {
-    std::optional<Place> place = endpointPlace(*access);
-    (access->writes ? written : read).insert(tableColumn(*access, *place));
+    if (!access->writes)
+      continue;
+    Operation *load = accumulatedLoad(access->op);
+    if (!load)
+      return false;
+    accumulationLoads.insert(load);
   }
-  return read == written;
+  return llvm::all_of(uses, [&](const Access *access) {
+    return access->writes || accumulationLoads.contains(access->op);
+  });
 }
 
 /// A loop over all elements of a set, in order: `for e = 0 to |set|`.
@@ -351,7 +383,7 @@ LoopKind LoopClassifier::classify() {
           return !(endpointPlace(*a) == shared);
         }))
       return LoopKind::Serial;
-    if (!independentThroughEndpoints(uses))
+    if (!onlyAccumulates(uses))
       return LoopKind::Serial;
     scatters = true;
   }
@@ -444,6 +476,7 @@ public:
 private:
   void parallelize(func::FuncOp function, scf::ParallelOp loop);
   void chunkReduction(scf::ParallelOp loop);
+  static void runInSetOrder(scf::ParallelOp loop);
   void colourScatter(func::FuncOp function, scf::ParallelOp loop,
                      StringRef set);
   Value elementColours(func::FuncOp function, StringRef set);
@@ -470,6 +503,13 @@ bool isSmallConstantLoop(scf::ParallelOp loop) {
 }
 
 void ParallelLoops::parallelize(func::FuncOp function, scf::ParallelOp loop) {
+  if (setOrderOnly) {
+    if (loop->hasAttr("simit.scatter") && loop.getNumResults() == 0 &&
+        loop.getNumLoops() == 1 &&
+        LoopClassifier(function, loop).classify() == LoopKind::Serial)
+      runInSetOrder(loop);
+    return;
+  }
   if (isSmallConstantLoop(loop))
     return;
   LoopClassifier classifier(function, loop);
@@ -483,6 +523,25 @@ void ParallelLoops::parallelize(func::FuncOp function, scf::ParallelOp loop) {
   case LoopKind::Scatter:
     return colourScatter(function, loop, classifier.elementSet());
   }
+}
+
+void ParallelLoops::runInSetOrder(scf::ParallelOp loop) {
+  // One iteration, whose body is the loop as an scf.for.
+  Location loc = loop.getLoc();
+  OpBuilder b(loop);
+  Value zero = arith::ConstantIndexOp::create(b, loc, 0);
+  Value one = arith::ConstantIndexOp::create(b, loc, 1);
+  auto single = scf::ParallelOp::create(b, loc, ValueRange{zero},
+                                        ValueRange{one}, ValueRange{one});
+  b.setInsertionPoint(single.getBody()->getTerminator());
+  auto inOrder = scf::ForOp::create(b, loc, loop.getLowerBound()[0],
+                                    loop.getUpperBound()[0], loop.getStep()[0]);
+  Block *body = loop.getBody();
+  body->getTerminator()->erase();
+  inOrder.getBody()->getOperations().splice(inOrder.getBody()->begin(),
+                                            body->getOperations());
+  loop.getInductionVars()[0].replaceAllUsesWith(inOrder.getInductionVar());
+  loop.erase();
 }
 
 void ParallelLoops::chunkReduction(scf::ParallelOp loop) {

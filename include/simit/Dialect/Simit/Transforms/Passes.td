@@ -239,12 +239,21 @@ def SimitParallelLoops : Pass<"simit-parallel-loops", "::mlir::ModuleOp"> {
     with small constant trip counts, or with other combiners. Nested loops
     run inside their outermost loop's iteration. Distinct arguments are
     assumed not to overlap (the host binds distinct arrays).
+
+    With `set-order-only` (for targets that run every `scf.parallel`
+    concurrently, the GPU) the pass marks nothing and changes only the
+    element loops (`simit.scatter`, no results) that must run in set order
+    because their elements read what others write: each becomes a
+    one-iteration `scf.parallel` around an `scf.for` over the set.
   }];
   let options = [
     Option<"reductionChunk", "reduction-chunk", "int64_t", /*default=*/"1024",
            "Iterations reduced in order into one partial result">,
     Option<"scatterChunk", "scatter-chunk", "int64_t", /*default=*/"8",
            "Consecutive elements per coloured chunk of a scatter loop">,
+    Option<"setOrderOnly", "set-order-only", "bool", /*default=*/"false",
+           "Only make the element loops that must run in set order "
+           "sequential inside one-iteration parallel loops">,
   ];
   let dependentDialects = ["::mlir::arith::ArithDialect",
                            "::mlir::memref::MemRefDialect",

@@ -270,6 +270,13 @@ LogicalResult FunctionLowering::lowerSystemFactorisation(Operation *op) {
            (order == 1 && block.size() == 1);
   };
   if (factorize &&
+      !cast<SystemTensorType>(matrix.getType()).getComponentType().isF64())
+    return op->emitError("'")
+           << name
+           << "' on a system matrix needs f64 components (the runtime's "
+              "factorisations are in double precision); this one has "
+           << cast<SystemTensorType>(matrix.getType()).getComponentType();
+  if (factorize &&
       !(f64Blocks(matrix.getType(), 2) && isSparseSquare(storage)))
     return op->emitError("'")
            << name

@@ -363,9 +363,11 @@ public:
   // Grid stencils (LowerGridStencils.cpp).
   /// grid_point and grid_edge.
   LogicalResult lowerGridAccess(Operation *op);
-  /// The block of a stencil matrix that the write `insert` of the element
-  /// function goes to (the first offset naming the same point).
-  FailureOr<Value> stencilWriteBlock(InsertOp insert, const Storage &storage);
+  /// The block of a stencil matrix that a write or read `access` of the
+  /// element function at `indices` goes to (the first offset naming the
+  /// same point).
+  FailureOr<Value> stencilBlockAt(Operation *access, ValueRange indices,
+                                  const Storage &storage);
   /// Row `row`'s block for offset number `k` of a stencil matrix and the
   /// column it stands for.
   Value stencilBlock(const Storage &storage, Value row, Value k);

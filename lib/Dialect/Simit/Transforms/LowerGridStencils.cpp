@@ -131,24 +131,30 @@ static unsigned rankOf(const Storage &storage) {
   return cast<DenseI64ArrayAttr>(storage.offsets[0]).size();
 }
 
-FailureOr<Value> FunctionLowering::stencilWriteBlock(InsertOp insert,
-                                                     const Storage &storage) {
-  Location loc = insert.getLoc();
+FailureOr<Value> FunctionLowering::stencilBlockAt(Operation *access,
+                                                  ValueRange indices,
+                                                  const Storage &storage) {
+  Location loc = access->getLoc();
   Value point = element->element;
   auto isPoint = [&](Value v) { return lookup(v) == point; };
   unsigned rank = rankOf(storage);
   std::optional<SmallVector<int64_t>> offset;
-  if (insert.getIndices().size() == 2 && isPoint(insert.getIndices()[0]))
-    offset = pointOffset(insert.getIndices()[1], rank, isPoint);
+  if (indices.size() == 2 && isPoint(indices[0]))
+    offset = pointOffset(indices[1], rank, isPoint);
   if (!offset)
-    return insert.emitError("a matrix assembled through a grid can only be "
-                            "written at (p, p) and (p, P[offset]) of the "
-                            "mapped point p");
+    return access->emitError("a matrix assembled through a grid can only be "
+                             "written and read at (p, p) and (p, P[offset]) "
+                             "of the mapped point p");
   auto offsets = llvm::map_to_vector(storage.offsets, [](Attribute a) {
     return cast<DenseI64ArrayAttr>(a).asArrayRef();
   });
+  // The stencil holds the offsets the function writes (simit-assign-storage).
   unsigned k = llvm::find(offsets, ArrayRef<int64_t>(*offset)) -
                offsets.begin();
+  if (k == offsets.size())
+    return access->emitError("this reads a block of a matrix assembled "
+                             "through a grid at an offset the function "
+                             "never writes");
   // The first offset that names the same point: offsets o and o' do when
   // o - o' is a multiple of the extent along every axis.
   Value dims = getGridDims(storage.edges, rank);

@@ -275,11 +275,8 @@ static FailureOr<SmallVector<Value>> resultBlock(FunctionLowering &l,
     break;
   }
   case Storage::Kind::Stencil: {
-    if (!write)
-      return op->emitError("an element function cannot read a result "
-                           "assembled through a grid");
-    // Each point writes its own row: no location is shared.
-    FailureOr<Value> block = l.stencilWriteBlock(write, storage);
+    // Each point writes and reads its own row: no location is shared.
+    FailureOr<Value> block = l.stencilBlockAt(op, indices, storage);
     if (failed(block))
       return failure();
     prefix.push_back(*block);

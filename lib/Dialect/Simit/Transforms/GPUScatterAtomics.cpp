@@ -9,6 +9,8 @@
 //
 //===----------------------------------------------------------------------===//
 
+#include "Accumulation.h"
+
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
 namespace mlir {
@@ -19,46 +21,16 @@ namespace simit {
 } // namespace mlir
 
 using namespace mlir;
+using mlir::simit::Accumulation;
+using mlir::simit::matchAccumulation;
 
 namespace {
-/// `store` writes `load`'s location: same memref, same index values.
-bool sameLocation(memref::StoreOp store, memref::LoadOp load) {
-  return load.getMemRef() == store.getMemRef() &&
-         llvm::equal(load.getIndices(), store.getIndices());
-}
-
 /// The loop's iterations write disjoint locations through `store` when every
 /// induction variable is one of its indices.
 bool ownedByIteration(memref::StoreOp store, scf::ParallelOp loop) {
   return llvm::all_of(loop.getInductionVars(), [&](Value iv) {
     return llvm::is_contained(store.getIndices(), iv);
   });
-}
-
-/// An accumulation `store (load + x)` (or `load - x`) of `store`'s location.
-struct Accumulation {
-  Operation *combine;     // the addf/subf/addi/subi
-  memref::LoadOp load;    // the read of the old value
-  Value contribution;     // x
-  bool negate;            // the combine subtracts x
-};
-
-std::optional<Accumulation> matchAccumulation(memref::StoreOp store) {
-  Operation *combine = store.getValueToStore().getDefiningOp();
-  if (!combine || !isa<arith::AddFOp, arith::SubFOp, arith::AddIOp,
-                       arith::SubIOp>(combine))
-    return std::nullopt;
-  bool subtracts = isa<arith::SubFOp, arith::SubIOp>(combine);
-  for (unsigned operand = 0; operand < 2; ++operand) {
-    // `x - old` is not an accumulation of x.
-    if (subtracts && operand == 1)
-      break;
-    auto load = combine->getOperand(operand).getDefiningOp<memref::LoadOp>();
-    if (load && sameLocation(store, load))
-      return Accumulation{combine, load, combine->getOperand(1 - operand),
-                          subtracts};
-  }
-  return std::nullopt;
 }
 
 void makeAtomic(memref::StoreOp store, const Accumulation &acc) {
@@ -98,7 +70,8 @@ struct GpuScatterAtomics
           return;
         if (ownedByIteration(store, loop))
           return;
-        if (std::optional<Accumulation> acc = matchAccumulation(store))
+        if (std::optional<Accumulation> acc =
+                matchAccumulation(store.getOperation()))
           racy.emplace_back(store, *acc);
       });
     });

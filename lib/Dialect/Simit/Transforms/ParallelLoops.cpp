@@ -25,6 +25,7 @@
 //
 //===----------------------------------------------------------------------===//
 
+#include "Accumulation.h"
 #include "RuntimeFunction.h"
 
 #include "simit/ABI/BindingKind.h"
@@ -288,39 +289,13 @@ LoopClassifier::endpointPlace(const Access &access) const {
   return std::nullopt;
 }
 
-/// The memref and indices `op` (a memref or vector load or store)
-/// accesses.
-static std::pair<Value, ValueRange> locationOf(Operation *op) {
-  if (auto load = dyn_cast<memref::LoadOp>(op))
-    return {load.getMemRef(), load.getIndices()};
-  if (auto store = dyn_cast<memref::StoreOp>(op))
-    return {store.getMemRef(), store.getIndices()};
-  if (auto load = dyn_cast<vector::LoadOp>(op))
-    return {load.getBase(), load.getIndices()};
-  auto store = cast<vector::StoreOp>(op);
-  return {store.getBase(), store.getIndices()};
-}
-
-/// The load whose value `store` adds to (`store (load + x)`, `load - x`)
-/// at the location it reads, if any.
+/// The load whose value `store` adds to at the location it reads, when
+/// that load and the sum are used for nothing else.
 static Operation *accumulatedLoad(Operation *store) {
-  Value stored = isa<memref::StoreOp>(store)
-                     ? cast<memref::StoreOp>(store).getValueToStore()
-                     : cast<vector::StoreOp>(store).getValueToStore();
-  Operation *combine = stored.getDefiningOp();
-  if (!combine || !combine->hasOneUse() ||
-      !isa<arith::AddFOp, arith::SubFOp, arith::AddIOp, arith::SubIOp>(combine))
+  std::optional<Accumulation> acc = matchAccumulation(store);
+  if (!acc || !acc->combine->hasOneUse() || !acc->load->hasOneUse())
     return nullptr;
-  bool subtracts = isa<arith::SubFOp, arith::SubIOp>(combine);
-  for (unsigned operand = 0; operand < (subtracts ? 1 : 2); ++operand) {
-    Operation *load = combine->getOperand(operand).getDefiningOp();
-    if (load && isa<memref::LoadOp, vector::LoadOp>(load) &&
-        load->hasOneUse() &&
-        locationOf(load).first == locationOf(store).first &&
-        llvm::equal(locationOf(load).second, locationOf(store).second))
-      return load;
-  }
-  return nullptr;
+  return acc->load;
 }
 
 /// Elements run colour by colour, not in set order, so an element must not

@@ -25,15 +25,16 @@ int dscaled(double a, int n, const double *v, int wn, double *w, double *sum) {
   return 0;
 }
 
-// y = A x on BCSR blocks of blockRows x blockCols, rows and cols in blocks.
+// y = A x on BCSR blocks of blockRows x blockCols; rows, cols and vector
+// lengths count components, as the original runtime passes them.
 int dgemv(int rows, int cols, const int *rowptr, const int *colidx,
           int blockRows, int blockCols, const double *blocks, int xn,
           const double *x, int yn, double *y) {
-  if (xn != cols || yn != rows)
+  if (xn != cols || yn != rows || rows % blockRows || cols % blockCols)
     return 2;
-  for (int i = 0; i < rows * blockRows; ++i)
+  for (int i = 0; i < rows; ++i)
     y[i] = 0;
-  for (int r = 0; r < rows; ++r)
+  for (int r = 0; r < rows / blockRows; ++r)
     for (int k = rowptr[r]; k < rowptr[r + 1]; ++k)
       for (int i = 0; i < blockRows; ++i)
         for (int j = 0; j < blockCols; ++j)

@@ -83,26 +83,15 @@ void mlir::simit::buildSimitCpuPipeline(
   pm.addPass(createSCFToControlFlowPass());
   pm.addPass(memref::createExpandStridedMetadataPass());
   pm.addPass(createLowerAffinePass());
-  pm.addPass(createConvertVectorToLLVMPass());
-  // Unrolled vector.shape_casts (complex tensors at the host boundary) start
-  // from ub.poison.
-  pm.addPass(createUBToLLVMConversionPass());
   pm.addPass(createConvertMathToLLVMPass());
   // What LLVM has no intrinsic for (cbrt) becomes a call into libm.
   pm.addPass(createConvertMathToLibmPass());
-  pm.addPass(createArithToLLVMConversionPass());
-  pm.addPass(createConvertIndexToLLVMPass());
-  pm.addPass(createConvertComplexToLLVMPass());
-  // Written while function arguments are still memrefs: the conversions
-  // of OpenMP and func below make them descriptors.
+  // Written while function arguments are still memrefs: the conversion
+  // below makes them descriptors.
   pm.addPass(createSimitRecordHostABI());
-  FinalizeMemRefToLLVMConversionPassOptions memrefOptions;
-  memrefOptions.useGenericFunctions = options.runtimeAllocator;
-  pm.addPass(createFinalizeMemRefToLLVMConversionPass(memrefOptions));
-  if (options.openmp)
-    pm.addPass(createConvertOpenMPToLLVMPass());
-  pm.addPass(createConvertFuncToLLVMPass());
-  pm.addPass(createConvertControlFlowToLLVMPass());
+  SimitConvertToLLVMOptions llvmOptions;
+  llvmOptions.useGenericFunctions = options.runtimeAllocator;
+  pm.addPass(createSimitConvertToLLVM(llvmOptions));
   pm.addPass(createReconcileUnrealizedCastsPass());
 }
 

@@ -8,10 +8,12 @@
 // the results:
 //   scalar             by value; a result by pointer
 //   local tensor       (int n, T *components), n components, row major
-//   vector over a set  (int n, T *blocks), n elements, blocks row major
+//   vector over a set  (int n, T *blocks), n components (elements times
+//                       the block's components), blocks row major
 //   matrix (BCSR)      (int rows, int cols, int *rowptr, int *colidx,
 //                       int blockRows, int blockCols, T *blocks), rows and
-//                       cols in blocks
+//                       cols in components (blocks times the block's
+//                       extent), rowptr of rows / blockRows + 1 entries
 //   opaque             void *; a result by pointer
 // Matrix results are not supported. A non-zero status ends the run with
 // the call's position.
@@ -124,6 +126,18 @@ LogicalResult FunctionLowering::lowerHostCall(func::CallOp call,
   auto i32Constant = [&](int64_t v) -> Value {
     return arith::ConstantIntOp::create(b, loc, i32, v);
   };
+  // The number of components of a vector over a set: its elements times
+  // the components of a block.
+  auto components = [&](Value array) -> Value {
+    auto type = cast<MemRefType>(array.getType());
+    Value n = memref::DimOp::create(b, loc, array, 0);
+    int64_t perBlock = 1;
+    for (int64_t d : type.getShape().drop_front())
+      perBlock *= d;
+    if (perBlock != 1)
+      n = arith::MulIOp::create(b, loc, n, indexConstant(perBlock));
+    return i32Of(n);
+  };
   auto unsupported = [&](Type type, StringRef what) {
     return call.emitError("extern func '")
            << name << "': " << what << " of type " << type
@@ -164,8 +178,7 @@ LogicalResult FunctionLowering::lowerHostCall(func::CallOp call,
     }
     Storage storage = storageOf(operand);
     if (storage.kind == Storage::Kind::Dense) {
-      args.append({i32Of(memref::DimOp::create(b, loc, lowered, 0)),
-                   flatten(b, loc, lowered)});
+      args.append({components(lowered), flatten(b, loc, lowered)});
       continue;
     }
     if (!storage.isBCSR())
@@ -175,12 +188,16 @@ LogicalResult FunctionLowering::lowerHostCall(func::CallOp call,
     SmallVector<int64_t> block = system.getBlockShape();
     while (block.size() < 2)
       block.push_back(1);
-    args.append({i32Of(getSetSize(storage.rows)),
-                 i32Of(getSetSize(storage.cols)),
+    auto extent = [&](StringAttr set, int64_t blockExtent) {
+      Value n = getSetSize(set);
+      if (blockExtent != 1)
+        n = arith::MulIOp::create(b, loc, n, indexConstant(blockExtent));
+      return i32Of(n);
+    };
+    args.append({extent(storage.rows, block[0]), extent(storage.cols, block[1]),
                  flatten(b, loc, rowPointers(storage)),
-                 flatten(b, loc, columnIndices(storage)),
-                 i32Constant(block[0]), i32Constant(block[1]),
-                 flatten(b, loc, lowered)});
+                 flatten(b, loc, columnIndices(storage)), i32Constant(block[0]),
+                 i32Constant(block[1]), flatten(b, loc, lowered)});
   }
 
   SmallVector<Value> resultValues;
@@ -219,8 +236,7 @@ LogicalResult FunctionLowering::lowerHostCall(func::CallOp call,
     if (system.getOrder() != 1)
       return unsupported(type, "a matrix result");
     Value array = allocSystem(loc, type, Storage::dense());
-    args.append({i32Of(memref::DimOp::create(b, loc, array, 0)),
-                 flatten(b, loc, array)});
+    args.append({components(array), flatten(b, loc, array)});
     readResults.push_back([array]() { return array; });
   }
 

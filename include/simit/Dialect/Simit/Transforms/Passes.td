@@ -352,6 +352,31 @@ def SimitRecordHostABI : Pass<"simit-record-host-abi", "::mlir::ModuleOp"> {
   ];
 }
 
+def SimitConvertToLLVM : Pass<"simit-convert-to-llvm", "::mlir::ModuleOp"> {
+  let summary = "Converts vector, ub, arith, index, complex, memref, OpenMP, "
+                "func and cf to the LLVM dialect in one conversion";
+  let description = [{
+    The last step of the CPU pipeline. The upstream passes
+    (`convert-vector-to-llvm`, `convert-arith-to-llvm`,
+    `finalize-memref-to-llvm`, `convert-func-to-llvm`, ...) each walk the
+    whole module and leave casts between them; on the unrolled element
+    kernels of a simulation that costs a third of the lowering time. This
+    pass first applies the vector lowerings that `convert-vector-to-llvm`
+    applies (contractions, shape casts, transposes, masks ...), then runs one
+    partial conversion with the patterns of all those dialects on one
+    `LLVMTypeConverter` (the module's data layout). `math` is converted
+    before (`convert-math-to-llvm`, then `convert-math-to-libm` for what
+    LLVM has no intrinsic for); `reconcile-unrealized-casts` follows.
+  }];
+  let options = [
+    Option<"useGenericFunctions", "use-generic-functions", "bool",
+           /*default=*/"false",
+           "memref.alloc and dealloc call _mlir_memref_to_llvm_alloc/free "
+           "(the runtime's allocator) instead of malloc/free">
+  ];
+  let dependentDialects = ["::mlir::LLVM::LLVMDialect"];
+}
+
 def SimitLowerAssertions : Pass<"simit-lower-assertions", "::mlir::ModuleOp"> {
   let summary = "Turns cf.assert into a call of the runtime's simit_rt_fail";
   let description = [{

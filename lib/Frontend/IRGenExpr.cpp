@@ -483,14 +483,9 @@ Value IRGenerator::genTupleRead(const TupleReadExpr &e) {
     return dialect::TupleGetOp::create(builder, l, elementType, tuple,
                                      *constant);
   // A computed position selects among the components, once it is known to
-  // name one (one unsigned compare also rejects negative positions).
+  // name one.
   unsigned size = cast<dialect::TupleType>(tuple.getType()).size();
-  Value inRange = arith::CmpIOp::create(builder, l, arith::CmpIPredicate::ult,
-                                        index, intConstant(size, e.loc));
-  cf::AssertOp::create(builder, l, inRange,
-                       "endpoint index out of range for a tuple of " +
-                           std::to_string(size) + " endpoints" +
-                           dialect::sourcePositionSuffix(l));
+  checkEndpointPosition(index, size, e.loc);
   Value result = dialect::TupleGetOp::create(builder, l, elementType, tuple, 0);
   for (unsigned k = 1; k < size; ++k) {
     Value component =
@@ -500,6 +495,17 @@ Value IRGenerator::genTupleRead(const TupleReadExpr &e) {
     result = arith::SelectOp::create(builder, l, isK, component, result);
   }
   return result;
+}
+
+void IRGenerator::checkEndpointPosition(Value position, unsigned size,
+                                        SMLoc where) {
+  Location l = loc(where);
+  Value inRange = arith::CmpIOp::create(builder, l, arith::CmpIPredicate::ult,
+                                        position, intConstant(size, where));
+  cf::AssertOp::create(builder, l, inRange,
+                       "endpoint index out of range for a tuple of " +
+                           std::to_string(size) + " endpoints" +
+                           dialect::sourcePositionSuffix(l));
 }
 
 Value IRGenerator::genField(const FieldExpr &e) {

@@ -185,6 +185,10 @@ private:
   /// of `position`, with `pick` fixed to that position.
   void writeAtEachEndpoint(const TupleReadExpr &pick, mlir::Value position,
                            llvm::function_ref<void()> write);
+  /// Ends the run with the source position unless the computed `position`
+  /// names one of a tuple's `size` endpoints (one unsigned compare also
+  /// rejects negative positions).
+  void checkEndpointPosition(mlir::Value position, unsigned size, SMLoc where);
 
   //===--- IRGenIndexExpr.cpp ---------------------------------------------===//
   void genIndexAssign(const AssignStmt &stmt);

@@ -303,6 +303,8 @@ void IRGenerator::writeAtEachEndpoint(const TupleReadExpr &pick,
   unsigned size = cast<dialect::TupleType>(
                       convertType(pick.base->type, pick.loc))
                       .size();
+  // The last branch takes every other position: check it names one.
+  checkEndpointPosition(position, size, pick.loc);
   OpBuilder::InsertionGuard guard(builder);
   Location l = loc(pick.loc);
   for (unsigned k = 0; k < size; ++k) {

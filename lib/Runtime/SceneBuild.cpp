@@ -49,6 +49,11 @@ static std::string componentProblem(ComponentType type, double value) {
 }
 
 llvm::Error ExternTensor::convertTo(ComponentType newType) {
+  // As for fields: true and false are not numbers.
+  if (type == ComponentType::Bool && newType != ComponentType::Bool)
+    return llvm::createStringError("expected numbers for a " +
+                                   componentTypeName(newType) +
+                                   " value, found a boolean");
   for (size_t i = 0; i < values.size(); ++i) {
     std::string problem = componentProblem(newType, values[i]);
     if (!problem.empty())

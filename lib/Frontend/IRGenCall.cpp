@@ -196,7 +196,14 @@ Value IRGenerator::genIntrinsic(const CallExpr &e) {
   case Intrinsic::Norm: {
     if (!isa<IntegerType>(dialect::getComponentType(args[0].getType())))
       return dialect::NormOp::create(builder, l, resultType, args[0]);
-    // The norm of an int vector is a float: sqrt of its int dot product.
+    // The norm of an int vector is a float. A local one is converted to
+    // floats first (squares overflow 32 bits from 46341 on); a system one
+    // takes the sqrt of its int dot product.
+    if (auto local = dyn_cast<RankedTensorType>(args[0].getType())) {
+      Value real =
+          arith::SIToFPOp::create(builder, l, local.clone(resultType), args[0]);
+      return dialect::NormOp::create(builder, l, resultType, real);
+    }
     Value squares = dialect::DotOp::create(builder, l, builder.getI32Type(),
                                          args[0], args[0]);
     Value asFloat = arith::SIToFPOp::create(builder, l, resultType, squares);

@@ -98,6 +98,32 @@ StringRef simit::frontend::tokenKindName(TokenKind kind) {
   return "a token";
 }
 
+std::optional<char> simit::frontend::decodeEscape(char e) {
+  switch (e) {
+  case 'a':
+    return '\a';
+  case 'b':
+    return '\b';
+  case 'f':
+    return '\f';
+  case 'n':
+    return '\n';
+  case 'r':
+    return '\r';
+  case 't':
+    return '\t';
+  case 'v':
+    return '\v';
+  case '\\':
+  case '\'':
+  case '"':
+  case '?':
+    return e;
+  default:
+    return std::nullopt;
+  }
+}
+
 namespace {
 
 TokenKind keywordKind(StringRef word) {
@@ -365,27 +391,14 @@ void Lexer::lexString() {
       continue;
     }
     char e = peek(1);
-    char decoded;
-    switch (e) {
-    case 'a': decoded = '\a'; break;
-    case 'b': decoded = '\b'; break;
-    case 'f': decoded = '\f'; break;
-    case 'n': decoded = '\n'; break;
-    case 'r': decoded = '\r'; break;
-    case 't': decoded = '\t'; break;
-    case 'v': decoded = '\v'; break;
-    case '\\': decoded = '\\'; break;
-    case '\'': decoded = '\''; break;
-    case '"': decoded = '"'; break;
-    case '?': decoded = '?'; break;
-    default:
+    std::optional<char> decoded = decodeEscape(e);
+    if (!decoded) {
       diags.error(locAt(pos), "unrecognized escape sequence '\\" +
                                   (e ? std::string(1, e) : std::string()) +
                                   "' in a string literal");
       ok = false;
-      decoded = e;
     }
-    value += decoded;
+    value += decoded.value_or(e);
     pos += e ? 2 : 1;
   }
   push(ok ? TokenKind::StringLit : TokenKind::Error, start);

@@ -2,6 +2,8 @@
 
 #include "Literal.h"
 
+#include "simit/Frontend/Lexer.h"
+
 #include "simit/Frontend/AST.h"
 
 #include "llvm/ADT/StringExtras.h"
@@ -303,13 +305,26 @@ private:
       pos += value ? 4 : 5;
       result.kind = Literal::Kind::Bool;
       result.values = {value ? 1.0 : 0.0};
-    } else if (peek('"')) {
-      size_t end = text.find('"', pos + 1);
-      if (end == llvm::StringRef::npos)
-        return error("unclosed string");
+    } else if (consume('"')) {
+      // Escapes as in the language's string literals.
       result.kind = Literal::Kind::String;
-      result.text = text.slice(pos + 1, end).str();
-      pos = end + 1;
+      while (pos < text.size() && text[pos] != '"') {
+        char c = text[pos++];
+        if (c == '\\') {
+          std::optional<char> decoded = pos < text.size()
+                                            ? frontend::decodeEscape(text[pos])
+                                            : std::nullopt;
+          if (!decoded) {
+            --pos; // at the backslash
+            return error("unrecognized escape sequence in a string");
+          }
+          c = *decoded;
+          ++pos;
+        }
+        result.text += c;
+      }
+      if (!consume('"'))
+        return error("unclosed string");
     } else {
       double value;
       if (llvm::Error err = number(value, result.kind))
@@ -453,16 +468,21 @@ std::string simit::compareResult(const HostValue &actual,
     std::string text = stringOf(actual);
     if (text == expected.text)
       return "";
-    return "the result is \"" + text + "\", expected \"" + expected.text +
-           "\"";
+    return "\"" + text + "\" != \"" + expected.text + "\"";
   }
   if (actual.numComponents() != expected.numComponents())
     return "the result has shape [" + llvm::join(llvm::map_range(actual.shape, [](int64_t d) { return std::to_string(d); }), ", ") +
            "], the expected value [" +
            llvm::join(llvm::map_range(expected.shape, [](int64_t d) { return std::to_string(d); }), ", ") + "]";
   // Complex values compare part by part, like floats.
+  // A single-precision result is compared with the literal in single
+  // precision, as the program would read it (--float32).
+  bool single = actual.scalar == ScalarKind::Float32;
   for (size_t i = 0; i < expected.values.size(); ++i) {
     double a = actual.component(i), e = expected.values[i];
+    if (single && expected.kind != Literal::Kind::Int &&
+        expected.kind != Literal::Kind::Bool)
+      e = static_cast<float>(e);
     bool equal;
     if (expected.kind != Literal::Kind::Float &&
         expected.kind != Literal::Kind::Complex)

@@ -78,6 +78,7 @@ public:
         frontend::parseProgram(sourceMgr, buffer, diags);
     if (!diags.hasErrors())
       frontend::checkProgram(*ast, diags);
+    // A section that compiles prints its warnings when it is loaded below.
     if (diags.hasErrors()) {
       diags.print(os);
       sectionFailed(section, "does not compile",
@@ -125,7 +126,8 @@ private:
 
   std::string runAssertion(Program &program, const frontend::TestLine &test) {
     const frontend::FuncDecl *func = test.func;
-    if (!func || func->isGeneric())
+    // A host function (extern func) has no body to test.
+    if (!func || func->isGeneric() || func->isExtern)
       return "attempting to test unknown function '" + test.funcName + "'";
     if (func->params.size() != test.args.size())
       return "function '" + test.funcName + "' takes " +

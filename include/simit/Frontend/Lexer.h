@@ -13,6 +13,7 @@
 #include "llvm/ADT/StringRef.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,10 @@ struct Token {
     return kind >= TokenKind::KwAnd && kind <= TokenKind::KwXor;
   }
 };
+
+/// The character the escape sequence `\\e` of a string literal stands for
+/// (C's simple escapes), or none when `e` does not start one.
+std::optional<char> decodeEscape(char e);
 
 /// Lexes the whole buffer; the last token is Eof. Errors go to `diags`.
 std::vector<Token> lex(llvm::StringRef buffer, DiagnosticEngine &diags);

@@ -443,6 +443,16 @@ LogicalResult FunctionLowering::lowerFactorisation(Operation *op) {
               "matrices and vectors of static shapes, its result of the "
               "right-hand side's type";
 
+  // A lower triangle to solve with is square.
+  if (triangular) {
+    ArrayRef<int64_t> matrix =
+        cast<RankedTensorType>(op->getOperand(0).getType()).getShape();
+    if (matrix[0] != matrix[1])
+      return op->emitError("'triangularSolve' solves with the lower triangle "
+                           "of a square matrix; this one is ")
+             << matrix[0] << " x " << matrix[1];
+  }
+
   // Local tensors (vectors) are stored to a stack buffer passed as
   // memref<?xf64>; tensor results come back through one.
   auto buffer = [&](int64_t size) {

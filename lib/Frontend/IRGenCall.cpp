@@ -162,6 +162,13 @@ SmallVector<Value> IRGenerator::genUserCall(const CallExpr &e) {
   return SmallVector<Value>(call.getResults());
 }
 
+/// A local int tensor with its components converted to `real`.
+static Value toFloats(OpBuilder &builder, Location l, Value local,
+                      mlir::Type real) {
+  auto type = cast<RankedTensorType>(local.getType());
+  return arith::SIToFPOp::create(builder, l, type.clone(real), local);
+}
+
 Value IRGenerator::genIntrinsic(const CallExpr &e) {
   SmallVector<Value> args;
   for (const ExprPtr &arg : e.args)
@@ -199,17 +206,27 @@ Value IRGenerator::genIntrinsic(const CallExpr &e) {
     // The norm of an int vector is a float. A local one is converted to
     // floats first (squares overflow 32 bits from 46341 on); a system one
     // takes the sqrt of its int dot product.
-    if (auto local = dyn_cast<RankedTensorType>(args[0].getType())) {
-      Value real =
-          arith::SIToFPOp::create(builder, l, local.clone(resultType), args[0]);
-      return dialect::NormOp::create(builder, l, resultType, real);
-    }
+    if (isa<RankedTensorType>(args[0].getType()))
+      return dialect::NormOp::create(builder, l, resultType,
+                                     toFloats(builder, l, args[0], resultType));
     Value squares = dialect::DotOp::create(builder, l, builder.getI32Type(),
                                          args[0], args[0]);
     Value asFloat = arith::SIToFPOp::create(builder, l, resultType, squares);
     return math::SqrtOp::create(builder, l, asFloat);
   }
-  case Intrinsic::Dot: return dialect::DotOp::create(builder, l, resultType, args[0], args[1]);
+  case Intrinsic::Dot: {
+    mlir::Type component = dialect::getComponentType(args[0].getType());
+    if (!isa<IntegerType>(component))
+      return dialect::DotOp::create(builder, l, resultType, args[0], args[1]);
+    // The dot product of int vectors is a float (language.md 9): of local
+    // ones converted to floats, of system ones the int sum converted.
+    if (isa<RankedTensorType>(args[0].getType()))
+      return dialect::DotOp::create(builder, l, resultType,
+                                    toFloats(builder, l, args[0], resultType),
+                                    toFloats(builder, l, args[1], resultType));
+    Value sum = dialect::DotOp::create(builder, l, component, args[0], args[1]);
+    return arith::SIToFPOp::create(builder, l, resultType, sum);
+  }
   case Intrinsic::CreateComplex:
     return complex::CreateOp::create(builder, l, resultType, args[0], args[1]);
   case Intrinsic::ComplexNorm: return complex::AbsOp::create(builder, l, args[0]);

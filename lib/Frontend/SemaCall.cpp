@@ -152,6 +152,9 @@ TypePtr Sema::checkNormOrDot(CallExpr &call) {
                               "'");
     return Type::error();
   }
+  // language.md 9: a float; complex vectors give their complex sum.
+  if (types[0]->component == ScalarKind::Int)
+    return Type::scalar(ScalarKind::Float);
   return Type::scalar(types[0]->component);
 }
 

@@ -499,18 +499,28 @@ std::string simit::compareResult(const HostValue &actual,
 }
 
 /// The shortest text that reads back as `v`, always with a '.' or an
-/// exponent so that it is a float literal.
+/// exponent so that it is a float literal: positional for decimal
+/// exponents from -4 to 15 (30.0, 0.001), scientific beyond (1e+16), as
+/// Python's repr.
 static std::string formatFloat(double v, int maxDigits) {
   if (std::isnan(v))
     return "nan";
   if (std::isinf(v))
     return v < 0 ? "-inf" : "inf";
   char buffer[64];
-  for (int digits = 1; digits <= maxDigits; ++digits) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
-    if (std::strtod(buffer, nullptr) == v || digits == maxDigits)
+  int digits = 1;
+  for (; digits < maxDigits; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*e", digits - 1, v);
+    if (std::strtod(buffer, nullptr) == v)
       break;
   }
+  std::snprintf(buffer, sizeof buffer, "%.*e", digits - 1, v);
+  int exponent = std::atoi(std::strchr(buffer, 'e') + 1);
+  if (exponent >= -4 && exponent < 16)
+    std::snprintf(buffer, sizeof buffer, "%.*f",
+                  std::max(0, digits - 1 - exponent), v);
+  else
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
   std::string text = buffer;
   if (text.find_first_of(".e") == std::string::npos)
     text += ".0";

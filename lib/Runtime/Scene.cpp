@@ -10,6 +10,7 @@
 
 #include "llvm/ADT/STLExtras.h"
 #include "llvm/ADT/SmallString.h"
+#include "llvm/Support/FileSystem.h"
 #include "llvm/Support/MemoryBuffer.h"
 #include "llvm/Support/Path.h"
 
@@ -1036,10 +1037,15 @@ llvm::Error SceneParser::parse(const Json &root, SceneDescription &scene) {
       return libraries.takeError();
     // dlopen looks for a bare file name on the system's library path, not
     // beside the scene (`--scene scene.json` has no directory).
-    for (const std::string &library : *libraries) {
+    for (auto [i, library] : llvm::enumerate(*libraries)) {
       std::string path = resolve(library);
       if (!llvm::StringRef(path).contains('/'))
         path = "./" + path;
+      // Named here, not when the program loads it and only its file is
+      // known.
+      if (!llvm::sys::fs::exists(path))
+        return error("libraries[" + std::to_string(i) + "]",
+                     "no host library '" + path + "'");
       scene.libraries.push_back(std::move(path));
     }
   }

@@ -2,6 +2,7 @@
 
 #include "Common.h"
 
+#include <cstdint>
 #include <map>
 #include <utility>
 
@@ -133,4 +134,36 @@ RunningGuard::~RunningGuard() {
     if (--it->second == 0)
       runningSets().erase(it);
   }
+}
+
+py::array simit::python::convertExactly(const py::object &value,
+                                        ComponentType type,
+                                        const std::string &what) {
+  py::module_ numpy = py::module_::import("numpy");
+  py::array source(numpy.attr("asarray")(value));
+  char kind = source.dtype().kind();
+  py::dtype dtype = dtypeOf(type);
+  if (kind == 'c')
+    throw py::type_error(what + ": complex values cannot be held in " +
+                         std::string(py::str(py::handle(dtype))) +
+                         " components");
+  if (type == ComponentType::Int32 && source.size() > 0 &&
+      (kind == 'f' || kind == 'i' || kind == 'u')) {
+    if (kind == 'f' && !numpy
+                            .attr("all")(numpy.attr("equal")(
+                                numpy.attr("floor")(source), source))
+                            .cast<bool>())
+      throw py::value_error(what + ": expected integers for int32 values, "
+                                   "found a fraction or a non-finite value");
+    double low = numpy.attr("min")(source).cast<double>();
+    double high = numpy.attr("max")(source).cast<double>();
+    if (low < INT32_MIN || high > INT32_MAX)
+      throw py::value_error(
+          what +
+          ": expected int32 values from -2147483648 to 2147483647, "
+          "found " +
+          std::string(py::str(low < INT32_MIN ? numpy.attr("min")(source)
+                                              : numpy.attr("max")(source))));
+  }
+  return py::array(numpy.attr("array")(source, dtype, py::arg("order") = "C"));
 }

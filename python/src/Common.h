@@ -50,6 +50,13 @@ py::dtype dtypeOf(ComponentType type);
 /// float64, float32, int32 and bool.
 ComponentType componentTypeOf(const py::dtype &dtype);
 
+/// `value` (a number, sequence or array) as a new C-contiguous array of
+/// `type`, when every value fits: ValueError for fractions or values out
+/// of range of int32, TypeError for complex values of a real type. `what`
+/// names the destination in the message.
+py::array convertExactly(const py::object &value, ComponentType type,
+                         const std::string &what);
+
 /// A Set as Python holds it: the pointer keeps alive whatever owns the Set
 /// (the Set and its endpoint sets, or the scene it belongs to).
 struct SetHandle {

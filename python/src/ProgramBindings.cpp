@@ -86,7 +86,7 @@ py::array externArray(const ArgumentBinding &arg, const py::object &value) {
                            ": expected a writeable C-contiguous array");
     return array;
   }
-  return py::array(py::module_::import("numpy").attr("array")(value, dtype));
+  return convertExactly(value, argumentType(arg), arg.describe());
 }
 
 /// Binds `value` to the set or extern `name`; returns what is bound (the
@@ -148,8 +148,9 @@ void bindParameters(PyFunction &self, const py::args &args) {
       array = py::array(values.attr("view")(dtypeOf(type)).attr("reshape")(
           py::tuple(py::cast(shapeOf(values))) + py::make_tuple(2)));
     } else {
-      array = py::array(numpy.attr("asarray")(args[i], dtypeOf(type),
-                                              py::arg("order") = "C"));
+      array = convertExactly(args[i], type,
+                             "function '" + self.name + "': parameter " +
+                                 std::to_string(i));
     }
     check(self.function.bindParameter(static_cast<unsigned>(i),
                                       array.mutable_data(), type,

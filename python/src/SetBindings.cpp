@@ -103,8 +103,11 @@ py::array addField(const SetHandle &handle, const std::string &name,
 void setField(const SetHandle &handle, const std::string &name,
               const py::object &value) {
   Set &set = *handle.set;
+  std::string what = "set '" + set.name().str() + "': field '" + name + "'";
   if (set.hasField(name)) {
-    fieldView(handle.set, name)[py::ellipsis()] = value;
+    py::array field = fieldView(handle.set, name);
+    field[py::ellipsis()] =
+        convertExactly(value, componentTypeOf(field.dtype()), what);
     return;
   }
   py::module_ numpy = py::module_::import("numpy");
@@ -116,14 +119,17 @@ void setField(const SetHandle &handle, const std::string &name,
                           "element, got an array of shape " +
                           std::string(py::str(array.attr("shape"))));
   char kind = array.dtype().kind();
-  py::dtype dtype = kind == 'b'   ? dtypeOf(ComponentType::Bool)
-                    : kind == 'i' || kind == 'u' ? dtypeOf(ComponentType::Int32)
-                    : array.dtype().equal(dtypeOf(ComponentType::Float32))
-                        ? dtypeOf(ComponentType::Float32)
-                        : dtypeOf(ComponentType::Float64);
+  ComponentType type = kind == 'b'                  ? ComponentType::Bool
+                       : kind == 'i' || kind == 'u' ? ComponentType::Int32
+                       : array.dtype().equal(dtypeOf(ComponentType::Float32))
+                           ? ComponentType::Float32
+                           : ComponentType::Float64;
+  // Checked before the field exists: nothing is added when values do not
+  // fit (int64 beyond int32, complex).
+  py::array values = convertExactly(array, type, what);
   std::vector<int> shape(array.shape() + 1, array.shape() + array.ndim());
-  check(set.addField(name, componentTypeOf(dtype), shape));
-  fieldView(handle.set, name)[py::ellipsis()] = array;
+  check(set.addField(name, type, shape));
+  fieldView(handle.set, name)[py::ellipsis()] = values;
 }
 
 py::dict fieldTable(const Set &set) {

@@ -117,3 +117,27 @@ def test_an_edge_set_keeps_its_endpoint_sets_alive():
                         endpoints=[[0, 1]])
     (points, _) = springs.endpoint_sets
     assert len(points) == 2 and points.name == "points"
+
+
+def test_values_that_do_not_fit_a_field_are_errors_not_wrapped():
+    points = simit.Set("points", size=2)
+    with pytest.raises(ValueError, match="expected int32 values .* found 3000000000"):
+        points["n"] = np.array([3000000000, 1], dtype=np.int64)
+    assert "n" not in points.fields
+    with pytest.raises(TypeError, match="complex values cannot be held"):
+        points["c"] = np.array([1 + 2j, 3 + 4j])
+    points["n"] = [1, 2]
+    with pytest.raises(ValueError, match="expected integers for int32"):
+        points["n"] = [2.5, 1]
+    assert points["n"].tolist() == [1, 2]
+
+
+def test_an_int_extern_takes_integers_only():
+    program = simit.compile("extern k : int;\n"
+                            "export func f() -> (r : int)\n  r = k;\nend\n")
+    with pytest.raises(ValueError, match="extern 'k': expected integers"):
+        program.bind(k=2.5)
+    with pytest.raises(ValueError, match="found 3e\\+09|found 3000000000"):
+        program.bind(k=3e9)
+    program.bind(k=7.0)
+    assert program.f() == 7

@@ -58,6 +58,9 @@ def compile(program, *, name=None, float32=False, time=False,
 def sets_from_mesh(mesh, elements="tets", *, points="points", name=None):
     """A vertex set of the mesh's points (field "x" holding their
     coordinates) and an edge set of its "edges", "triangles" or "tets"."""
+    if elements not in ("edges", "triangles", "tets"):
+        raise ValueError("elements must be 'edges', 'triangles' or 'tets', "
+                         f"not {elements!r}")
     point_set = Set(points, size=len(mesh.points))
     point_set["x"] = mesh.points
     indices = getattr(mesh, elements)

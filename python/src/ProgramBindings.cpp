@@ -334,6 +334,9 @@ binds externs for all of them at once.
                        std::vector<std::string> hostFunctions, int threads,
                        const std::string &target) {
              ProgramOptions options;
+             // Refused here, as simit.Scene refuses it, not at the first
+             // call.
+             check(resolveThreadCount(threads));
              options.threads = threads;
              if (target != "cpu" && target != "gpu")
                throw py::value_error("target must be 'cpu' or 'gpu', not '" +

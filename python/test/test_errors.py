@@ -139,3 +139,8 @@ def test_check_numerics_names_the_assembly_before_the_solve_it_broke():
     points["x"][1] = [1.0, 0.0, 0.0]
     program.step()
     np.testing.assert_allclose(points["u"], [[1, 0, 0], [-1, 0, 0]])
+
+
+def test_a_negative_thread_count_is_refused():
+    with pytest.raises(simit.Error, match="number of threads must be positive, not -1"):
+        simit.compile(SPRINGS_SIM, threads=-1)

@@ -83,3 +83,9 @@ def test_sets_from_mesh():
     assert (len(points), len(springs)) == (3607, 19233)
     np.testing.assert_array_equal(points["x"], mesh.points)
     np.testing.assert_array_equal(springs.endpoints, mesh.edges)
+
+
+def test_sets_from_mesh_names_the_element_kinds():
+    mesh = simit.load_mesh(RUN_INPUTS / "tet.node")
+    with pytest.raises(ValueError, match="'edges', 'triangles' or 'tets', not 'hexes'"):
+        simit.sets_from_mesh(mesh, "hexes")

@@ -141,8 +141,12 @@ py::array simit::python::convertExactly(const py::object &value,
                                         const std::string &what) {
   py::module_ numpy = py::module_::import("numpy");
   py::array source(numpy.attr("asarray")(value));
-  char kind = source.dtype().kind();
   py::dtype dtype = dtypeOf(type);
+  // An array of the type already needs no checks and no copy (parameters
+  // bound on every call, fields written every frame).
+  if (source.dtype().equal(dtype))
+    return py::array(numpy.attr("asarray")(source, py::arg("order") = "C"));
+  char kind = source.dtype().kind();
   if (kind == 'c')
     throw py::type_error(what + ": complex values cannot be held in " +
                          std::string(py::str(py::handle(dtype))) +
@@ -165,5 +169,6 @@ py::array simit::python::convertExactly(const py::object &value,
           std::string(py::str(low < INT32_MIN ? numpy.attr("min")(source)
                                               : numpy.attr("max")(source))));
   }
-  return py::array(numpy.attr("array")(source, dtype, py::arg("order") = "C"));
+  return py::array(
+      numpy.attr("asarray")(source, dtype, py::arg("order") = "C"));
 }

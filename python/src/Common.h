@@ -50,10 +50,10 @@ py::dtype dtypeOf(ComponentType type);
 /// float64, float32, int32 and bool.
 ComponentType componentTypeOf(const py::dtype &dtype);
 
-/// `value` (a number, sequence or array) as a new C-contiguous array of
-/// `type`, when every value fits: ValueError for fractions or values out
-/// of range of int32, TypeError for complex values of a real type. `what`
-/// names the destination in the message.
+/// `value` (a number, sequence or array) as a C-contiguous array of `type`
+/// (the array itself when it is one already), when every value fits: ValueError
+/// for fractions or values out of range of int32, TypeError for complex values
+/// of a real type. `what` names the destination in the message.
 py::array convertExactly(const py::object &value, ComponentType type,
                          const std::string &what);
 

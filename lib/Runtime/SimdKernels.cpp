@@ -57,9 +57,11 @@ multiplyBlocks3Avx2(int64_t rows, const int32_t *__restrict rowptr,
     yr[0] = h[0] + h[1] + h[2];
     yr[1] = h[3] + m[0] + m[1];
     yr[2] = m[2] + m[3] + _mm_cvtsd_f64(last);
+    // The row's three products are summed first: one addition per row
+    // waits for the one before, not three.
     if (dotWith)
-      for (int i = 0; i < 3; ++i)
-        sum += dotWith[r * 3 + i] * yr[i];
+      sum += dotWith[r * 3] * yr[0] + dotWith[r * 3 + 1] * yr[1] +
+             dotWith[r * 3 + 2] * yr[2];
   }
   if (dot)
     *dot = sum;

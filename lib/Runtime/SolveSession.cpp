@@ -182,8 +182,13 @@ SolveStatementStats &SolveSession::statsOf(llvm::StringRef statement) {
     it = statementIndex.emplace(statement.str(), statements.size()).first;
     statements.emplace_back().statement = statement.str();
     warned.push_back(false);
+    mirrors.emplace_back();
   }
   return statements[it->second];
+}
+
+BlockMirrors &SolveSession::mirrorsOf(const SolveStatementStats &stats) {
+  return mirrors[statementIndex.find(stats.statement)->second];
 }
 
 void SolveSession::record(SolveStatementStats &stats,
@@ -390,7 +395,7 @@ SolveSession::solveRecorded(const SquareBCSRView<T> &a, const T *b, T *x,
 
   bool symmetricMethod = method != SolveMethod::Auto &&
                          method != SolveMethod::LU;
-  bool symmetric = isSymmetric(a, Tolerances<T>::symmetric);
+  bool symmetric = isSymmetric(a, Tolerances<T>::symmetric, mirrorsOf(stats));
   if (symmetricMethod && !symmetric)
     return llvm::createStringError(
         "the matrix is not symmetric, and " + solveMethodName(method) +
@@ -623,7 +628,7 @@ llvm::Expected<std::shared_ptr<const SparseFactorisation>>
 SolveSession::factorise(FactorKind kind, const SquareBCSRView<double> &a,
                         llvm::StringRef statement) {
   SolveStatementStats &stats = statsOf(statement);
-  if (kind != FactorKind::LU && !isSymmetric(a, 1e-10))
+  if (kind != FactorKind::LU && !isSymmetric(a, 1e-10, mirrorsOf(stats)))
     return llvm::createStringError(
         "the matrix is not symmetric, and a Cholesky factorisation needs a "
         "symmetric matrix (use lu)");
@@ -677,4 +682,5 @@ void SolveSession::resetStatistics() {
   statementIndex.clear();
   statements.clear();
   warned.clear();
+  mirrors.clear();
 }

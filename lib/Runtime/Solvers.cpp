@@ -22,13 +22,37 @@ using namespace simit;
 
 namespace {
 
+/// Sums of a pass over vectors, kept in four running sums that take the
+/// indices in turn and are added in a fixed order at the end. With one
+/// running sum every addition waits for the one before (about 4 cycles),
+/// which bounded CG's vector passes rather than memory; the order is still
+/// fixed, so results do not depend on threads or timing.
+struct LaneSums {
+  static constexpr int64_t kLanes = 4;
+  double lane[kLanes] = {0, 0, 0, 0};
+  double total() const { return (lane[0] + lane[1]) + (lane[2] + lane[3]); }
+};
+
+/// body(i, l) for i in [0, count), l = i mod kLanes: the lane whose sums
+/// index i adds to. The main loop's lanes are constants after unrolling, so
+/// the sums stay in registers.
+template <typename Body> inline void inLanes(int64_t count, Body &&body) {
+  int64_t i = 0;
+  for (; i + LaneSums::kLanes <= count; i += LaneSums::kLanes)
+    for (int64_t l = 0; l < LaneSums::kLanes; ++l)
+      body(i + l, l);
+  for (int64_t l = 0; i < count; ++i, ++l)
+    body(i, l);
+}
+
 /// Dot products accumulate in double, also for float vectors.
 template <typename T>
 double dot(const std::vector<T> &u, const std::vector<T> &v) {
-  double sum = 0;
-  for (size_t i = 0; i < u.size(); ++i)
-    sum += static_cast<double>(u[i]) * v[i];
-  return sum;
+  LaneSums sums;
+  inLanes(static_cast<int64_t>(u.size()), [&](int64_t i, int64_t l) {
+    sums.lane[l] += static_cast<double>(u[i]) * v[i];
+  });
+  return sums.total();
 }
 
 /// 1 / A(i, i) for every scalar row i.
@@ -173,49 +197,79 @@ void simit::multiply(const SquareBCSRView<T> &a, const T *x, T *y) {
   multiplyAndDot<T>(a, x, y, nullptr);
 }
 
-template <typename T>
-bool simit::isSymmetric(const SquareBCSRView<T> &a, double relativeTolerance) {
-  int64_t b = a.blockSize, bb = b * b;
-  auto block = [&](int64_t k) { return a.values + k * bb; };
-  auto mirrorOf = [&](int64_t r, int64_t c) -> int64_t {
-    const int32_t *begin = a.colidx + a.rowptr[c];
-    const int32_t *end = a.colidx + a.rowptr[c + 1];
-    const int32_t *mirror = std::lower_bound(begin, end, r);
-    return mirror != end && *mirror == r ? mirror - a.colidx : -1;
-  };
-  // One pass: A's largest magnitude, and the largest difference between
-  // a block above the diagonal (or on it) and its mirror, a missing mirror
-  // counting as zero. Blocks below the diagonal are only counted: when as
-  // many have a mirror above as there are, every one of them was compared.
-  double largest = 0, worst = 0;
-  int64_t below = 0, mirroredAbove = 0;
+const std::vector<int32_t> &BlockMirrors::of(int64_t rows,
+                                             const int32_t *rowptrIn,
+                                             const int32_t *colidxIn) {
+  int32_t blocks = rowptrIn[rows];
+  if (static_cast<int64_t>(rowptr.size()) == rows + 1 &&
+      static_cast<int64_t>(colidx.size()) == blocks &&
+      std::equal(rowptr.begin(), rowptr.end(), rowptrIn) &&
+      std::equal(colidx.begin(), colidx.end(), colidxIn))
+    return mirrors;
+  rowptr.assign(rowptrIn, rowptrIn + rows + 1);
+  colidx.assign(colidxIn, colidxIn + blocks);
+  mirrors.assign(static_cast<size_t>(blocks), -1);
+  for (int64_t r = 0; r < rows; ++r)
+    for (int32_t k = rowptr[r]; k < rowptr[r + 1]; ++k) {
+      int32_t c = colidx[k];
+      auto begin = colidx.begin() + rowptr[c];
+      auto end = colidx.begin() + rowptr[c + 1];
+      auto mirror = std::lower_bound(begin, end, r);
+      if (mirror != end && *mirror == r)
+        mirrors[k] = static_cast<int32_t>(mirror - colidx.begin());
+    }
+  return mirrors;
+}
+
+namespace {
+/// A's largest magnitude, and the largest difference between a block and
+/// its mirror's transpose (zero where it has none), in one pass. A block
+/// below the diagonal with a mirror was compared from above. `StaticBlock`
+/// as in multiplyBlocks; with it, each position in the block has running
+/// maxima of its own, so that the comparisons do not wait on each other.
+template <int64_t StaticBlock, typename T>
+std::pair<double, double> asymmetry(const SquareBCSRView<T> &a,
+                                    const std::vector<int32_t> &mirrors) {
+  int64_t b = StaticBlock ? StaticBlock : a.blockSize, bb = b * b;
+  constexpr int64_t kSlots = StaticBlock ? StaticBlock * StaticBlock : 1;
+  auto slot = [](int64_t i) { return StaticBlock ? i : 0; };
+  double largest[kSlots] = {}, worst[kSlots] = {};
   for (int64_t r = 0; r < a.rows; ++r)
     for (int32_t k = a.rowptr[r]; k < a.rowptr[r + 1]; ++k) {
-      const T *rc = block(k);
+      const T *rc = a.values + k * bb;
       for (int64_t i = 0; i < bb; ++i)
-        largest = std::max(largest, std::abs(static_cast<double>(rc[i])));
-      int64_t c = a.colidx[k];
-      if (c < r) {
-        ++below;
+        largest[slot(i)] =
+            std::max(largest[slot(i)], std::abs(static_cast<double>(rc[i])));
+      int32_t mirror = mirrors[k];
+      if (a.colidx[k] < r && mirror >= 0)
         continue;
-      }
-      int64_t mirror = c == r ? k : mirrorOf(r, c);
-      mirroredAbove += c != r && mirror >= 0;
-      const T *cr = mirror >= 0 ? block(mirror) : nullptr;
+      const T *cr = mirror >= 0 ? a.values + mirror * bb : nullptr;
       for (int64_t i = 0; i < b; ++i)
         for (int64_t j = 0; j < b; ++j) {
           double other = cr ? cr[j * b + i] : 0.0;
-          worst = std::max(worst, std::abs(rc[i * b + j] - other));
+          worst[slot(i * b + j)] =
+              std::max(worst[slot(i * b + j)], std::abs(rc[i * b + j] - other));
         }
     }
-  if (below != mirroredAbove)
-    // Blocks below the diagonal without a mirror: they must be zero.
-    for (int64_t r = 0; r < a.rows; ++r)
-      for (int32_t k = a.rowptr[r]; k < a.rowptr[r + 1]; ++k)
-        if (a.colidx[k] < r && mirrorOf(r, a.colidx[k]) < 0)
-          for (int64_t i = 0; i < bb; ++i)
-            worst = std::max(worst, std::abs(static_cast<double>(block(k)[i])));
+  return {*std::max_element(largest, largest + kSlots),
+          *std::max_element(worst, worst + kSlots)};
+}
+} // namespace
+
+template <typename T>
+bool simit::isSymmetric(const SquareBCSRView<T> &a, double relativeTolerance,
+                        BlockMirrors &mirrorMap) {
+  const std::vector<int32_t> &mirrors =
+      mirrorMap.of(a.rows, a.rowptr, a.colidx);
+  auto [largest, worst] =
+      a.blockSize == 3 ? asymmetry<3>(a, mirrors) : asymmetry<0>(a, mirrors);
   return worst <= relativeTolerance * largest;
+}
+
+template <typename T>
+bool simit::isSymmetric(const SquareBCSRView<T> &a, double relativeTolerance) {
+  BlockMirrors mirrors;
+  return isSymmetric(a, relativeTolerance, mirrors);
 }
 
 namespace {
@@ -254,23 +308,24 @@ ResidualDots blockJacobiPass(int64_t rows, int64_t blockSize, T alpha,
                              const T *__restrict inverse, T *__restrict x,
                              T *__restrict r, T *__restrict z) {
   int64_t b = StaticBlock ? StaticBlock : blockSize;
-  double rr = 0, rz = 0;
-  for (int64_t row = 0; row < rows; ++row) {
+  LaneSums rr, rz;
+  inLanes(rows, [&](int64_t row, int64_t l) {
     int64_t first = row * b;
     if (Update)
       for (int64_t i = first; i < first + b; ++i)
-        updateElement(i, alpha, dir, ad, x, r, rr);
+        updateElement(i, alpha, dir, ad, x, r, rr.lane[l]);
+    // r.z from the sums in registers: reading z back just after its
+    // scalar stores stalled on store forwarding.
     const T *d = inverse + first * b;
     for (int64_t i = 0; i < b; ++i) {
       T sum = 0;
       for (int64_t j = 0; j < b; ++j)
         sum += d[i * b + j] * r[first + j];
       z[first + i] = sum;
+      rz.lane[l] += static_cast<double>(r[first + i]) * sum;
     }
-    for (int64_t i = first; i < first + b; ++i)
-      rz += static_cast<double>(r[i]) * z[i];
-  }
-  return {rr, rz};
+  });
+  return {rr.total(), rz.total()};
 }
 
 /// The same for Jacobi (z = D r, D diagonal), or, without `inverse`, for
@@ -279,18 +334,16 @@ template <bool Update, typename T>
 ResidualDots diagonalPass(int64_t n, T alpha, const T *__restrict dir,
                           const T *__restrict ad, const T *__restrict inverse,
                           T *__restrict x, T *__restrict r, T *__restrict z) {
-  double rr = 0, rz = 0;
-  for (int64_t i = 0; i < n; ++i) {
+  LaneSums rr, rz;
+  inLanes(n, [&](int64_t i, int64_t l) {
     if (Update)
-      updateElement(i, alpha, dir, ad, x, r, rr);
+      updateElement(i, alpha, dir, ad, x, r, rr.lane[l]);
     if (inverse) {
       z[i] = inverse[i] * r[i];
-      rz += static_cast<double>(r[i]) * z[i];
+      rz.lane[l] += static_cast<double>(r[i]) * z[i];
     }
-  }
-  if (!inverse)
-    rz = rr;
-  return {rr, rz};
+  });
+  return {rr.total(), inverse ? rz.total() : rr.total()};
 }
 
 /// The preconditioned residual z = M^-1 r of CG, and the update of x and r
@@ -465,6 +518,8 @@ simit::conjugateGradient(const BCSRMatrix &a, const double *b, double *x,
 #define SIMIT_INSTANTIATE_SOLVERS(T)                                           \
   template void simit::multiply(const SquareBCSRView<T> &, const T *, T *);    \
   template bool simit::isSymmetric(const SquareBCSRView<T> &, double);         \
+  template bool simit::isSymmetric(const SquareBCSRView<T> &, double,          \
+                                   BlockMirrors &);                            \
   template llvm::Expected<SolverResult> simit::conjugateGradient(              \
       const SquareBCSRView<T> &, const T *, T *, const SolverOptions &);
 SIMIT_INSTANTIATE_SOLVERS(double)

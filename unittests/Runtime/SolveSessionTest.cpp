@@ -758,4 +758,28 @@ TEST(IsSymmetric, BlocksMustBeTransposes) {
   EXPECT_FALSE(isSymmetric(BandSystem<double>(kBlocks, 3, below).view, 1e-12));
 }
 
+TEST(IsSymmetric, MirrorsFollowThePattern) {
+  // One map for two patterns of two 1x1 block rows: first all four blocks
+  // (symmetric), then (0, 0), (1, 0), (1, 1) without (0, 1). A map kept
+  // from the first pattern would give (1, 0) a mirror and skip it.
+  BlockMirrors mirrors;
+  std::vector<int32_t> rowptr{0, 2, 4}, colidx{0, 1, 0, 1};
+  std::vector<double> values{2.0, 1.0, 1.0, 3.0};
+  SquareBCSRView<double> view;
+  view.rows = 2;
+  view.rowptr = rowptr.data();
+  view.colidx = colidx.data();
+  view.values = values.data();
+  EXPECT_TRUE(isSymmetric(view, 1e-12, mirrors));
+  rowptr = {0, 1, 3};
+  colidx = {0, 0, 1};
+  values = {2.0, 1.0, 3.0};
+  view.rowptr = rowptr.data();
+  view.colidx = colidx.data();
+  view.values = values.data();
+  EXPECT_FALSE(isSymmetric(view, 1e-12, mirrors));
+  values[1] = 0.0;
+  EXPECT_TRUE(isSymmetric(view, 1e-12, mirrors));
+}
+
 } // namespace

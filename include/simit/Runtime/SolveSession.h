@@ -218,6 +218,8 @@ public:
 
 private:
   SolveStatementStats &statsOf(llvm::StringRef statement);
+  /// The mirror map of the matrices `stats`'s statement solves.
+  BlockMirrors &mirrorsOf(const SolveStatementStats &stats);
   void record(SolveStatementStats &stats, const SolveReport &report);
   /// Counts `result` in `stats` as a failure of `method` when it is an
   /// error (a successful one was recorded where it was made).
@@ -260,6 +262,8 @@ private:
   std::vector<SolveStatementStats> statements;
   /// Statements whose cap warning was printed.
   std::vector<bool> warned;
+  /// Per statement, as statements.
+  std::vector<BlockMirrors> mirrors;
   /// The latest answer of each statement solved iteratively, the starting
   /// point of its next solve (SolveSettings::warmStart).
   std::map<std::string, std::vector<double>, std::less<>> previousAnswers;

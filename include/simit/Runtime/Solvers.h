@@ -20,6 +20,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 namespace simit {
 
@@ -45,9 +46,27 @@ llvm::Expected<SquareBCSRView<double>> squareView(const BCSRMatrix &a);
 template <typename T>
 void multiply(const SquareBCSRView<T> &a, const T *x, T *y);
 
+/// For each block of a square pattern, the index of its mirror (block
+/// (c, r) of block (r, c)), or -1 where the pattern has none. The pattern
+/// is kept and compared on each call, so that the map is built once per
+/// pattern rather than per solve: its binary searches cost as much as a
+/// dozen matrix-vector products.
+class BlockMirrors {
+public:
+  const std::vector<int32_t> &of(int64_t rows, const int32_t *rowptr,
+                                 const int32_t *colidx);
+
+private:
+  std::vector<int32_t> rowptr, colidx, mirrors;
+};
+
 /// Whether A equals its transpose: every block (r, c) is the transpose of
 /// block (c, r) to `relativeTolerance` times A's largest magnitude, a
-/// missing block counting as zero.
+/// missing block counting as zero. `mirrors` keeps the map of A's pattern
+/// for the next call.
+template <typename T>
+bool isSymmetric(const SquareBCSRView<T> &a, double relativeTolerance,
+                 BlockMirrors &mirrors);
 template <typename T>
 bool isSymmetric(const SquareBCSRView<T> &a, double relativeTolerance);
 

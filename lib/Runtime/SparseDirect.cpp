@@ -239,27 +239,50 @@ llvm::Error SparseFactorisation::solve(const double *b, double *x) const {
 }
 
 namespace {
-/// Columns of a panel taken together below the diagonal block, so that
-/// each row of the solution is loaded and stored once per group, and the
-/// backward sums are independent chains.
+/// Columns of a panel taken together in the forward solve, so that the
+/// rows below the diagonal block are loaded and stored once per group.
 constexpr int64_t kColumnGroup = 4;
+/// Running sums of a dot product with a panel column, taking its rows in
+/// turn: the additions of one sum wait on each other, these do not (and
+/// they fill a vector register).
+constexpr int64_t kDotLanes = 16;
+
+/// column . dense over `m` rows, in kDotLanes running sums added in a fixed
+/// order.
+inline double panelDot(const float *__restrict column,
+                       const double *__restrict dense, int64_t m) {
+  double lanes[kDotLanes] = {};
+  int64_t i = 0;
+  for (; i + kDotLanes <= m; i += kDotLanes)
+    for (int64_t l = 0; l < kDotLanes; ++l)
+      lanes[l] += column[i + l] * dense[i + l];
+  for (int64_t l = 0; i < m; ++i, ++l)
+    lanes[l] += column[i] * dense[i];
+  double sum = 0;
+  for (double lane : lanes)
+    sum += lane;
+  return sum;
+}
 
 /// y = L^-T L^-1 y in place for a supernodal L in CHOLMOD's layout:
 /// supernode s holds columns [first[s], first[s + 1]), its row indices at
 /// rows[rowStart[s] .. rowStart[s + 1]) (the first ones its own columns),
 /// and its values as a column-major panel of those rows at
-/// values[valueStart[s] ..].
+/// values[valueStart[s] ..]. The rows of a panel below its diagonal block
+/// go through `dense` (as many entries as L has rows), contiguous, so that
+/// the products over them are dense loops the compiler vectorises, and the
+/// gathers and scatters of y are made once per row, not once per column.
 void solveSupernodal(int64_t supernodes, const SuiteSparse_long *first,
                      const SuiteSparse_long *rowStart,
                      const SuiteSparse_long *valueStart,
                      const SuiteSparse_long *rows, const float *values,
-                     double *y) {
+                     double *__restrict y, double *__restrict dense) {
   // L y' = y, supernode by supernode: the diagonal block's forward
   // substitution, then the rows below take the panel times its solution.
   for (int64_t s = 0; s < supernodes; ++s) {
     int64_t k1 = first[s], columns = first[s + 1] - k1;
-    int64_t height = rowStart[s + 1] - rowStart[s];
-    const SuiteSparse_long *panelRows = rows + rowStart[s];
+    int64_t height = rowStart[s + 1] - rowStart[s], m = height - columns;
+    const SuiteSparse_long *below = rows + rowStart[s] + columns;
     const float *panel = values + valueStart[s];
     for (int64_t j = 0; j < columns; ++j) {
       const float *column = panel + j * height;
@@ -268,42 +291,35 @@ void solveSupernodal(int64_t supernodes, const SuiteSparse_long *first,
       for (int64_t i = j + 1; i < columns; ++i)
         y[k1 + i] -= column[i] * yj;
     }
+    std::fill(dense, dense + m, 0.0);
     for (int64_t j = 0; j < columns; j += kColumnGroup) {
       int64_t group = std::min(kColumnGroup, columns - j);
       double solved[kColumnGroup] = {};
       const float *column[kColumnGroup];
       for (int64_t g = 0; g < kColumnGroup; ++g) {
         // A short last group repeats its last column, times zero.
-        column[g] = panel + (j + std::min(g, group - 1)) * height;
+        column[g] = panel + (j + std::min(g, group - 1)) * height + columns;
         solved[g] = g < group ? y[k1 + j + g] : 0.0;
       }
-      for (int64_t i = columns; i < height; ++i)
-        y[panelRows[i]] -= column[0][i] * solved[0] + column[1][i] * solved[1] +
-                           column[2][i] * solved[2] + column[3][i] * solved[3];
+      for (int64_t i = 0; i < m; ++i)
+        dense[i] += column[0][i] * solved[0] + column[1][i] * solved[1] +
+                    column[2][i] * solved[2] + column[3][i] * solved[3];
     }
+    for (int64_t i = 0; i < m; ++i)
+      y[below[i]] -= dense[i];
   }
   // L^T x' = y', in reverse: each column subtracts the dot product of its
   // panel rows with the solution below, then the diagonal block's back
   // substitution.
   for (int64_t s = supernodes; s-- > 0;) {
     int64_t k1 = first[s], columns = first[s + 1] - k1;
-    int64_t height = rowStart[s + 1] - rowStart[s];
-    const SuiteSparse_long *panelRows = rows + rowStart[s];
+    int64_t height = rowStart[s + 1] - rowStart[s], m = height - columns;
+    const SuiteSparse_long *below = rows + rowStart[s] + columns;
     const float *panel = values + valueStart[s];
-    for (int64_t j = 0; j < columns; j += kColumnGroup) {
-      int64_t group = std::min(kColumnGroup, columns - j);
-      const float *column[kColumnGroup];
-      for (int64_t g = 0; g < kColumnGroup; ++g)
-        column[g] = panel + (j + std::min(g, group - 1)) * height;
-      double sums[kColumnGroup] = {};
-      for (int64_t i = columns; i < height; ++i) {
-        double below = y[panelRows[i]];
-        for (int64_t g = 0; g < kColumnGroup; ++g)
-          sums[g] += column[g][i] * below;
-      }
-      for (int64_t g = 0; g < group; ++g)
-        y[k1 + j + g] -= sums[g];
-    }
+    for (int64_t i = 0; i < m; ++i)
+      dense[i] = y[below[i]];
+    for (int64_t j = 0; j < columns; ++j)
+      y[k1 + j] -= panelDot(panel + j * height + columns, dense, m);
     for (int64_t j = columns; j-- > 0;) {
       const float *column = panel + j * height;
       double sum = y[k1 + j];
@@ -337,7 +353,8 @@ llvm::Error SparseFactorisation::solveRounded(
     return solve(b, x);
   int64_t n = size();
   const auto *permutation = static_cast<const SuiteSparse_long *>(l->Perm);
-  scratch.resize(static_cast<size_t>(n));
+  // y, then the dense rows of solveSupernodal.
+  scratch.resize(2 * static_cast<size_t>(n));
   double *y = scratch.data();
   for (int64_t k = 0; k < n; ++k)
     y[k] = b[permutation[k]];
@@ -345,8 +362,8 @@ llvm::Error SparseFactorisation::solveRounded(
                   static_cast<const SuiteSparse_long *>(l->super),
                   static_cast<const SuiteSparse_long *>(l->pi),
                   static_cast<const SuiteSparse_long *>(l->px),
-                  static_cast<const SuiteSparse_long *>(l->s),
-                  roundedL.data(), y);
+                  static_cast<const SuiteSparse_long *>(l->s), roundedL.data(),
+                  y, y + n);
   for (int64_t k = 0; k < n; ++k)
     x[permutation[k]] = y[k];
   return llvm::Error::success();

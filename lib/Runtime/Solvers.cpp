@@ -162,9 +162,13 @@ double multiplyBlocks(const SquareBCSRView<T> &a, const T *__restrict x,
     }
     if (StaticBlock)
       std::copy(sums, sums + b, yr);
-    if (dotWith)
+    // The row's products are summed first, as in the vector kernel.
+    if (dotWith) {
+      double row = 0;
       for (int64_t i = 0; i < b; ++i)
-        dot += static_cast<double>(dotWith[r * b + i]) * yr[i];
+        row += static_cast<double>(dotWith[r * b + i]) * yr[i];
+      dot += row;
+    }
   }
   return dot;
 }

@@ -7,6 +7,7 @@
 
 #include "simit/Runtime/Solvers.h"
 
+#include "LaneSums.h"
 #include "SimdKernels.h"
 
 #include "llvm/Support/FormatVariadic.h"
@@ -22,36 +23,18 @@ using namespace simit;
 
 namespace {
 
-/// Sums of a pass over vectors, kept in four running sums that take the
-/// indices in turn and are added in a fixed order at the end. With one
-/// running sum every addition waits for the one before (about 4 cycles),
-/// which bounded CG's vector passes rather than memory; the order is still
-/// fixed, so results do not depend on threads or timing.
-struct LaneSums {
-  static constexpr int64_t kLanes = 4;
-  double lane[kLanes] = {0, 0, 0, 0};
-  double total() const { return (lane[0] + lane[1]) + (lane[2] + lane[3]); }
-};
-
-/// body(i, l) for i in [0, count), l = i mod kLanes: the lane whose sums
-/// index i adds to. The main loop's lanes are constants after unrolling, so
-/// the sums stay in registers.
-template <typename Body> inline void inLanes(int64_t count, Body &&body) {
-  int64_t i = 0;
-  for (; i + LaneSums::kLanes <= count; i += LaneSums::kLanes)
-    for (int64_t l = 0; l < LaneSums::kLanes; ++l)
-      body(i + l, l);
-  for (int64_t l = 0; i < count; ++i, ++l)
-    body(i, l);
-}
+/// The running sums of CG's vector passes (LaneSums.h).
+constexpr int64_t kVectorLanes = 4;
+using VectorSums = LaneSums<kVectorLanes>;
 
 /// Dot products accumulate in double, also for float vectors.
 template <typename T>
 double dot(const std::vector<T> &u, const std::vector<T> &v) {
-  LaneSums sums;
-  inLanes(static_cast<int64_t>(u.size()), [&](int64_t i, int64_t l) {
-    sums.lane[l] += static_cast<double>(u[i]) * v[i];
-  });
+  VectorSums sums;
+  inLanes<kVectorLanes>(static_cast<int64_t>(u.size()),
+                        [&](int64_t i, int64_t l) {
+                          sums.lane[l] += static_cast<double>(u[i]) * v[i];
+                        });
   return sums.total();
 }
 
@@ -312,8 +295,8 @@ ResidualDots blockJacobiPass(int64_t rows, int64_t blockSize, T alpha,
                              const T *__restrict inverse, T *__restrict x,
                              T *__restrict r, T *__restrict z) {
   int64_t b = StaticBlock ? StaticBlock : blockSize;
-  LaneSums rr, rz;
-  inLanes(rows, [&](int64_t row, int64_t l) {
+  VectorSums rr, rz;
+  inLanes<kVectorLanes>(rows, [&](int64_t row, int64_t l) {
     int64_t first = row * b;
     if (Update)
       for (int64_t i = first; i < first + b; ++i)
@@ -338,8 +321,8 @@ template <bool Update, typename T>
 ResidualDots diagonalPass(int64_t n, T alpha, const T *__restrict dir,
                           const T *__restrict ad, const T *__restrict inverse,
                           T *__restrict x, T *__restrict r, T *__restrict z) {
-  LaneSums rr, rz;
-  inLanes(n, [&](int64_t i, int64_t l) {
+  VectorSums rr, rz;
+  inLanes<kVectorLanes>(n, [&](int64_t i, int64_t l) {
     if (Update)
       updateElement(i, alpha, dir, ad, x, r, rr.lane[l]);
     if (inverse) {

@@ -10,6 +10,8 @@
 
 #include "SparseDirect.h"
 
+#include "LaneSums.h"
+
 #include "llvm/Support/FormatVariadic.h"
 
 #include <algorithm>
@@ -242,26 +244,17 @@ namespace {
 /// Columns of a panel taken together in the forward solve, so that the
 /// rows below the diagonal block are loaded and stored once per group.
 constexpr int64_t kColumnGroup = 4;
-/// Running sums of a dot product with a panel column, taking its rows in
-/// turn: the additions of one sum wait on each other, these do not (and
-/// they fill a vector register).
+/// Running sums of a dot product with a panel column (LaneSums.h): enough
+/// to fill vector registers.
 constexpr int64_t kDotLanes = 16;
 
-/// column . dense over `m` rows, in kDotLanes running sums added in a fixed
-/// order.
+/// column . dense over `m` rows.
 inline double panelDot(const float *__restrict column,
                        const double *__restrict dense, int64_t m) {
-  double lanes[kDotLanes] = {};
-  int64_t i = 0;
-  for (; i + kDotLanes <= m; i += kDotLanes)
-    for (int64_t l = 0; l < kDotLanes; ++l)
-      lanes[l] += column[i + l] * dense[i + l];
-  for (int64_t l = 0; i < m; ++i, ++l)
-    lanes[l] += column[i] * dense[i];
-  double sum = 0;
-  for (double lane : lanes)
-    sum += lane;
-  return sum;
+  LaneSums<kDotLanes> sums;
+  inLanes<kDotLanes>(
+      m, [&](int64_t i, int64_t l) { sums.lane[l] += column[i] * dense[i]; });
+  return sums.total();
 }
 
 /// y = L^-T L^-1 y in place for a supernodal L in CHOLMOD's layout:

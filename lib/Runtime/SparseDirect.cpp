@@ -10,7 +10,7 @@
 
 #include "SparseDirect.h"
 
-#include "LaneSums.h"
+#include "SupernodalCholesky.h"
 
 #include "llvm/Support/FormatVariadic.h"
 
@@ -19,13 +19,19 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <numeric>
+#include <type_traits>
 
 extern "C" {
+#include <suitesparse/amd.h>
 #include <suitesparse/cholmod.h>
 #include <suitesparse/umfpack.h>
 }
 
 using namespace simit;
+
+static_assert(std::is_same_v<SuiteSparse_long, int64_t>,
+              "SupernodeLayout reads CHOLMOD's index arrays as int64_t");
 
 namespace simit::direct {
 
@@ -37,6 +43,10 @@ struct Common {
     selectBlasKernels();
     cholmod_l_start(&c);
     c.print = 0; // errors come back as llvm::Error, not on stderr
+    // The ordering is AMD's on the block graph (blockOrdering), postordered.
+    c.nmethods = 1;
+    c.method[0].ordering = CHOLMOD_GIVEN;
+    c.postorder = true;
   }
   ~Common() { cholmod_l_finish(&c); }
   /// The settings of `kind`: supernodal LL^T for Cholesky, simplicial
@@ -60,6 +70,8 @@ struct Analysis {
   std::vector<int64_t> slots;
   cholmod_factor *symbolic = nullptr; // Cholesky, LDLT
   void *umfpackSymbolic = nullptr;    // LU
+  /// Cholesky: where each compressed-column entry lands in L's values.
+  std::vector<int64_t> factorPositions;
 
   int64_t size() const { return rows * blockSize; }
   ~Analysis() {
@@ -74,6 +86,17 @@ struct Analysis {
            blocks == colidx.size() &&
            !std::memcmp(a.rowptr, rowptr.data(), rowptr.size() * 4) &&
            !std::memcmp(a.colidx, colidx.data(), blocks * 4);
+  }
+  /// The supernodes of the Cholesky analysis.
+  SupernodeLayout layout() const { return layoutOf(*symbolic); }
+  static SupernodeLayout layoutOf(const cholmod_factor &l) {
+    SupernodeLayout layout;
+    layout.supernodes = static_cast<int64_t>(l.nsuper);
+    layout.first = static_cast<const int64_t *>(l.super);
+    layout.rowStart = static_cast<const int64_t *>(l.pi);
+    layout.valueStart = static_cast<const int64_t *>(l.px);
+    layout.rows = static_cast<const int64_t *>(l.s);
+    return layout;
   }
   /// A CHOLMOD view of the compressed columns holding `values`.
   cholmod_sparse view(double *values) {
@@ -150,6 +173,27 @@ std::vector<double> columnValuesOf(const SquareBCSRView<T> &a,
   return values;
 }
 
+/// A fill-reducing ordering of `a`'s scalar unknowns: AMD's on the graph
+/// of its blocks, each block's unknowns kept together. The block graph has
+/// blockSize^2 times fewer edges than the scalar one, and a block's unknowns
+/// are eliminated together anyway.
+template <typename T>
+std::vector<SuiteSparse_long> blockOrdering(const SquareBCSRView<T> &a) {
+  std::vector<int32_t> blocks(static_cast<size_t>(a.rows));
+  double control[AMD_CONTROL], info[AMD_INFO];
+  amd_defaults(control);
+  int status = amd_order(static_cast<int>(a.rows), a.rowptr, a.colidx,
+                         blocks.data(), control, info);
+  if (status != AMD_OK && status != AMD_OK_BUT_JUMBLED)
+    std::iota(blocks.begin(), blocks.end(), 0); // AMD out of memory
+  std::vector<SuiteSparse_long> ordering;
+  ordering.reserve(static_cast<size_t>(a.size()));
+  for (int32_t block : blocks)
+    for (int64_t i = 0; i < a.blockSize; ++i)
+      ordering.push_back(block * a.blockSize + i);
+  return ordering;
+}
+
 llvm::Error cholmodError(FactorKind kind, const cholmod_common &c,
                          const cholmod_factor *factor) {
   if (c.status == CHOLMOD_NOT_POSDEF || (factor && factor->minor < factor->n)) {
@@ -206,6 +250,25 @@ bool SparseFactorisation::holds(const SquareBCSRView<T> &a) const {
          !std::memcmp(valueBytes.data(), a.values, valueBytes.size());
 }
 
+namespace {
+/// x = A^-1 b with the supernodal LL^T of A(p, p) whose values are
+/// `values` (L's own, or rounded to float).
+template <typename T>
+void permutedSolve(const cholmod_factor &l, const T *values, const double *b,
+                   double *x, std::vector<double> &scratch) {
+  int64_t n = static_cast<int64_t>(l.n);
+  const auto *permutation = static_cast<const int64_t *>(l.Perm);
+  // y, then the dense rows of direct::solve.
+  scratch.resize(2 * static_cast<size_t>(n));
+  double *y = scratch.data();
+  for (int64_t k = 0; k < n; ++k)
+    y[k] = b[permutation[k]];
+  direct::solve(Analysis::layoutOf(l), values, y, y + n);
+  for (int64_t k = 0; k < n; ++k)
+    x[permutation[k]] = y[k];
+}
+} // namespace
+
 llvm::Error SparseFactorisation::solve(const double *b, double *x) const {
   int64_t n = size();
   if (umfpackNumeric) {
@@ -222,6 +285,12 @@ llvm::Error SparseFactorisation::solve(const double *b, double *x) const {
                     .str());
     return llvm::Error::success();
   }
+  const auto *l = static_cast<const cholmod_factor *>(cholmodFactor);
+  if (l->is_super) {
+    std::vector<double> scratch;
+    permutedSolve(*l, static_cast<const double *>(l->x), b, x, scratch);
+    return llvm::Error::success();
+  }
   cholmod_common &c = analysis->common->c;
   cholmod_dense rhs{};
   rhs.nrow = static_cast<size_t>(n);
@@ -230,8 +299,8 @@ llvm::Error SparseFactorisation::solve(const double *b, double *x) const {
   rhs.x = const_cast<double *>(b);
   rhs.xtype = CHOLMOD_REAL;
   rhs.dtype = CHOLMOD_DOUBLE;
-  cholmod_dense *solution = cholmod_l_solve(
-      CHOLMOD_A, static_cast<cholmod_factor *>(cholmodFactor), &rhs, &c);
+  cholmod_dense *solution =
+      cholmod_l_solve(CHOLMOD_A, const_cast<cholmod_factor *>(l), &rhs, &c);
   if (!solution)
     return llvm::createStringError(
         llvm::formatv("CHOLMOD solve failed (status {0})", c.status).str());
@@ -240,94 +309,10 @@ llvm::Error SparseFactorisation::solve(const double *b, double *x) const {
   return llvm::Error::success();
 }
 
-namespace {
-/// Columns of a panel taken together in the forward solve, so that the
-/// rows below the diagonal block are loaded and stored once per group.
-constexpr int64_t kColumnGroup = 4;
-/// Running sums of a dot product with a panel column (LaneSums.h): enough
-/// to fill vector registers.
-constexpr int64_t kDotLanes = 16;
-
-/// column . dense over `m` rows.
-inline double panelDot(const float *__restrict column,
-                       const double *__restrict dense, int64_t m) {
-  LaneSums<kDotLanes> sums;
-  inLanes<kDotLanes>(
-      m, [&](int64_t i, int64_t l) { sums.lane[l] += column[i] * dense[i]; });
-  return sums.total();
-}
-
-/// y = L^-T L^-1 y in place for a supernodal L in CHOLMOD's layout:
-/// supernode s holds columns [first[s], first[s + 1]), its row indices at
-/// rows[rowStart[s] .. rowStart[s + 1]) (the first ones its own columns),
-/// and its values as a column-major panel of those rows at
-/// values[valueStart[s] ..]. The rows of a panel below its diagonal block
-/// go through `dense` (as many entries as L has rows), contiguous, so that
-/// the products over them are dense loops the compiler vectorises, and the
-/// gathers and scatters of y are made once per row, not once per column.
-void solveSupernodal(int64_t supernodes, const SuiteSparse_long *first,
-                     const SuiteSparse_long *rowStart,
-                     const SuiteSparse_long *valueStart,
-                     const SuiteSparse_long *rows, const float *values,
-                     double *__restrict y, double *__restrict dense) {
-  // L y' = y, supernode by supernode: the diagonal block's forward
-  // substitution, then the rows below take the panel times its solution.
-  for (int64_t s = 0; s < supernodes; ++s) {
-    int64_t k1 = first[s], columns = first[s + 1] - k1;
-    int64_t height = rowStart[s + 1] - rowStart[s], m = height - columns;
-    const SuiteSparse_long *below = rows + rowStart[s] + columns;
-    const float *panel = values + valueStart[s];
-    for (int64_t j = 0; j < columns; ++j) {
-      const float *column = panel + j * height;
-      double yj = y[k1 + j] / column[j];
-      y[k1 + j] = yj;
-      for (int64_t i = j + 1; i < columns; ++i)
-        y[k1 + i] -= column[i] * yj;
-    }
-    std::fill(dense, dense + m, 0.0);
-    for (int64_t j = 0; j < columns; j += kColumnGroup) {
-      int64_t group = std::min(kColumnGroup, columns - j);
-      double solved[kColumnGroup] = {};
-      const float *column[kColumnGroup];
-      for (int64_t g = 0; g < kColumnGroup; ++g) {
-        // A short last group repeats its last column, times zero.
-        column[g] = panel + (j + std::min(g, group - 1)) * height + columns;
-        solved[g] = g < group ? y[k1 + j + g] : 0.0;
-      }
-      for (int64_t i = 0; i < m; ++i)
-        dense[i] += column[0][i] * solved[0] + column[1][i] * solved[1] +
-                    column[2][i] * solved[2] + column[3][i] * solved[3];
-    }
-    for (int64_t i = 0; i < m; ++i)
-      y[below[i]] -= dense[i];
-  }
-  // L^T x' = y', in reverse: each column subtracts the dot product of its
-  // panel rows with the solution below, then the diagonal block's back
-  // substitution.
-  for (int64_t s = supernodes; s-- > 0;) {
-    int64_t k1 = first[s], columns = first[s + 1] - k1;
-    int64_t height = rowStart[s + 1] - rowStart[s], m = height - columns;
-    const SuiteSparse_long *below = rows + rowStart[s] + columns;
-    const float *panel = values + valueStart[s];
-    for (int64_t i = 0; i < m; ++i)
-      dense[i] = y[below[i]];
-    for (int64_t j = 0; j < columns; ++j)
-      y[k1 + j] -= panelDot(panel + j * height + columns, dense, m);
-    for (int64_t j = columns; j-- > 0;) {
-      const float *column = panel + j * height;
-      double sum = y[k1 + j];
-      for (int64_t i = j + 1; i < columns; ++i)
-        sum -= column[i] * y[k1 + i];
-      y[k1 + j] = sum / column[j];
-    }
-  }
-}
-} // namespace
-
 llvm::Error SparseFactorisation::solveRounded(
     const double *b, double *x, std::vector<double> &scratch) const {
   const auto *l = static_cast<const cholmod_factor *>(cholmodFactor);
-  bool supernodal = l && l->is_super && l->is_ll && l->xtype == CHOLMOD_REAL;
+  bool supernodal = l && l->is_super;
   if (supernodal)
     std::call_once(roundOnce, [&] {
       const auto *values = static_cast<const double *>(l->x);
@@ -344,21 +329,7 @@ llvm::Error SparseFactorisation::solveRounded(
     });
   if (!supernodal || roundedL.empty())
     return solve(b, x);
-  int64_t n = size();
-  const auto *permutation = static_cast<const SuiteSparse_long *>(l->Perm);
-  // y, then the dense rows of solveSupernodal.
-  scratch.resize(2 * static_cast<size_t>(n));
-  double *y = scratch.data();
-  for (int64_t k = 0; k < n; ++k)
-    y[k] = b[permutation[k]];
-  solveSupernodal(static_cast<int64_t>(l->nsuper),
-                  static_cast<const SuiteSparse_long *>(l->super),
-                  static_cast<const SuiteSparse_long *>(l->pi),
-                  static_cast<const SuiteSparse_long *>(l->px),
-                  static_cast<const SuiteSparse_long *>(l->s), roundedL.data(),
-                  y, y + n);
-  for (int64_t k = 0; k < n; ++k)
-    x[permutation[k]] = y[k];
+  permutedSolve(*l, roundedL.data(), b, x, scratch);
   return llvm::Error::success();
 }
 
@@ -430,9 +401,16 @@ FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
       cholmod_common &c = common->configuredFor(kind);
       cholmod_sparse view = analysis->view(nullptr);
       view.xtype = CHOLMOD_PATTERN;
-      analysis->symbolic = cholmod_l_analyze(&view, &c);
+      std::vector<SuiteSparse_long> ordering = blockOrdering(a);
+      analysis->symbolic =
+          cholmod_l_analyze_p(&view, ordering.data(), nullptr, 0, &c);
       if (!analysis->symbolic)
         return cholmodError(kind, c, nullptr);
+      if (kind == FactorKind::Cholesky)
+        analysis->factorPositions = direct::entryPositions(
+            analysis->layout(),
+            static_cast<const int64_t *>(analysis->symbolic->Perm),
+            analysis->columnPointers.data(), analysis->rowIndices.data());
     }
     entries.push_front({std::move(analysis), nullptr});
     if (entries.size() > kCapacity)
@@ -452,10 +430,11 @@ FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
   Clock::time_point start = Clock::now();
   Analysis &analysis = *entry->analysis;
   // Refactorise in place when nothing else (a chol/lu handle) holds the
-  // latest factorisation; else start from a copy of the symbolic one.
+  // latest factorisation and it has no float copy of L (made once per
+  // object); else start from a copy of the symbolic one.
   std::shared_ptr<SparseFactorisation> factor = entry->latest;
   entry->latest = nullptr;
-  if (!factor || factor.use_count() > 1) {
+  if (!factor || factor.use_count() > 1 || !factor->roundedL.empty()) {
     factor.reset(new SparseFactorisation);
     factor->analysis = entry->analysis;
   }
@@ -465,7 +444,10 @@ FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
                                                a.rowptr[a.rows]) *
                                                a.blockSize * a.blockSize *
                                                sizeof(T));
-  factor->columnValues = columnValuesOf(a, analysis);
+  if (kind == FactorKind::Cholesky)
+    factor->columnValues.clear();
+  else
+    factor->columnValues = columnValuesOf(a, analysis);
   if (kind == FactorKind::LU) {
     if (factor->umfpackNumeric)
       umfpack_dl_free_numeric(&factor->umfpackNumeric);
@@ -488,10 +470,30 @@ FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
     if (!factor->cholmodFactor)
       factor->cholmodFactor = cholmod_l_copy_factor(analysis.symbolic, &c);
     auto *cholmodFactor = static_cast<cholmod_factor *>(factor->cholmodFactor);
-    cholmod_sparse view = analysis.view(factor->columnValues.data());
-    if (!cholmodFactor || !cholmod_l_factorize(&view, cholmodFactor, &c) ||
-        c.status != CHOLMOD_OK || cholmodFactor->minor < cholmodFactor->n)
-      return cholmodError(kind, c, cholmodFactor);
+    if (!cholmodFactor)
+      return cholmodError(kind, c, nullptr);
+    if (kind == FactorKind::Cholesky) {
+      // CHOLMOD's analysis, the runtime's numeric factorisation
+      // (SupernodalCholesky.h) into the factor's values.
+      if (cholmodFactor->xtype == CHOLMOD_PATTERN &&
+          !cholmod_l_change_factor(CHOLMOD_REAL, true, true, true, true,
+                                   cholmodFactor, &c))
+        return cholmodError(kind, c, nullptr);
+      auto *lx = static_cast<double *>(cholmodFactor->x);
+      std::fill(lx, lx + cholmodFactor->xsize, 0.0);
+      const std::vector<int64_t> &positions = analysis.factorPositions;
+      for (size_t p = 0; p < positions.size(); ++p)
+        lx[positions[p]] = static_cast<double>(a.values[analysis.slots[p]]);
+      cholmodFactor->minor =
+          static_cast<size_t>(direct::factorise(analysis.layout(), lx));
+      if (cholmodFactor->minor < cholmodFactor->n)
+        return cholmodError(kind, c, cholmodFactor);
+    } else {
+      cholmod_sparse view = analysis.view(factor->columnValues.data());
+      if (!cholmod_l_factorize(&view, cholmodFactor, &c) ||
+          c.status != CHOLMOD_OK || cholmodFactor->minor < cholmodFactor->n)
+        return cholmodError(kind, c, cholmodFactor);
+    }
   }
   entry->latest = factor;
   lookup.factor = std::move(factor);

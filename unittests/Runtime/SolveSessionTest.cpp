@@ -226,6 +226,61 @@ TEST(SolveSession, IndefiniteMatrices) {
               HasSubstr("not positive definite"));
 }
 
+// Cholesky's numeric factorisation (SupernodalCholesky.h) on random
+// matrices of scalars and of blocks, on patterns that give it supernodes of
+// every kind: random sparse ones (a few columns wide, updated by the dense
+// loops), a wide band (wide supernodes updating one another through BLAS)
+// and a full matrix (one supernode, factorised by BLAS); against Eigen's
+// dense LL^T.
+TEST(SolveSession, CholeskyMatchesEigenOnRandomPatterns) {
+  constexpr int n = 60;
+  enum Pattern { TwoPerRow, EightPerRow, Band, Full };
+  for (int b : {1, 2, 3})
+    for (Pattern pattern : {TwoPerRow, EightPerRow, Band, Full}) {
+      std::mt19937 rng(100 * b + pattern);
+      std::uniform_real_distribution<double> value(-1, 1);
+      std::uniform_int_distribution<int> column(0, n - 1);
+      Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n * b, n * b);
+      auto fill = [&](int r, int c) {
+        for (int i = 0; i < b; ++i)
+          for (int j = 0; j < b; ++j)
+            m(r * b + i, c * b + j) = value(rng);
+      };
+      for (int r = 0; r < n; ++r)
+        for (int c = 0; c < n; ++c)
+          if (pattern == Full || (pattern == Band && std::abs(r - c) <= 10))
+            fill(r, c);
+      if (pattern == TwoPerRow || pattern == EightPerRow)
+        for (int r = 0; r < n; ++r)
+          for (int k = 0; k < (pattern == TwoPerRow ? 2 : 8); ++k)
+            fill(r, column(rng));
+      Eigen::MatrixXd a =
+          m * m.transpose() + Eigen::MatrixXd::Identity(n * b, n * b);
+      BandSystem<double> system(n, b, a, /*nonzeroBlocks=*/true);
+      SolveSession session(settingsOf(SolveMethod::Cholesky));
+      Eigen::VectorXd rhs = randomVector(n * b, 7);
+      std::vector<double> x(n * b);
+      auto report = session.solve(system.view, rhs.data(), x.data(), "t");
+      ASSERT_TRUE(bool(report)) << "block size " << b << ", pattern " << pattern
+                                << ": " << llvm::toString(report.takeError());
+      Eigen::VectorXd exact = a.llt().solve(rhs);
+      for (int i = 0; i < n * b; ++i)
+        EXPECT_NEAR(x[i], exact[i], 1e-11 * exact.norm())
+            << "block size " << b << ", pattern " << pattern << ", unknown "
+            << i;
+    }
+}
+
+// The column whose pivot fails is named in the matrix's own numbering, not
+// in the factorisation's fill-reducing order: with one negative diagonal
+// entry in an otherwise positive definite matrix, it is that entry's.
+TEST(SolveSession, CholeskyNamesTheFailingColumnOfTheMatrix) {
+  Eigen::MatrixXd a = spd(3, 2);
+  a(16, 16) = -100;
+  EXPECT_THAT(solveError<double>(settingsOf(SolveMethod::Cholesky), a, 3),
+              HasSubstr("fails at scalar column 16"));
+}
+
 TEST(SolveSession, SingularMatrixIsAnError) {
   Eigen::MatrixXd a = spd(3, 4);
   a.row(5).setZero();

@@ -1,0 +1,332 @@
+//===--- SupernodalCholesky.cpp - Numeric LL^T on a supernodal layout -----===//
+
+#include "SupernodalCholesky.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+extern "C" {
+void dgemm_(const char *transa, const char *transb, const int *m, const int *n,
+            const int *k, const double *alpha, const double *a, const int *lda,
+            const double *b, const int *ldb, const double *beta, double *c,
+            const int *ldc);
+void dsyrk_(const char *uplo, const char *trans, const int *n, const int *k,
+            const double *alpha, const double *a, const int *lda,
+            const double *beta, double *c, const int *ldc);
+void dpotrf_(const char *uplo, const int *n, double *a, const int *lda,
+             int *info);
+void dtrsm_(const char *side, const char *uplo, const char *transa,
+            const char *diag, const int *m, const int *n, const double *alpha,
+            const double *a, const int *lda, double *b, const int *ldb);
+}
+
+using namespace simit;
+using namespace simit::direct;
+
+namespace {
+
+// The dense loops below are compiled twice, for the host's AVX2 and FMA
+// when it has them (chosen when the library loads) and for any x86-64.
+#if defined(__x86_64__) && defined(__GNUC__)
+#define SIMIT_HOST_VECTOR_CLONES                                               \
+  __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define SIMIT_HOST_VECTOR_CLONES
+#endif
+
+/// Multiply-adds from which an update or a panel goes to BLAS: below it the
+/// call's own cost (packing, dispatch) outweighs its faster kernel.
+constexpr int64_t kBlasWork = 8 * 1024;
+
+/// Which supernode each column belongs to.
+std::vector<int64_t> supernodeOfColumns(const SupernodeLayout &layout) {
+  std::vector<int64_t> supernodeOf(static_cast<size_t>(layout.size()));
+  for (int64_t s = 0; s < layout.supernodes; ++s)
+    std::fill(supernodeOf.begin() + layout.first[s],
+              supernodeOf.begin() + layout.first[s + 1], s);
+  return supernodeOf;
+}
+
+/// c (m x m1, column-major) = the lower trapezoid of a * b^T, where a is
+/// the m x k panel at `a` (leading dimension lda) and b its first m1 rows.
+SIMIT_HOST_VECTOR_CLONES void lowerProduct(const double *a, int64_t lda,
+                                           int64_t m, int64_t m1, int64_t k,
+                                           double *__restrict c) {
+  if (m * m1 * k >= kBlasWork) {
+    // The top m1 x m1 block's lower triangle, then the rows below it.
+    int im = static_cast<int>(m), im1 = static_cast<int>(m1),
+        rest = static_cast<int>(m - m1), ik = static_cast<int>(k),
+        ilda = static_cast<int>(lda);
+    double one = 1, zero = 0;
+    dsyrk_("L", "N", &im1, &ik, &one, a, &ilda, &zero, c, &im);
+    if (rest > 0)
+      dgemm_("N", "T", &rest, &im1, &ik, &one, a + m1, &ilda, a, &ilda, &zero,
+             c + m1, &im);
+    return;
+  }
+  for (int64_t j = 0; j < m1; ++j) {
+    double *__restrict column = c + j * m;
+    std::fill(column + j, column + m, 0.0);
+    for (int64_t p = 0; p < k; ++p) {
+      const double *__restrict source = a + p * lda;
+      double scale = source[j];
+      for (int64_t i = j; i < m; ++i)
+        column[i] += source[i] * scale;
+    }
+  }
+}
+
+/// The panel of one supernode (height x columns, leading dimension height)
+/// with all updates from earlier supernodes applied becomes L's: Cholesky
+/// of its diagonal block, then the rows below solved against it. Returns
+/// the panel's first column with a pivot that is not positive, or
+/// `columns`.
+SIMIT_HOST_VECTOR_CLONES int64_t factorisePanel(double *panel, int64_t height,
+                                                int64_t columns) {
+  if (height * columns * columns >= kBlasWork) {
+    int n = static_cast<int>(columns), ld = static_cast<int>(height), info = 0;
+    dpotrf_("L", &n, panel, &ld, &info);
+    if (info != 0)
+      return info - 1;
+    int below = static_cast<int>(height - columns);
+    double one = 1;
+    if (below > 0)
+      dtrsm_("R", "L", "T", "N", &below, &n, &one, panel, &ld, panel + columns,
+             &ld);
+    return columns;
+  }
+  for (int64_t j = 0; j < columns; ++j) {
+    double *__restrict column = panel + j * height;
+    for (int64_t p = 0; p < j; ++p) {
+      const double *__restrict earlier = panel + p * height;
+      double scale = earlier[j];
+      for (int64_t i = j; i < height; ++i)
+        column[i] -= earlier[i] * scale;
+    }
+    double pivot = column[j];
+    if (!(pivot > 0) || !std::isfinite(pivot))
+      return j;
+    double diagonal = std::sqrt(pivot), inverse = 1 / diagonal;
+    column[j] = diagonal;
+    for (int64_t i = j + 1; i < height; ++i)
+      column[i] *= inverse;
+  }
+  return columns;
+}
+
+/// Columns of a panel taken together in the forward solve, so that the
+/// rows below the diagonal block are loaded and stored once per group.
+constexpr int64_t kColumnGroup = 4;
+/// sums[g] -= columns[g] . dense over `m` rows, for the kColumnGroup
+/// columns of a group at once: each entry of `dense` is loaded once for
+/// all of them, and each column's sum runs in four lanes.
+template <typename T>
+void subtractGroupDots(const T *const *columns, const double *__restrict dense,
+                       int64_t m, double *sums) {
+  constexpr int64_t kLanes = 4;
+  double lane[kColumnGroup][kLanes] = {};
+  int64_t i = 0;
+  for (; i + kLanes <= m; i += kLanes)
+    for (int64_t g = 0; g < kColumnGroup; ++g)
+      for (int64_t l = 0; l < kLanes; ++l)
+        lane[g][l] += columns[g][i + l] * dense[i + l];
+  for (int64_t g = 0; g < kColumnGroup; ++g) {
+    double sum = 0;
+    for (int64_t j = i; j < m; ++j)
+      sum += columns[g][j] * dense[j];
+    for (int64_t l = 0; l < kLanes; ++l)
+      sum += lane[g][l];
+    sums[g] -= sum;
+  }
+}
+
+} // namespace
+
+std::vector<int64_t> direct::entryPositions(const SupernodeLayout &layout,
+                                            const int64_t *permutation,
+                                            const int64_t *columnPointers,
+                                            const int64_t *rowIndices) {
+  int64_t n = layout.size();
+  std::vector<int64_t> inverse(static_cast<size_t>(n));
+  for (int64_t k = 0; k < n; ++k)
+    inverse[permutation[k]] = k;
+  std::vector<int64_t> supernodeOf = supernodeOfColumns(layout);
+  // Entry (i, j), i >= j in L's order, lies in column j's supernode panel.
+  // The entries are sorted by that supernode (counting sort), so that each
+  // panel's rows are indexed once for all of its entries.
+  int64_t entries = columnPointers[n];
+  std::vector<int64_t> lower(static_cast<size_t>(entries)),
+      upper(static_cast<size_t>(entries)),
+      bucketStart(static_cast<size_t>(layout.supernodes) + 1, 0);
+  for (int64_t column = 0; column < n; ++column)
+    for (int64_t p = columnPointers[column]; p < columnPointers[column + 1];
+         ++p) {
+      int64_t i = inverse[rowIndices[p]], j = inverse[column];
+      lower[p] = std::min(i, j);
+      upper[p] = std::max(i, j);
+      ++bucketStart[supernodeOf[lower[p]] + 1];
+    }
+  std::partial_sum(bucketStart.begin(), bucketStart.end(), bucketStart.begin());
+  std::vector<int64_t> sorted(static_cast<size_t>(entries)),
+      filled(bucketStart.begin(), bucketStart.end() - 1);
+  for (int64_t p = 0; p < entries; ++p)
+    sorted[filled[supernodeOf[lower[p]]]++] = p;
+
+  std::vector<int64_t> positions(static_cast<size_t>(entries)),
+      indexInPanel(static_cast<size_t>(n));
+  for (int64_t s = 0; s < layout.supernodes; ++s) {
+    int64_t height = layout.rowStart[s + 1] - layout.rowStart[s];
+    const int64_t *rows = layout.rows + layout.rowStart[s];
+    for (int64_t r = 0; r < height; ++r)
+      indexInPanel[rows[r]] = r;
+    for (int64_t q = bucketStart[s]; q < bucketStart[s + 1]; ++q) {
+      int64_t p = sorted[q];
+      positions[p] = layout.valueStart[s] +
+                     (lower[p] - layout.first[s]) * height +
+                     indexInPanel[upper[p]];
+    }
+  }
+  return positions;
+}
+
+int64_t direct::factorise(const SupernodeLayout &layout, double *values) {
+  int64_t n = layout.size(), supernodes = layout.supernodes;
+  std::vector<int64_t> supernodeOf = supernodeOfColumns(layout);
+  // Left-looking: the supernodes whose panels still have rows to give are
+  // kept in lists, one per supernode their next row falls in (head, next),
+  // with the position of that row in their panel (nextRow).
+  std::vector<int64_t> head(supernodes, -1), next(supernodes, -1),
+      nextRow(supernodes, 0), indexInPanel(n, 0);
+  int64_t largestUpdate = 0;
+  for (int64_t s = 0; s < supernodes; ++s) {
+    int64_t height = layout.rowStart[s + 1] - layout.rowStart[s];
+    largestUpdate = std::max(largestUpdate, height * height);
+  }
+  std::vector<double> update(static_cast<size_t>(largestUpdate));
+
+  for (int64_t s = 0; s < supernodes; ++s) {
+    int64_t k1 = layout.first[s], k2 = layout.first[s + 1];
+    int64_t height = layout.rowStart[s + 1] - layout.rowStart[s];
+    const int64_t *rows = layout.rows + layout.rowStart[s];
+    double *panel = values + layout.valueStart[s];
+    for (int64_t i = 0; i < height; ++i)
+      indexInPanel[rows[i]] = i;
+
+    for (int64_t d = head[s]; d != -1;) {
+      int64_t following = next[d];
+      int64_t dHeight = layout.rowStart[d + 1] - layout.rowStart[d];
+      const int64_t *dRows = layout.rows + layout.rowStart[d];
+      int64_t top = nextRow[d], end = top;
+      while (end < dHeight && dRows[end] < k2)
+        ++end;
+      int64_t m = dHeight - top, m1 = end - top;
+      lowerProduct(values + layout.valueStart[d] + top, dHeight, m, m1,
+                   layout.first[d + 1] - layout.first[d], update.data());
+      for (int64_t j = 0; j < m1; ++j) {
+        double *target = panel + (dRows[top + j] - k1) * height;
+        const double *column = update.data() + j * m;
+        for (int64_t i = j; i < m; ++i)
+          target[indexInPanel[dRows[top + i]]] -= column[i];
+      }
+      nextRow[d] = end;
+      if (end < dHeight) {
+        int64_t later = supernodeOf[dRows[end]];
+        next[d] = head[later];
+        head[later] = d;
+      }
+      d = following;
+    }
+
+    int64_t columns = k2 - k1;
+    int64_t failed = factorisePanel(panel, height, columns);
+    if (failed < columns)
+      return k1 + failed;
+    nextRow[s] = columns;
+    if (columns < height) {
+      int64_t later = supernodeOf[rows[columns]];
+      next[s] = head[later];
+      head[later] = s;
+    }
+  }
+  return n;
+}
+
+template <typename T>
+void direct::solve(const SupernodeLayout &layout, const T *values,
+                   double *__restrict y, double *__restrict dense) {
+  // L y' = y, supernode by supernode: the diagonal block's forward
+  // substitution, then the rows below take the panel times its solution,
+  // summed in `dense` (contiguous, so the products are dense loops) and
+  // scattered into y once per row.
+  for (int64_t s = 0; s < layout.supernodes; ++s) {
+    int64_t k1 = layout.first[s], columns = layout.first[s + 1] - k1;
+    int64_t height = layout.rowStart[s + 1] - layout.rowStart[s];
+    int64_t m = height - columns;
+    const int64_t *below = layout.rows + layout.rowStart[s] + columns;
+    const T *panel = values + layout.valueStart[s];
+    for (int64_t j = 0; j < columns; ++j) {
+      const T *column = panel + j * height;
+      double yj = y[k1 + j] / column[j];
+      y[k1 + j] = yj;
+      for (int64_t i = j + 1; i < columns; ++i)
+        y[k1 + i] -= column[i] * yj;
+    }
+    std::fill(dense, dense + m, 0.0);
+    for (int64_t j = 0; j < columns; j += kColumnGroup) {
+      int64_t group = std::min(kColumnGroup, columns - j);
+      double solved[kColumnGroup] = {};
+      const T *column[kColumnGroup];
+      for (int64_t g = 0; g < kColumnGroup; ++g) {
+        // A short last group repeats its last column, times zero.
+        column[g] = panel + (j + std::min(g, group - 1)) * height + columns;
+        solved[g] = g < group ? y[k1 + j + g] : 0.0;
+      }
+      for (int64_t i = 0; i < m; ++i)
+        dense[i] += column[0][i] * solved[0] + column[1][i] * solved[1] +
+                    column[2][i] * solved[2] + column[3][i] * solved[3];
+    }
+    for (int64_t i = 0; i < m; ++i)
+      y[below[i]] -= dense[i];
+  }
+  // L^T x' = y', in reverse, a group of columns at a time from the last:
+  // each column's sum over its panel rows below the group (the supernode's
+  // later columns, already solved in y, and the rows below it, gathered
+  // into `dense` once), then the group's own triangle.
+  for (int64_t s = layout.supernodes; s-- > 0;) {
+    int64_t k1 = layout.first[s], columns = layout.first[s + 1] - k1;
+    int64_t height = layout.rowStart[s + 1] - layout.rowStart[s];
+    int64_t m = height - columns;
+    const int64_t *below = layout.rows + layout.rowStart[s] + columns;
+    const T *panel = values + layout.valueStart[s];
+    for (int64_t i = 0; i < m; ++i)
+      dense[i] = y[below[i]];
+    for (int64_t end = columns; end > 0;) {
+      int64_t group = std::min(kColumnGroup, end), j0 = end - group;
+      double sums[kColumnGroup];
+      const T *solvedRows[kColumnGroup], *belowRows[kColumnGroup];
+      for (int64_t g = 0; g < kColumnGroup; ++g) {
+        // A short group repeats its last column; its sums are not used.
+        const T *column = panel + (j0 + std::min(g, group - 1)) * height;
+        solvedRows[g] = column + end;
+        belowRows[g] = column + columns;
+        sums[g] = y[k1 + j0 + std::min(g, group - 1)];
+      }
+      subtractGroupDots(solvedRows, y + k1 + end, columns - end, sums);
+      subtractGroupDots(belowRows, dense, m, sums);
+      for (int64_t j = end; j-- > j0;) {
+        const T *column = panel + j * height;
+        double sum = sums[j - j0];
+        for (int64_t i = j + 1; i < end; ++i)
+          sum -= column[i] * y[k1 + i];
+        y[k1 + j] = sum / column[j];
+      }
+      end = j0;
+    }
+  }
+}
+
+template void direct::solve(const SupernodeLayout &, const float *, double *,
+                            double *);
+template void direct::solve(const SupernodeLayout &, const double *, double *,
+                            double *);

@@ -196,14 +196,19 @@ const std::vector<int32_t> &BlockMirrors::of(int64_t rows,
   rowptr.assign(rowptrIn, rowptrIn + rows + 1);
   colidx.assign(colidxIn, colidxIn + blocks);
   mirrors.assign(static_cast<size_t>(blocks), -1);
+  // Rows are visited in increasing order and each row's columns are sorted,
+  // so the mirror of (r, c) is at or after where row c's search stopped
+  // for the rows before r: one cursor per row, moving forward only (a
+  // binary search per block was dominated by mispredicted branches).
+  std::vector<int32_t> cursor(rowptr.begin(), rowptr.end() - 1);
   for (int64_t r = 0; r < rows; ++r)
     for (int32_t k = rowptr[r]; k < rowptr[r + 1]; ++k) {
       int32_t c = colidx[k];
-      auto begin = colidx.begin() + rowptr[c];
-      auto end = colidx.begin() + rowptr[c + 1];
-      auto mirror = std::lower_bound(begin, end, r);
-      if (mirror != end && *mirror == r)
-        mirrors[k] = static_cast<int32_t>(mirror - colidx.begin());
+      int32_t &at = cursor[c];
+      while (at < rowptr[c + 1] && colidx[at] < r)
+        ++at;
+      if (at < rowptr[c + 1] && colidx[at] == r)
+        mirrors[k] = at;
     }
   return mirrors;
 }

@@ -147,6 +147,10 @@ void buildColumns(const SquareBCSRView<T> &a, Analysis &analysis) {
   int64_t bs = a.blockSize;
   bool upper = analysis.kind != FactorKind::LU;
   analysis.columnPointers.assign(1, 0);
+  analysis.columnPointers.reserve(static_cast<size_t>(a.size()) + 1);
+  size_t entries = static_cast<size_t>(a.rowptr[a.rows]) * bs * bs;
+  analysis.rowIndices.reserve(entries);
+  analysis.slots.reserve(entries);
   for (int64_t r = 0; r < a.rows; ++r)
     for (int64_t i = 0; i < bs; ++i) {
       int64_t column = r * bs + i;

@@ -30,9 +30,6 @@ extern "C" {
 
 using namespace simit;
 
-static_assert(std::is_same_v<SuiteSparse_long, int64_t>,
-              "SupernodeLayout reads CHOLMOD's index arrays as int64_t");
-
 namespace simit::direct {
 
 /// CHOLMOD's workspace and settings, shared by every analysis and factor
@@ -43,20 +40,15 @@ struct Common {
     selectBlasKernels();
     cholmod_l_start(&c);
     c.print = 0; // errors come back as llvm::Error, not on stderr
-    // The ordering is AMD's on the block graph (blockOrdering), postordered.
+    // LDL^T: simplicial, ordered by AMD on the block graph (blockOrdering),
+    // postordered.
+    c.supernodal = CHOLMOD_SIMPLICIAL;
+    c.final_ll = false;
     c.nmethods = 1;
     c.method[0].ordering = CHOLMOD_GIVEN;
     c.postorder = true;
   }
   ~Common() { cholmod_l_finish(&c); }
-  /// The settings of `kind`: supernodal LL^T for Cholesky, simplicial
-  /// LDL^T otherwise.
-  cholmod_common &configuredFor(FactorKind kind) {
-    c.supernodal = kind == FactorKind::Cholesky ? CHOLMOD_SUPERNODAL
-                                                : CHOLMOD_SIMPLICIAL;
-    c.final_ll = kind == FactorKind::Cholesky;
-    return c;
-  }
 };
 
 /// The symbolic analysis of one pattern for one kind.
@@ -68,7 +60,8 @@ struct Analysis {
   /// The compressed columns (A^T's) and, per entry, its BCSR value index.
   std::vector<SuiteSparse_long> columnPointers, rowIndices;
   std::vector<int64_t> slots;
-  cholmod_factor *symbolic = nullptr; // Cholesky, LDLT
+  SupernodalSymbolic supernodal;      // Cholesky
+  cholmod_factor *symbolic = nullptr; // LDLT
   void *umfpackSymbolic = nullptr;    // LU
   /// Cholesky: where each compressed-column entry lands in L's values.
   std::vector<int64_t> factorPositions;
@@ -86,17 +79,6 @@ struct Analysis {
            blocks == colidx.size() &&
            !std::memcmp(a.rowptr, rowptr.data(), rowptr.size() * 4) &&
            !std::memcmp(a.colidx, colidx.data(), blocks * 4);
-  }
-  /// The supernodes of the Cholesky analysis.
-  SupernodeLayout layout() const { return layoutOf(*symbolic); }
-  static SupernodeLayout layoutOf(const cholmod_factor &l) {
-    SupernodeLayout layout;
-    layout.supernodes = static_cast<int64_t>(l.nsuper);
-    layout.first = static_cast<const int64_t *>(l.super);
-    layout.rowStart = static_cast<const int64_t *>(l.pi);
-    layout.valueStart = static_cast<const int64_t *>(l.px);
-    layout.rows = static_cast<const int64_t *>(l.s);
-    return layout;
   }
   /// A CHOLMOD view of the compressed columns holding `values`.
   cholmod_sparse view(double *values) {
@@ -119,6 +101,7 @@ struct Analysis {
 } // namespace simit::direct
 
 using direct::Analysis;
+using direct::SupernodalSymbolic;
 
 namespace {
 using Clock = std::chrono::steady_clock;
@@ -183,19 +166,29 @@ std::vector<double> columnValuesOf(const SquareBCSRView<T> &a,
 /// are eliminated together anyway.
 template <typename T>
 std::vector<SuiteSparse_long> blockOrdering(const SquareBCSRView<T> &a) {
-  std::vector<int32_t> blocks(static_cast<size_t>(a.rows));
-  double control[AMD_CONTROL], info[AMD_INFO];
-  amd_defaults(control);
-  int status = amd_order(static_cast<int>(a.rows), a.rowptr, a.colidx,
-                         blocks.data(), control, info);
-  if (status != AMD_OK && status != AMD_OK_BUT_JUMBLED)
-    std::iota(blocks.begin(), blocks.end(), 0); // AMD out of memory
   std::vector<SuiteSparse_long> ordering;
   ordering.reserve(static_cast<size_t>(a.size()));
-  for (int32_t block : blocks)
+  for (int32_t block : direct::minimumDegreeOrder(a.rows, a.rowptr, a.colidx))
     for (int64_t i = 0; i < a.blockSize; ++i)
       ordering.push_back(block * a.blockSize + i);
   return ordering;
+}
+
+/// The error of a Cholesky (or LDL^T) factorisation whose pivot at the
+/// matrix's scalar column `column` is not positive (or is zero).
+llvm::Error notFactorisable(FactorKind kind, int64_t column) {
+  return llvm::createStringError(
+      kind == FactorKind::Cholesky
+          ? llvm::formatv("the matrix is not positive definite (Cholesky "
+                          "factorisation fails at scalar column {0}; "
+                          "choose ldlt or lu for indefinite matrices)",
+                          column)
+                .str()
+          : llvm::formatv("the matrix is singular or needs pivoting (LDL^T "
+                          "factorisation has a zero pivot at scalar column "
+                          "{0}; choose lu)",
+                          column)
+                .str());
 }
 
 llvm::Error cholmodError(FactorKind kind, const cholmod_common &c,
@@ -209,23 +202,29 @@ llvm::Error cholmodError(FactorKind kind, const cholmod_common &c,
                    ? static_cast<size_t>(static_cast<const SuiteSparse_long *>(
                          factor->Perm)[factor->minor])
                    : factor->minor;
-    return llvm::createStringError(
-        kind == FactorKind::Cholesky
-            ? llvm::formatv("the matrix is not positive definite (Cholesky "
-                            "factorisation fails at scalar column {0}; "
-                            "choose ldlt or lu for indefinite matrices)",
-                            column)
-                  .str()
-            : llvm::formatv("the matrix is singular or needs pivoting (LDL^T "
-                            "factorisation has a zero pivot at scalar column "
-                            "{0}; choose lu)",
-                            column)
-                  .str());
+    return notFactorisable(kind, static_cast<int64_t>(column));
   }
   return llvm::createStringError(
       llvm::formatv("CHOLMOD {0} factorisation failed (status {1})",
                     kindName(kind), c.status)
           .str());
+}
+
+/// x = A^-1 b with the supernodal LL^T of A(p, p) whose values are
+/// `values` (L's own, or rounded to float).
+template <typename T>
+void permutedSolve(const SupernodalSymbolic &symbolic, const T *values,
+                   const double *b, double *x, std::vector<double> &scratch) {
+  int64_t n = static_cast<int64_t>(symbolic.permutation.size());
+  const int64_t *permutation = symbolic.permutation.data();
+  // y, then the dense rows of direct::solve.
+  scratch.resize(2 * static_cast<size_t>(n));
+  double *y = scratch.data();
+  for (int64_t k = 0; k < n; ++k)
+    y[k] = b[permutation[k]];
+  direct::solve(symbolic.layout(), values, y, y + n);
+  for (int64_t k = 0; k < n; ++k)
+    x[permutation[k]] = y[k];
 }
 
 } // namespace
@@ -254,25 +253,6 @@ bool SparseFactorisation::holds(const SquareBCSRView<T> &a) const {
          !std::memcmp(valueBytes.data(), a.values, valueBytes.size());
 }
 
-namespace {
-/// x = A^-1 b with the supernodal LL^T of A(p, p) whose values are
-/// `values` (L's own, or rounded to float).
-template <typename T>
-void permutedSolve(const cholmod_factor &l, const T *values, const double *b,
-                   double *x, std::vector<double> &scratch) {
-  int64_t n = static_cast<int64_t>(l.n);
-  const auto *permutation = static_cast<const int64_t *>(l.Perm);
-  // y, then the dense rows of direct::solve.
-  scratch.resize(2 * static_cast<size_t>(n));
-  double *y = scratch.data();
-  for (int64_t k = 0; k < n; ++k)
-    y[k] = b[permutation[k]];
-  direct::solve(Analysis::layoutOf(l), values, y, y + n);
-  for (int64_t k = 0; k < n; ++k)
-    x[permutation[k]] = y[k];
-}
-} // namespace
-
 llvm::Error SparseFactorisation::solve(const double *b, double *x) const {
   int64_t n = size();
   if (umfpackNumeric) {
@@ -289,12 +269,12 @@ llvm::Error SparseFactorisation::solve(const double *b, double *x) const {
                     .str());
     return llvm::Error::success();
   }
-  const auto *l = static_cast<const cholmod_factor *>(cholmodFactor);
-  if (l->is_super) {
+  if (kind() == FactorKind::Cholesky) {
     std::vector<double> scratch;
-    permutedSolve(*l, static_cast<const double *>(l->x), b, x, scratch);
+    permutedSolve(analysis->supernodal, choleskyValues.data(), b, x, scratch);
     return llvm::Error::success();
   }
+  const auto *l = static_cast<const cholmod_factor *>(cholmodFactor);
   cholmod_common &c = analysis->common->c;
   cholmod_dense rhs{};
   rhs.nrow = static_cast<size_t>(n);
@@ -315,25 +295,23 @@ llvm::Error SparseFactorisation::solve(const double *b, double *x) const {
 
 llvm::Error SparseFactorisation::solveRounded(
     const double *b, double *x, std::vector<double> &scratch) const {
-  const auto *l = static_cast<const cholmod_factor *>(cholmodFactor);
-  bool supernodal = l && l->is_super;
+  bool supernodal = kind() == FactorKind::Cholesky;
   if (supernodal)
     std::call_once(roundOnce, [&] {
-      const auto *values = static_cast<const double *>(l->x);
-      std::vector<float> rounded(l->xsize);
-      for (size_t i = 0; i < l->xsize; ++i) {
-        double magnitude = std::abs(values[i]);
+      std::vector<float> rounded(choleskyValues.size());
+      for (size_t i = 0; i < choleskyValues.size(); ++i) {
+        double magnitude = std::abs(choleskyValues[i]);
         if (magnitude != 0 &&
             !(magnitude >= std::numeric_limits<float>::min() &&
               magnitude <= std::numeric_limits<float>::max()))
           return;
-        rounded[i] = static_cast<float>(values[i]);
+        rounded[i] = static_cast<float>(choleskyValues[i]);
       }
       roundedL = std::move(rounded);
     });
   if (!supernodal || roundedL.empty())
     return solve(b, x);
-  permutedSolve(*l, roundedL.data(), b, x, scratch);
+  permutedSolve(analysis->supernodal, roundedL.data(), b, x, scratch);
   return llvm::Error::success();
 }
 
@@ -401,8 +379,15 @@ FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
             llvm::formatv("UMFPACK symbolic analysis failed (status {0})",
                           status)
                 .str());
+    } else if (kind == FactorKind::Cholesky) {
+      analysis->supernodal =
+          direct::analyse(a.rows, a.blockSize, a.rowptr, a.colidx);
+      analysis->factorPositions = direct::entryPositions(
+          analysis->supernodal.layout(),
+          analysis->supernodal.permutation.data(),
+          analysis->columnPointers.data(), analysis->rowIndices.data());
     } else {
-      cholmod_common &c = common->configuredFor(kind);
+      cholmod_common &c = common->c;
       cholmod_sparse view = analysis->view(nullptr);
       view.xtype = CHOLMOD_PATTERN;
       std::vector<SuiteSparse_long> ordering = blockOrdering(a);
@@ -410,11 +395,6 @@ FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
           cholmod_l_analyze_p(&view, ordering.data(), nullptr, 0, &c);
       if (!analysis->symbolic)
         return cholmodError(kind, c, nullptr);
-      if (kind == FactorKind::Cholesky)
-        analysis->factorPositions = direct::entryPositions(
-            analysis->layout(),
-            static_cast<const int64_t *>(analysis->symbolic->Perm),
-            analysis->columnPointers.data(), analysis->rowIndices.data());
     }
     entries.push_front({std::move(analysis), nullptr});
     if (entries.size() > kCapacity)
@@ -469,35 +449,27 @@ FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
                               "(status {0})",
                               status)
                     .str());
+  } else if (kind == FactorKind::Cholesky) {
+    // The values of A(p, p)'s lower triangle at their places in L, zeros
+    // elsewhere, factorised in place.
+    const SupernodalSymbolic &symbolic = analysis.supernodal;
+    factor->choleskyValues.assign(static_cast<size_t>(symbolic.values()), 0.0);
+    double *lx = factor->choleskyValues.data();
+    const std::vector<int64_t> &positions = analysis.factorPositions;
+    for (size_t p = 0; p < positions.size(); ++p)
+      lx[positions[p]] = static_cast<double>(a.values[analysis.slots[p]]);
+    int64_t failed = direct::factorise(symbolic.layout(), lx);
+    if (failed < a.size())
+      return notFactorisable(kind, symbolic.permutation[failed]);
   } else {
-    cholmod_common &c = common->configuredFor(kind);
+    cholmod_common &c = common->c;
     if (!factor->cholmodFactor)
       factor->cholmodFactor = cholmod_l_copy_factor(analysis.symbolic, &c);
     auto *cholmodFactor = static_cast<cholmod_factor *>(factor->cholmodFactor);
-    if (!cholmodFactor)
-      return cholmodError(kind, c, nullptr);
-    if (kind == FactorKind::Cholesky) {
-      // CHOLMOD's analysis, the runtime's numeric factorisation
-      // (SupernodalCholesky.h) into the factor's values.
-      if (cholmodFactor->xtype == CHOLMOD_PATTERN &&
-          !cholmod_l_change_factor(CHOLMOD_REAL, true, true, true, true,
-                                   cholmodFactor, &c))
-        return cholmodError(kind, c, nullptr);
-      auto *lx = static_cast<double *>(cholmodFactor->x);
-      std::fill(lx, lx + cholmodFactor->xsize, 0.0);
-      const std::vector<int64_t> &positions = analysis.factorPositions;
-      for (size_t p = 0; p < positions.size(); ++p)
-        lx[positions[p]] = static_cast<double>(a.values[analysis.slots[p]]);
-      cholmodFactor->minor =
-          static_cast<size_t>(direct::factorise(analysis.layout(), lx));
-      if (cholmodFactor->minor < cholmodFactor->n)
-        return cholmodError(kind, c, cholmodFactor);
-    } else {
-      cholmod_sparse view = analysis.view(factor->columnValues.data());
-      if (!cholmod_l_factorize(&view, cholmodFactor, &c) ||
-          c.status != CHOLMOD_OK || cholmodFactor->minor < cholmodFactor->n)
-        return cholmodError(kind, c, cholmodFactor);
-    }
+    cholmod_sparse view = analysis.view(factor->columnValues.data());
+    if (!cholmodFactor || !cholmod_l_factorize(&view, cholmodFactor, &c) ||
+        c.status != CHOLMOD_OK || cholmodFactor->minor < cholmodFactor->n)
+      return cholmodError(kind, c, cholmodFactor);
   }
   entry->latest = factor;
   lookup.factor = std::move(factor);

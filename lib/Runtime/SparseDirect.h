@@ -1,7 +1,8 @@
 //===--- SparseDirect.h - SuiteSparse factorisations of BCSR matrices -----===//
 //
-// Sparse direct solves of square BCSR matrices: supernodal Cholesky and
-// simplicial LDL^T (CHOLMOD) and LU (UMFPACK), in double on OpenBLAS.
+// Sparse direct solves of square BCSR matrices: supernodal Cholesky
+// (SupernodalCholesky.h), simplicial LDL^T (CHOLMOD) and LU (UMFPACK), in
+// double on OpenBLAS.
 //
 // A FactorCache keeps, per sparsity pattern and method, the symbolic
 // analysis (fill-reducing ordering, elimination tree, supernodes) and the
@@ -72,7 +73,9 @@ private:
   /// The values in the analysis's compressed-column order (UMFPACK's solve
   /// reads them for its iterative refinement).
   std::vector<double> columnValues;
-  void *cholmodFactor = nullptr; // cholmod_factor, Cholesky and LDLT
+  /// Cholesky: L's values in the analysis's supernodal layout.
+  std::vector<double> choleskyValues;
+  void *cholmodFactor = nullptr;  // cholmod_factor, LDLT
   void *umfpackNumeric = nullptr; // LU
   /// solveRounded's copy of a supernodal L in float; empty when it does not
   /// apply.

@@ -1,16 +1,18 @@
-//===--- SupernodalCholesky.h - Numeric LL^T on a supernodal layout -------===//
+//===--- SupernodalCholesky.h - Sparse LL^T of BCSR matrices -------------===//
 //
-// The numeric supernodal Cholesky factorisation and the triangular solves
-// of the runtime's sparse direct solver, on the layout of CHOLMOD's
-// symbolic analysis (which keeps choosing the ordering and the supernodes).
+// The runtime's sparse Cholesky factorisation of BCSR matrices: symbolic
+// analysis on the graph of blocks, left-looking supernodal numeric
+// factorisation, and the triangular solves, in CHOLMOD's layout of a
+// supernodal L.
 //
-// CHOLMOD's own numeric factorisation calls BLAS once per supernode and per
-// update, and transposes the permuted matrix on every call; on the small
-// systems of a Newton loop (hundreds to a few thousand unknowns, supernodes
-// a few columns wide) those calls cost more than the arithmetic. Here the
-// matrix's entries are scattered straight into L by positions found once per
-// pattern, small updates are dense loops the compiler vectorises, and only
-// large ones go to BLAS.
+// CHOLMOD's analysis works on the scalar graph (nine times the entries for
+// 3x3 blocks), and its numeric factorisation calls BLAS once per supernode
+// and per update and transposes the permuted matrix on every call; on the
+// small systems of a Newton loop (hundreds to a few thousand unknowns,
+// supernodes a few columns wide) those costs exceed the arithmetic. Here
+// the matrix's entries are scattered straight into L by positions found
+// once per pattern, small updates are dense loops the compiler vectorises,
+// and only large ones go to BLAS.
 //
 //===----------------------------------------------------------------------===//
 
@@ -34,6 +36,30 @@ struct SupernodeLayout {
 
   int64_t size() const { return first[supernodes]; }
 };
+
+/// A fill-reducing order of a square pattern's rows (AMD on A + A^T):
+/// order[k] is the row eliminated k-th.
+std::vector<int32_t> minimumDegreeOrder(int64_t rows, const int32_t *rowptr,
+                                        const int32_t *colidx);
+
+/// The symbolic LL^T of a square block pattern: the order of the unknowns
+/// (L's column k is the matrix's unknown permutation[k]) and the
+/// supernodes with the storage of their values (layout()).
+struct SupernodalSymbolic {
+  std::vector<int64_t> permutation, first, rowStart, valueStart, rows;
+
+  SupernodeLayout layout() const;
+  int64_t values() const { return valueStart.back(); }
+};
+
+/// The analysis of a pattern of blockRows x blockRows blocks of
+/// blockSize x blockSize (rowptr, colidx as in BCSR; the pattern of
+/// A + A^T is used): AMD on the block graph, the elimination tree in
+/// postorder, the structure of L and its supernodes (fundamental ones,
+/// then narrow neighbours merged where that adds few zeros), all on the
+/// blocks and expanded to scalars at the end.
+SupernodalSymbolic analyse(int64_t blockRows, int64_t blockSize,
+                           const int32_t *rowptr, const int32_t *colidx);
 
 /// For each entry of a matrix's upper triangle in compressed columns
 /// (columnPointers, rowIndices; original numbering), its position in L's

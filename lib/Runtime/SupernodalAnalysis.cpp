@@ -1,0 +1,276 @@
+//===--- SupernodalAnalysis.cpp - Symbolic LL^T of a block pattern
+//---------===//
+//
+// Ordering, elimination tree, the structure of L and its supernodes, all on
+// the graph of the matrix's blocks: a block's unknowns share their
+// structure, so every step runs on blockSize^2 times fewer entries than on
+// the scalar graph, and the supernodes are whole blocks wide.
+//
+//===----------------------------------------------------------------------===//
+
+#include "SupernodalCholesky.h"
+
+#include <algorithm>
+#include <numeric>
+
+extern "C" {
+#include <suitesparse/amd.h>
+}
+
+using namespace simit;
+using namespace simit::direct;
+
+namespace {
+
+/// Whether two consecutive supernodes merge into a relaxed one of
+/// `columns` scalar columns whose panel holds `zeros` of `entries` as
+/// stored zeros (CHOLMOD's default rule): narrow supernodes cost more in
+/// loop and call overhead than the zeros they would add.
+bool relaxes(int64_t columns, int64_t zeros, int64_t entries) {
+  double fraction = static_cast<double>(zeros) / static_cast<double>(entries);
+  return columns <= 4 || (columns <= 16 && fraction < 0.8) ||
+         (columns <= 48 && fraction < 0.1) || fraction < 0.05;
+}
+
+/// The adjacency of A + A^T without the diagonal, in the numbering
+/// newIndex. A neighbour may be listed twice (a block and its mirror) and
+/// lists are not sorted: the elimination tree and the row subtrees below
+/// need neither.
+struct Graph {
+  std::vector<int64_t> start, neighbours;
+
+  Graph(int64_t rows, const int32_t *rowptr, const int32_t *colidx,
+        const std::vector<int64_t> &newIndex) {
+    start.assign(static_cast<size_t>(rows) + 1, 0);
+    for (int64_t r = 0; r < rows; ++r)
+      for (int32_t k = rowptr[r]; k < rowptr[r + 1]; ++k)
+        if (colidx[k] != r) {
+          ++start[newIndex[r] + 1];
+          ++start[newIndex[colidx[k]] + 1];
+        }
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    neighbours.resize(static_cast<size_t>(start[rows]));
+    std::vector<int64_t> fill(start.begin(), start.end() - 1);
+    for (int64_t r = 0; r < rows; ++r)
+      for (int32_t k = rowptr[r]; k < rowptr[r + 1]; ++k)
+        if (colidx[k] != r) {
+          int64_t i = newIndex[r], j = newIndex[colidx[k]];
+          neighbours[fill[i]++] = j;
+          neighbours[fill[j]++] = i;
+        }
+  }
+};
+
+/// The elimination tree of a graph in its own numbering (Liu's algorithm
+/// with path compression); -1 for roots.
+std::vector<int64_t> eliminationTree(const Graph &graph, int64_t n) {
+  std::vector<int64_t> parent(n, -1), ancestor(n, -1);
+  for (int64_t k = 0; k < n; ++k)
+    for (int64_t p = graph.start[k]; p < graph.start[k + 1]; ++p) {
+      int64_t i = graph.neighbours[p];
+      while (i < k && i != -1) {
+        int64_t next = ancestor[i];
+        ancestor[i] = k;
+        if (next == -1)
+          parent[i] = k;
+        i = next;
+      }
+    }
+  return parent;
+}
+
+/// The vertices in a postorder of the forest in which each vertex's
+/// children come by increasing weight (then index), roots by index: the
+/// child with the most rows comes last, next to its parent, where it can
+/// share its supernode (CHOLMOD's weighted postorder).
+std::vector<int64_t> postorder(const std::vector<int64_t> &parent,
+                               const std::vector<int64_t> &weight) {
+  int64_t n = static_cast<int64_t>(parent.size());
+  std::vector<int64_t> childStart(n + 1, 0);
+  for (int64_t v = 0; v < n; ++v)
+    if (parent[v] != -1)
+      ++childStart[parent[v] + 1];
+  std::partial_sum(childStart.begin(), childStart.end(), childStart.begin());
+  std::vector<int64_t> children(static_cast<size_t>(childStart[n]));
+  std::vector<int64_t> fill(childStart.begin(), childStart.end() - 1);
+  for (int64_t v = 0; v < n; ++v)
+    if (parent[v] != -1)
+      children[fill[parent[v]]++] = v;
+  for (int64_t v = 0; v < n; ++v)
+    std::stable_sort(
+        children.begin() + childStart[v], children.begin() + childStart[v + 1],
+        [&](int64_t x, int64_t y) { return weight[x] < weight[y]; });
+  std::vector<int64_t> order, stack,
+      nextChild(childStart.begin(), childStart.end() - 1);
+  order.reserve(n);
+  for (int64_t root = 0; root < n; ++root) {
+    if (parent[root] != -1)
+      continue;
+    stack.push_back(root);
+    while (!stack.empty()) {
+      int64_t v = stack.back();
+      if (nextChild[v] < childStart[v + 1]) {
+        stack.push_back(children[nextChild[v]++]);
+      } else {
+        order.push_back(v);
+        stack.pop_back();
+      }
+    }
+  }
+  return order;
+}
+
+/// visit(j, i) for every entry (i, j), i > j, of L's block pattern, by
+/// increasing i: row i's entries are the columns up the tree from each of
+/// its neighbours below it, until one already visited for i (its row
+/// subtree). `parent` is the tree in the graph's numbering.
+template <typename Visit>
+void rowSubtrees(const Graph &graph, const std::vector<int64_t> &parent,
+                 Visit visit) {
+  int64_t n = static_cast<int64_t>(parent.size());
+  std::vector<int64_t> mark(n, -1);
+  for (int64_t i = 0; i < n; ++i) {
+    mark[i] = i;
+    for (int64_t p = graph.start[i]; p < graph.start[i + 1]; ++p)
+      for (int64_t j = graph.neighbours[p]; j < i && mark[j] != i;
+           j = parent[j]) {
+        mark[j] = i;
+        visit(j, i);
+      }
+  }
+}
+
+} // namespace
+
+std::vector<int32_t> direct::minimumDegreeOrder(int64_t rows,
+                                                const int32_t *rowptr,
+                                                const int32_t *colidx) {
+  std::vector<int32_t> order(static_cast<size_t>(rows));
+  double control[AMD_CONTROL], info[AMD_INFO];
+  amd_defaults(control);
+  int status = amd_order(static_cast<int>(rows), rowptr, colidx, order.data(),
+                         control, info);
+  // AMD_OUT_OF_MEMORY (the pattern is valid): the natural order is still a
+  // correct one.
+  if (status != AMD_OK && status != AMD_OK_BUT_JUMBLED)
+    std::iota(order.begin(), order.end(), 0);
+  return order;
+}
+
+SupernodeLayout SupernodalSymbolic::layout() const {
+  SupernodeLayout layout;
+  layout.supernodes = static_cast<int64_t>(first.size()) - 1;
+  layout.first = first.data();
+  layout.rowStart = rowStart.data();
+  layout.valueStart = valueStart.data();
+  layout.rows = rows.data();
+  return layout;
+}
+
+SupernodalSymbolic direct::analyse(int64_t blockRows, int64_t blockSize,
+                                   const int32_t *rowptr,
+                                   const int32_t *colidx) {
+  int64_t n = blockRows;
+  // Fill-reducing order, then the elimination tree's postorder, which
+  // keeps the fill and makes every supernode's columns consecutive.
+  std::vector<int32_t> amd = minimumDegreeOrder(n, rowptr, colidx);
+  std::vector<int64_t> newIndex(n);
+  for (int64_t k = 0; k < n; ++k)
+    newIndex[amd[k]] = k;
+  Graph amdGraph(n, rowptr, colidx, newIndex);
+  std::vector<int64_t> tree = eliminationTree(amdGraph, n);
+  // Rows of L below the diagonal per column, in AMD's numbering.
+  std::vector<int64_t> amdCount(n, 0);
+  rowSubtrees(amdGraph, tree, [&](int64_t j, int64_t) { ++amdCount[j]; });
+  std::vector<int64_t> post = postorder(tree, amdCount);
+  std::vector<int64_t> blockOrder(n), positionInPost(n), count(n);
+  for (int64_t k = 0; k < n; ++k) {
+    blockOrder[k] = amd[post[k]];
+    positionInPost[post[k]] = k;
+    count[k] = amdCount[post[k]];
+  }
+  std::vector<int64_t> parent(n, -1);
+  for (int64_t k = 0; k < n; ++k)
+    if (tree[post[k]] != -1)
+      parent[k] = positionInPost[tree[post[k]]];
+  for (int64_t k = 0; k < n; ++k)
+    newIndex[blockOrder[k]] = k;
+
+  // The rows below the diagonal of each column, sorted (rows are visited
+  // in order).
+  std::vector<int64_t> columnStart(n + 1, 0);
+  std::partial_sum(count.begin(), count.end(), columnStart.begin() + 1);
+  std::vector<int64_t> belowRows(static_cast<size_t>(columnStart[n]));
+  std::vector<int64_t> filled(columnStart.begin(), columnStart.end() - 1);
+  rowSubtrees(Graph(n, rowptr, colidx, newIndex), parent,
+              [&](int64_t j, int64_t i) { belowRows[filled[j]++] = i; });
+
+  // Fundamental supernodes: a column joins the previous one's supernode
+  // when it is that column's parent, its only child, and has one row less.
+  std::vector<int64_t> children(n, 0);
+  for (int64_t k = 0; k < n; ++k)
+    if (parent[k] != -1)
+      ++children[parent[k]];
+  std::vector<int64_t> firstColumn; // of each supernode, in block columns
+  for (int64_t k = 0; k < n; ++k)
+    if (k == 0 || parent[k - 1] != k || children[k] != 1 ||
+        count[k - 1] != count[k] + 1)
+      firstColumn.push_back(k);
+  firstColumn.push_back(n);
+
+  // Relaxed: merge a supernode into the next when that is its parent and
+  // the merge is narrow and adds few zeros. Rows of the merged panel: the
+  // columns, then the later one's rows below it, a superset of the
+  // earlier's (its rows below lie on its path to the root, which passes
+  // through the later supernode).
+  std::vector<int64_t> merged{0};
+  auto heightOf = [&](int64_t f, int64_t l) { // columns [f, l)
+    return (l - f) + count[l - 1];
+  };
+  auto storedOf = [&](int64_t f, int64_t l) {
+    int64_t stored = 0;
+    for (int64_t c = f; c < l; ++c)
+      stored += count[c] + 1;
+    return stored;
+  };
+  for (size_t s = 1; s + 1 < firstColumn.size(); ++s) {
+    int64_t f = merged.back(), l = firstColumn[s], next = firstColumn[s + 1];
+    if (parent[l - 1] == l) {
+      int64_t columns = next - f, height = heightOf(l, next) + (l - f);
+      int64_t panel = 0;
+      for (int64_t c = 0; c < columns; ++c)
+        panel += height - c;
+      if (relaxes(columns * blockSize, panel - storedOf(f, next), panel))
+        continue; // l joins the supernode starting at f
+    }
+    merged.push_back(l);
+  }
+  merged.push_back(n);
+
+  // Scalar arrays: each block column and row stands for blockSize.
+  SupernodalSymbolic symbolic;
+  int64_t bs = blockSize;
+  symbolic.permutation.resize(static_cast<size_t>(n * bs));
+  for (int64_t k = 0; k < n; ++k)
+    for (int64_t c = 0; c < bs; ++c)
+      symbolic.permutation[k * bs + c] = blockOrder[k] * bs + c;
+  symbolic.first.push_back(0);
+  symbolic.rowStart.push_back(0);
+  symbolic.valueStart.push_back(0);
+  for (size_t s = 0; s + 1 < merged.size(); ++s) {
+    int64_t f = merged[s], l = merged[s + 1];
+    for (int64_t b = f; b < l; ++b)
+      for (int64_t c = 0; c < bs; ++c)
+        symbolic.rows.push_back(b * bs + c);
+    for (int64_t p = columnStart[l - 1]; p < columnStart[l]; ++p)
+      for (int64_t c = 0; c < bs; ++c)
+        symbolic.rows.push_back(belowRows[p] * bs + c);
+    int64_t height =
+        static_cast<int64_t>(symbolic.rows.size()) - symbolic.rowStart.back();
+    symbolic.first.push_back(l * bs);
+    symbolic.rowStart.push_back(static_cast<int64_t>(symbolic.rows.size()));
+    symbolic.valueStart.push_back(symbolic.valueStart.back() +
+                                  height * (l - f) * bs);
+  }
+  return symbolic;
+}

@@ -1,5 +1,4 @@
-//===--- SupernodalAnalysis.cpp - Symbolic LL^T of a block pattern
-//---------===//
+//===--- SupernodalAnalysis.cpp - Symbolic LL^T of a block pattern --------===//
 //
 // Ordering, elimination tree, the structure of L and its supernodes, all on
 // the graph of the matrix's blocks: a block's unknowns share their
@@ -171,6 +170,11 @@ SupernodalSymbolic direct::analyse(int64_t blockRows, int64_t blockSize,
                                    const int32_t *rowptr,
                                    const int32_t *colidx) {
   int64_t n = blockRows;
+  SupernodalSymbolic symbolic;
+  if (n == 0) {
+    symbolic.first = symbolic.rowStart = symbolic.valueStart = {0};
+    return symbolic;
+  }
   // Fill-reducing order, then the elimination tree's postorder, which
   // keeps the fill and makes every supernode's columns consecutive.
   std::vector<int32_t> amd = minimumDegreeOrder(n, rowptr, colidx);
@@ -223,32 +227,33 @@ SupernodalSymbolic direct::analyse(int64_t blockRows, int64_t blockSize,
   // columns, then the later one's rows below it, a superset of the
   // earlier's (its rows below lie on its path to the root, which passes
   // through the later supernode).
-  std::vector<int64_t> merged{0};
-  auto heightOf = [&](int64_t f, int64_t l) { // columns [f, l)
-    return (l - f) + count[l - 1];
-  };
-  auto storedOf = [&](int64_t f, int64_t l) {
-    int64_t stored = 0;
+  // `stored` counts the entries of L's pattern (not zeros) in the
+  // supernode being grown, which starts at merged.back().
+  auto storedIn = [&](int64_t f, int64_t l) { // columns [f, l)
+    int64_t entries = 0;
     for (int64_t c = f; c < l; ++c)
-      stored += count[c] + 1;
-    return stored;
+      entries += count[c] + 1;
+    return entries;
   };
+  std::vector<int64_t> merged{0};
+  int64_t stored = storedIn(0, firstColumn[1]);
   for (size_t s = 1; s + 1 < firstColumn.size(); ++s) {
     int64_t f = merged.back(), l = firstColumn[s], next = firstColumn[s + 1];
+    int64_t storedNext = storedIn(l, next);
     if (parent[l - 1] == l) {
-      int64_t columns = next - f, height = heightOf(l, next) + (l - f);
-      int64_t panel = 0;
-      for (int64_t c = 0; c < columns; ++c)
-        panel += height - c;
-      if (relaxes(columns * blockSize, panel - storedOf(f, next), panel))
-        continue; // l joins the supernode starting at f
+      int64_t columns = next - f, height = columns + count[next - 1];
+      int64_t panel = columns * height - columns * (columns - 1) / 2;
+      if (relaxes(columns * blockSize, panel - stored - storedNext, panel)) {
+        stored += storedNext; // l joins the supernode starting at f
+        continue;
+      }
     }
     merged.push_back(l);
+    stored = storedNext;
   }
   merged.push_back(n);
 
   // Scalar arrays: each block column and row stands for blockSize.
-  SupernodalSymbolic symbolic;
   int64_t bs = blockSize;
   symbolic.permutation.resize(static_cast<size_t>(n * bs));
   for (int64_t k = 0; k < n; ++k)

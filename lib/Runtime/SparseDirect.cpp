@@ -57,7 +57,8 @@ struct Analysis {
   FactorKind kind = FactorKind::LU;
   int64_t rows = 0, blockSize = 1;
   std::vector<int32_t> rowptr, colidx;
-  /// The compressed columns (A^T's) and, per entry, its BCSR value index.
+  /// The compressed columns (A^T's; Cholesky drops them once analysed)
+  /// and, per entry, its BCSR value index.
   std::vector<SuiteSparse_long> columnPointers, rowIndices;
   std::vector<int64_t> slots;
   SupernodalSymbolic supernodal;      // Cholesky
@@ -386,6 +387,9 @@ FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
           analysis->supernodal.layout(),
           analysis->supernodal.permutation.data(),
           analysis->columnPointers.data(), analysis->rowIndices.data());
+      // Only the positions and slots are read from here on.
+      analysis->columnPointers = {};
+      analysis->rowIndices = {};
     } else {
       cholmod_common &c = common->c;
       cholmod_sparse view = analysis->view(nullptr);

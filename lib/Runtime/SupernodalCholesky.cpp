@@ -2,6 +2,8 @@
 
 #include "SupernodalCholesky.h"
 
+#include "llvm/Support/ErrorHandling.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -182,9 +184,14 @@ std::vector<int64_t> direct::entryPositions(const SupernodeLayout &layout,
       indexInPanel[rows[r]] = r;
     for (int64_t q = bucketStart[s]; q < bucketStart[s + 1]; ++q) {
       int64_t p = sorted[q];
-      positions[p] = layout.valueStart[s] +
-                     (lower[p] - layout.first[s]) * height +
-                     indexInPanel[upper[p]];
+      int64_t row = indexInPanel[upper[p]];
+      // A symbolic analysis that missed an entry of A would have it land
+      // on another entry of L: never a wrong factor, stop instead.
+      if (row >= height || rows[row] != upper[p])
+        llvm::report_fatal_error("simit: the Cholesky analysis lost an entry "
+                                 "of the matrix's pattern");
+      positions[p] =
+          layout.valueStart[s] + (lower[p] - layout.first[s]) * height + row;
     }
   }
   return positions;

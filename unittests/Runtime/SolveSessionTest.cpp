@@ -271,6 +271,47 @@ TEST(SolveSession, CholeskyMatchesEigenOnRandomPatterns) {
     }
 }
 
+// A stored zero block whose mirror is not stored (the pattern is not
+// symmetric, the matrix is) must still be in Cholesky's analysis, above the
+// diagonal or below it: a path of 12 blocks of 3x3 plus a zero block
+// (0, 11) or (11, 0) alone, which closes it into a cycle.
+TEST(SolveSession, CholeskyOnAPatternWithOneSidedZeroBlocks) {
+  constexpr int n = 12, b = 3;
+  Eigen::MatrixXd a = 4 * Eigen::MatrixXd::Identity(n * b, n * b);
+  for (int r = 0; r + 1 < n; ++r)
+    for (int i = 0; i < b; ++i)
+      a(b * r + i, b * (r + 1) + i) = a(b * (r + 1) + i, b * r + i) = -1;
+  Eigen::VectorXd rhs = randomVector(n * b, 3), exact = a.llt().solve(rhs);
+  for (bool above : {true, false}) {
+    std::vector<int32_t> rowptr{0}, colidx;
+    std::vector<double> values;
+    for (int r = 0; r < n; ++r) {
+      for (int c = 0; c < n; ++c) {
+        bool lone = above ? (r == 0 && c == n - 1) : (r == n - 1 && c == 0);
+        if (std::abs(r - c) > 1 && !lone)
+          continue;
+        colidx.push_back(c);
+        for (int i = 0; i < b; ++i)
+          for (int j = 0; j < b; ++j)
+            values.push_back(a(b * r + i, b * c + j));
+      }
+      rowptr.push_back(static_cast<int32_t>(colidx.size()));
+    }
+    SquareBCSRView<double> view;
+    view.rows = n;
+    view.blockSize = b;
+    view.rowptr = rowptr.data();
+    view.colidx = colidx.data();
+    view.values = values.data();
+    SolveSession session(settingsOf(SolveMethod::Cholesky));
+    std::vector<double> x(n * b);
+    auto report = session.solve(view, rhs.data(), x.data(), "t");
+    ASSERT_TRUE(bool(report)) << llvm::toString(report.takeError());
+    for (int i = 0; i < n * b; ++i)
+      EXPECT_NEAR(x[i], exact[i], 1e-13) << (above ? "above " : "below ") << i;
+  }
+}
+
 // The column whose pivot fails is named in the matrix's own numbering, not
 // in the factorisation's fill-reducing order: with one negative diagonal
 // entry in an otherwise positive definite matrix, it is that entry's.

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numeric>
 
 extern "C" {
@@ -205,12 +206,17 @@ int64_t direct::factorise(const SupernodeLayout &layout, double *values) {
   // with the position of that row in their panel (nextRow).
   std::vector<int64_t> head(supernodes, -1), next(supernodes, -1),
       nextRow(supernodes, 0), indexInPanel(n, 0);
-  int64_t largestUpdate = 0;
+  // An update is at most (rows below a panel's columns) x (columns of the
+  // panel it reaches); its buffer is written before it is read.
+  int64_t widest = 0, deepest = 0;
   for (int64_t s = 0; s < supernodes; ++s) {
-    int64_t height = layout.rowStart[s + 1] - layout.rowStart[s];
-    largestUpdate = std::max(largestUpdate, height * height);
+    int64_t columns = layout.first[s + 1] - layout.first[s];
+    widest = std::max(widest, columns);
+    deepest = std::max(deepest,
+                       layout.rowStart[s + 1] - layout.rowStart[s] - columns);
   }
-  std::vector<double> update(static_cast<size_t>(largestUpdate));
+  std::unique_ptr<double[]> update(
+      new double[static_cast<size_t>(deepest * std::min(widest, deepest))]);
 
   for (int64_t s = 0; s < supernodes; ++s) {
     int64_t k1 = layout.first[s], k2 = layout.first[s + 1];
@@ -229,10 +235,10 @@ int64_t direct::factorise(const SupernodeLayout &layout, double *values) {
         ++end;
       int64_t m = dHeight - top, m1 = end - top;
       lowerProduct(values + layout.valueStart[d] + top, dHeight, m, m1,
-                   layout.first[d + 1] - layout.first[d], update.data());
+                   layout.first[d + 1] - layout.first[d], update.get());
       for (int64_t j = 0; j < m1; ++j) {
         double *target = panel + (dRows[top + j] - k1) * height;
-        const double *column = update.data() + j * m;
+        const double *column = update.get() + j * m;
         for (int64_t i = j; i < m; ++i)
           target[indexInPanel[dRows[top + i]]] -= column[i];
       }

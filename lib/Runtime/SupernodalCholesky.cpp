@@ -40,7 +40,8 @@ namespace {
 
 /// Multiply-adds from which an update or a panel goes to BLAS: below it the
 /// call's own cost (packing, dispatch) outweighs its faster kernel.
-constexpr int64_t kBlasWork = 8 * 1024;
+constexpr int64_t kBlasProductWork = 128 * 1024;
+constexpr int64_t kBlasPanelWork = 32 * 1024;
 
 /// Which supernode each column belongs to.
 std::vector<int64_t> supernodeOfColumns(const SupernodeLayout &layout) {
@@ -51,12 +52,49 @@ std::vector<int64_t> supernodeOfColumns(const SupernodeLayout &layout) {
   return supernodeOf;
 }
 
+/// Rows and columns of the tiles of c that the small products keep in
+/// registers across the whole k loop (two AVX2 or one AVX-512 register of
+/// doubles per column).
+constexpr int64_t kTileRows = 8, kTileColumns = 4;
+
+/// c's rows [i0, i0 + kTileRows) x columns [j0, j0 + Columns) of a * b^T.
+template <int64_t Columns>
+inline void productTile(const double *__restrict a, int64_t lda, int64_t k,
+                        int64_t i0, int64_t j0, double *__restrict c,
+                        int64_t m) {
+  double sum[Columns][kTileRows] = {};
+  for (int64_t p = 0; p < k; ++p) {
+    const double *__restrict column = a + p * lda;
+    for (int64_t j = 0; j < Columns; ++j)
+      for (int64_t i = 0; i < kTileRows; ++i)
+        sum[j][i] += column[i0 + i] * column[j0 + j];
+  }
+  for (int64_t j = 0; j < Columns; ++j)
+    for (int64_t i = 0; i < kTileRows; ++i)
+      c[(j0 + j) * m + i0 + i] = sum[j][i];
+}
+
+/// The tiles of c's columns [j0, j0 + Columns) from row j0 down. The last
+/// tile is moved up to end at row m rather than cut short: its rows are
+/// computed twice, to the same values.
+template <int64_t Columns>
+inline void productColumns(const double *a, int64_t lda, int64_t m, int64_t k,
+                           int64_t j0, double *c) {
+  for (int64_t i0 = j0;; i0 += kTileRows) {
+    int64_t top = std::min(i0, m - kTileRows);
+    productTile<Columns>(a, lda, k, top, j0, c, m);
+    if (top + kTileRows >= m)
+      return;
+  }
+}
+
 /// c (m x m1, column-major) = the lower trapezoid of a * b^T, where a is
 /// the m x k panel at `a` (leading dimension lda) and b its first m1 rows.
+/// Entries above the diagonal of c may be written too.
 SIMIT_HOST_VECTOR_CLONES void lowerProduct(const double *a, int64_t lda,
                                            int64_t m, int64_t m1, int64_t k,
                                            double *__restrict c) {
-  if (m * m1 * k >= kBlasWork) {
+  if (m * m1 * k >= kBlasProductWork) {
     // The top m1 x m1 block's lower triangle, then the rows below it.
     int im = static_cast<int>(m), im1 = static_cast<int>(m1),
         rest = static_cast<int>(m - m1), ik = static_cast<int>(k),
@@ -68,15 +106,31 @@ SIMIT_HOST_VECTOR_CLONES void lowerProduct(const double *a, int64_t lda,
              c + m1, &im);
     return;
   }
-  for (int64_t j = 0; j < m1; ++j) {
-    double *__restrict column = c + j * m;
-    std::fill(column + j, column + m, 0.0);
-    for (int64_t p = 0; p < k; ++p) {
-      const double *__restrict source = a + p * lda;
-      double scale = source[j];
-      for (int64_t i = j; i < m; ++i)
-        column[i] += source[i] * scale;
-    }
+  if (m < kTileRows) {
+    for (int64_t j = 0; j < m1; ++j)
+      for (int64_t i = j; i < m; ++i) {
+        double sum = 0;
+        for (int64_t p = 0; p < k; ++p)
+          sum += a[p * lda + i] * a[p * lda + j];
+        c[j * m + i] = sum;
+      }
+    return;
+  }
+  // Tiles of kTileColumns columns; as with rows, the last is moved left
+  // rather than cut short, and fewer columns than a tile get their own.
+  switch (m1) {
+  case 1:
+    return productColumns<1>(a, lda, m, k, 0, c);
+  case 2:
+    return productColumns<2>(a, lda, m, k, 0, c);
+  case 3:
+    return productColumns<3>(a, lda, m, k, 0, c);
+  }
+  for (int64_t j0 = 0;; j0 += kTileColumns) {
+    int64_t left = std::min(j0, m1 - kTileColumns);
+    productColumns<kTileColumns>(a, lda, m, k, left, c);
+    if (left + kTileColumns >= m1)
+      return;
   }
 }
 
@@ -87,7 +141,7 @@ SIMIT_HOST_VECTOR_CLONES void lowerProduct(const double *a, int64_t lda,
 /// `columns`.
 SIMIT_HOST_VECTOR_CLONES int64_t factorisePanel(double *panel, int64_t height,
                                                 int64_t columns) {
-  if (height * columns * columns >= kBlasWork) {
+  if (height * columns * columns >= kBlasPanelWork) {
     int n = static_cast<int>(columns), ld = static_cast<int>(height), info = 0;
     dpotrf_("L", &n, panel, &ld, &info);
     if (info != 0)
@@ -125,8 +179,9 @@ constexpr int64_t kColumnGroup = 4;
 /// columns of a group at once: each entry of `dense` is loaded once for
 /// all of them, and each column's sum runs in four lanes.
 template <typename T>
-void subtractGroupDots(const T *const *columns, const double *__restrict dense,
-                       int64_t m, double *sums) {
+inline __attribute__((always_inline)) void
+subtractGroupDots(const T *const *columns, const double *__restrict dense,
+                  int64_t m, double *sums) {
   constexpr int64_t kLanes = 4;
   double lane[kColumnGroup][kLanes] = {};
   int64_t i = 0;
@@ -217,6 +272,8 @@ int64_t direct::factorise(const SupernodeLayout &layout, double *values) {
   }
   std::unique_ptr<double[]> update(
       new double[static_cast<size_t>(deepest * std::min(widest, deepest))]);
+  // Where the rows of an update lie in the panel it is subtracted from.
+  std::vector<int64_t> rowInPanel(static_cast<size_t>(deepest));
 
   for (int64_t s = 0; s < supernodes; ++s) {
     int64_t k1 = layout.first[s], k2 = layout.first[s + 1];
@@ -236,11 +293,13 @@ int64_t direct::factorise(const SupernodeLayout &layout, double *values) {
       int64_t m = dHeight - top, m1 = end - top;
       lowerProduct(values + layout.valueStart[d] + top, dHeight, m, m1,
                    layout.first[d + 1] - layout.first[d], update.get());
+      for (int64_t i = 0; i < m; ++i)
+        rowInPanel[i] = indexInPanel[dRows[top + i]];
       for (int64_t j = 0; j < m1; ++j) {
-        double *target = panel + (dRows[top + j] - k1) * height;
-        const double *column = update.get() + j * m;
+        double *__restrict target = panel + (dRows[top + j] - k1) * height;
+        const double *__restrict column = update.get() + j * m;
         for (int64_t i = j; i < m; ++i)
-          target[indexInPanel[dRows[top + i]]] -= column[i];
+          target[rowInPanel[i]] -= column[i];
       }
       nextRow[d] = end;
       if (end < dHeight) {
@@ -266,8 +325,9 @@ int64_t direct::factorise(const SupernodeLayout &layout, double *values) {
 }
 
 template <typename T>
-void direct::solve(const SupernodeLayout &layout, const T *values,
-                   double *__restrict y, double *__restrict dense) {
+SIMIT_HOST_VECTOR_CLONES void
+direct::solve(const SupernodeLayout &layout, const T *values,
+              double *__restrict y, double *__restrict dense) {
   // L y' = y, supernode by supernode: the diagonal block's forward
   // substitution, then the rows below take the panel times its solution,
   // summed in `dense` (contiguous, so the products are dense loops) and

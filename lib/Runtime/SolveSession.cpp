@@ -395,14 +395,20 @@ SolveSession::solveRecorded(const SquareBCSRView<T> &a, const T *b, T *x,
 
   bool symmetricMethod = method != SolveMethod::Auto &&
                          method != SolveMethod::LU;
-  bool symmetric = isSymmetric(a, Tolerances<T>::symmetric, mirrorsOf(stats));
+  // A symmetric kind's factorisation of these very values was made after
+  // they passed this check (at this tolerance): a Newton step's solves
+  // with one matrix check it once.
+  std::optional<FactorKind> kind = factorKindOf(method);
+  bool symmetric =
+      (kind && *kind != FactorKind::LU && cache->holdsFactorOf(*kind, a)) ||
+      isSymmetric(a, Tolerances<T>::symmetric, mirrorsOf(stats));
   if (symmetricMethod && !symmetric)
     return llvm::createStringError(
         "the matrix is not symmetric, and " + solveMethodName(method) +
         " needs a symmetric matrix (choose lu, or auto)");
 
   std::optional<SolveReport> report;
-  if (std::optional<FactorKind> kind = factorKindOf(method)) {
+  if (kind) {
     auto solved = direct(*kind, a, b, x);
     if (!solved)
       return solved.takeError();

@@ -12,6 +12,7 @@
 
 #include "SupernodalCholesky.h"
 
+#include "llvm/ADT/STLExtras.h"
 #include "llvm/Support/FormatVariadic.h"
 
 #include <algorithm>
@@ -74,7 +75,8 @@ struct Analysis {
     if (umfpackSymbolic)
       umfpack_dl_free_symbolic(&umfpackSymbolic);
   }
-  template <typename T> bool matches(FactorKind k, const SquareBCSRView<T> &a) {
+  template <typename T>
+  bool matches(FactorKind k, const SquareBCSRView<T> &a) const {
     size_t blocks = static_cast<size_t>(a.rowptr[a.rows]);
     return k == kind && a.rows == rows && a.blockSize == blockSize &&
            blocks == colidx.size() &&
@@ -483,6 +485,19 @@ FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
   return lookup;
 }
 
+template <typename T>
+bool FactorCache::holdsFactorOf(FactorKind kind,
+                                const SquareBCSRView<T> &a) const {
+  return llvm::any_of(entries, [&](const Entry &entry) {
+    return entry.analysis->matches(kind, a) && entry.latest &&
+           entry.latest->holds(a);
+  });
+}
+
+template bool FactorCache::holdsFactorOf(FactorKind,
+                                         const SquareBCSRView<double> &) const;
+template bool FactorCache::holdsFactorOf(FactorKind,
+                                         const SquareBCSRView<float> &) const;
 template llvm::Expected<FactorLookup>
 FactorCache::factorise(FactorKind, const SquareBCSRView<double> &);
 template llvm::Expected<FactorLookup>

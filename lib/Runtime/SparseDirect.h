@@ -107,6 +107,11 @@ public:
   llvm::Expected<FactorLookup> factorise(FactorKind kind,
                                          const SquareBCSRView<T> &a);
 
+  /// Whether the latest factorisation by `kind` of a's pattern is of a's
+  /// values (factorise would reuse it).
+  template <typename T>
+  bool holdsFactorOf(FactorKind kind, const SquareBCSRView<T> &a) const;
+
   /// Analyses and numeric factorisations done, and numeric ones saved by
   /// finding the same matrix value.
   FactorisationCounts counts() const { return total; }

@@ -579,6 +579,25 @@ TEST(SolveSession, FactorisationIsReusedForTheSameValues) {
   }
 }
 
+// A solve skips the symmetry check only for the very values of a held
+// factorisation: new values on the same pattern are checked again.
+TEST(SolveSession, NewValuesOnAFactorisedPatternAreCheckedForSymmetry) {
+  for (SolveMethod method : {SolveMethod::Cholesky, SolveMethod::LDLT}) {
+    SCOPED_TRACE(solveMethodName(method).str());
+    SolveSession session(settingsOf(method));
+    BandSystem<double> system(kBlocks, 3, spd(3, 16));
+    Eigen::VectorXd b = randomVector(kBlocks * 3, 17);
+    std::vector<double> x(b.size());
+    ASSERT_TRUE(bool(session.solve(system.view, b.data(), x.data(), "s")));
+    ASSERT_TRUE(bool(session.solve(system.view, b.data(), x.data(), "s")));
+    EXPECT_EQ(session.factorisationCounts().reuses, 1);
+    // Entry (0, 1) of the first diagonal block, not its mirror (1, 0).
+    system.values[1] += 1e-3;
+    EXPECT_THAT(errorOf(session.solve(system.view, b.data(), x.data(), "s")),
+                HasSubstr("not symmetric"));
+  }
+}
+
 TEST(SolveSession, HeldFactorisationOutlivesNewValues) {
   SolveSession session;
   BandSystem<double> system(kBlocks, 3, spd(3, 14));

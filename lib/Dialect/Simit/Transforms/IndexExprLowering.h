@@ -133,6 +133,19 @@ private:
   /// one per component in rowComponentLevels' order.
   FailureOr<SmallVector<Value>> rowSums(unsigned rowVar,
                                         ArrayRef<unsigned> all);
+  /// The terms one iteration of `loop` adds when its body has no loop of
+  /// its own (its static levels unrolled), else nullopt.
+  std::optional<int64_t> termsPerInnermostIteration(const Choice &loop,
+                                                    ArrayRef<unsigned> all);
+  /// rowSums' innermost loop with a loop-carried sum per term of its body
+  /// (`terms` of them), added to `sums` at the components `componentOf`
+  /// names after the loop.
+  FailureOr<SmallVector<Value>>
+  sumTermsApart(const Choice &loop, SmallVector<Value> sums, int64_t terms,
+                ArrayRef<unsigned> all, function_ref<int64_t()> componentOf);
+  /// The most loop-carried sums per term an innermost loop gets: one
+  /// AVX-512 register of doubles and one more, for a 3x3 block.
+  static constexpr int64_t kMaxTermAccumulators = 9;
   /// Inside the loop over `rowVar`'s set: stores each component of the
   /// row's sums into `output` once.
   LogicalResult accumulateRow(unsigned rowVar, ArrayRef<unsigned> all,

@@ -18,6 +18,8 @@
 
 #include "IndexExprLowering.h"
 
+#include "mlir/Dialect/Vector/IR/VectorOps.h"
+
 using namespace mlir;
 using namespace mlir::simit;
 using namespace mlir::simit::loops;
@@ -223,6 +225,102 @@ IndexExprLowering::rowComponentLevels(unsigned rowVar) {
   return levels;
 }
 
+std::optional<int64_t>
+IndexExprLowering::termsPerInnermostIteration(const Choice &loop,
+                                              ArrayRef<unsigned> all) {
+  // Set levels are chosen before static ones: the loop is innermost when
+  // no other variable's set level is left, and its body unrolls every
+  // static level that is not bound yet.
+  int64_t terms = 1;
+  for (unsigned v : all) {
+    if (v != loop.var && !isSetBound(v) && isa<StringAttr>(level(v, 0)))
+      return std::nullopt;
+    for (unsigned i = 0; i < numLevels(v); ++i)
+      if (auto size = dyn_cast<IntegerAttr>(level(v, i)))
+        if (!bound.count(v) || !bound[v][i])
+          terms *= size.getInt();
+  }
+  return terms;
+}
+
+FailureOr<SmallVector<Value>>
+IndexExprLowering::sumTermsApart(const Choice &loop, SmallVector<Value> sums,
+                                 int64_t terms, ArrayRef<unsigned> all,
+                                 function_ref<int64_t()> componentOf) {
+  // Term k of every iteration (a block's entry (i, j) for y = A x) has a
+  // sum of its own, a lane of loop-carried vectors of power-of-two sizes
+  // (9 terms: 8 + 1), so that each is a machine register: an iteration's
+  // terms are added with one vector addition per chunk, whose operands the
+  // SLP vectoriser builds with full-width loads and multiplications, and
+  // the loop's chain of dependent additions is one per iteration. Each
+  // component then adds its terms' sums in term order: a fixed order, so
+  // results do not depend on threads.
+  SmallVector<int64_t> chunks;
+  for (int64_t left = terms; left > 0;)
+    chunks.push_back(int64_t(1) << llvm::Log2_64(left)), left -= chunks.back();
+  SmallVector<Value> zeros;
+  for (int64_t size : chunks) {
+    Type type = size == 1 ? scalarType : VectorType::get({size}, scalarType);
+    zeros.push_back(arith::ConstantOp::create(
+        b, loc, type, cast<TypedAttr>(b.getZeroAttr(type))));
+  }
+  SmallVector<int64_t> componentOfTerm;
+  bool failedInner = false;
+  SmallVector<Value> accumulated =
+      emitLoop(loop, zeros, /*parallel=*/false, [&](ValueRange args) {
+        SmallVector<Value> termValues;
+        std::function<LogicalResult()> unroll = [&]() -> LogicalResult {
+          std::optional<Choice> choice = choose(all);
+          if (!choice) {
+            FailureOr<Value> term = evaluate(op.getBody().front());
+            if (failed(term))
+              return failure();
+            componentOfTerm.push_back(componentOf());
+            termValues.push_back(*term);
+            return success();
+          }
+          unsigned v = choice->var;
+          if (!bound.count(v))
+            bound[v].assign(numLevels(v), Value());
+          int64_t size =
+              cast<IntegerAttr>(level(v, choice->levelIndex)).getInt();
+          for (int64_t k = 0; k < size; ++k) {
+            bound[v][choice->levelIndex] = l.indexConstant(k);
+            if (failed(unroll()))
+              return failure();
+          }
+          bound[v][choice->levelIndex] = Value();
+          return success();
+        };
+        if (failed(unroll()) ||
+            termValues.size() != static_cast<size_t>(terms)) {
+          failedInner = true;
+          return SmallVector<Value>(args);
+        }
+        SmallVector<Value> next;
+        ArrayRef<Value> rest(termValues);
+        for (auto [size, sum] : llvm::zip(chunks, args)) {
+          Value chunk =
+              size == 1 ? rest.front()
+                        : vector::FromElementsOp::create(b, loc, sum.getType(),
+                                                         rest.take_front(size));
+          next.push_back(add(sum, chunk));
+          rest = rest.drop_front(size);
+        }
+        return next;
+      });
+  if (failedInner)
+    return failure();
+  size_t k = 0;
+  for (auto [size, sum] : llvm::zip(chunks, accumulated))
+    for (int64_t lane = 0; lane < size; ++lane, ++k) {
+      Value term =
+          size == 1 ? sum : vector::ExtractOp::create(b, loc, sum, lane);
+      sums[componentOfTerm[k]] = add(sums[componentOfTerm[k]], term);
+    }
+  return sums;
+}
+
 FailureOr<SmallVector<Value>>
 IndexExprLowering::rowSums(unsigned rowVar, ArrayRef<unsigned> all) {
   SmallVector<std::pair<int64_t, unsigned>> componentLevels =
@@ -270,6 +368,10 @@ IndexExprLowering::rowSums(unsigned rowVar, ArrayRef<unsigned> all) {
       bound[v][choice->levelIndex] = Value();
       return sums;
     }
+    if (std::optional<int64_t> terms = termsPerInnermostIteration(*choice, all);
+        terms && *terms > numComponents && *terms <= kMaxTermAccumulators &&
+        isa<FloatType, IntegerType>(scalarType))
+      return sumTermsApart(*choice, std::move(sums), *terms, all, componentOf);
     bool failedInner = false;
     SmallVector<Value> results =
         emitLoop(*choice, sums, /*parallel=*/false, [&](ValueRange args) {

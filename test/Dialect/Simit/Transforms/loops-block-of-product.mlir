@@ -33,12 +33,14 @@ func.func @upper(%l : !Link, %ends : !simit.tuple<!Point x 2>) -> !A {
 // CHECK-NOT: memref.alloc
 // CHECK: %[[LO:.*]] = memref.load %[[ROWPTR]][%[[I]]]
 // CHECK: %[[HI:.*]] = memref.load %[[ROWPTR]][%{{.*}}]
-// CHECK: %[[SUMS:.*]]:3 = scf.for %[[K:.*]] = %{{.*}} to %{{.*}} step %c1 iter_args({{.*}}) -> (f64, f64, f64) {
+// CHECK: %[[SUMS:.*]]:2 = scf.for %[[K:.*]] = %{{.*}} to %{{.*}} step %c1 iter_args({{.*}}) -> (vector<8xf64>, f64) {
 // CHECK:   memref.load %[[COLIDX]][%[[K]]]
 // CHECK:   memref.load %[[AV]][%[[K]], %c0, %c0]
 // CHECK:   memref.load %[[X]]
+// CHECK:   vector.from_elements {{.*}} : vector<8xf64>
 // CHECK:   scf.yield
-// CHECK: vector.from_elements %[[SUMS]]#0, %[[SUMS]]#1, %[[SUMS]]#2 : vector<3xf64>
+// CHECK: vector.extract %[[SUMS]]#0[0]
+// CHECK: vector.from_elements {{.*}} : vector<3xf64>
 func.func @row(%i : index) -> tensor<3xf64> attributes {simit.export} {
   %links = simit.get_set @links : !Links
   %points = simit.get_set @points : !Points

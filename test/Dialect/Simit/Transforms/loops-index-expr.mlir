@@ -29,9 +29,11 @@ func.func @stiffness(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> !K {
 }
 
 // A pattern matrix times a vector: each row's blocks (rowptr/colidx) are
-// visited once; the row's three components are summed in loop-carried
-// values, term by term in the order (block, row of the block, column), and
-// stored once, so the result is not zero filled.
+// visited once; each of a block's nine terms (row of the block, column) is
+// summed over the row's blocks in a loop-carried lane of its own (eight in
+// a vector, the ninth alone), the lanes of each row component are added in
+// term order after the loop, and the row is stored once, so the result is
+// not zero filled.
 // CHECK-LABEL: func.func @spmv(
 // CHECK-SAME: %[[NP:[^:]*]]: index, {{.*}}%[[X:[^:]*]]: memref<?x3xf64>, %{{[^:]*}}: memref<?xf64>, %[[ROWPTR:[^:]*]]: memref<?xi32>, %[[COLIDX:[^:]*]]: memref<?xi32>, %{{[^:]*}}: memref<?x4xi32>)
 // CHECK: %[[KV:.*]] = memref.alloc
@@ -43,32 +45,37 @@ func.func @stiffness(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> !K {
 // CHECK:   %[[I1:.*]] = arith.addi %[[I]], %c1
 // CHECK:   %[[LO:.*]] = memref.load %[[ROWPTR]][%[[I]]]
 // CHECK:   %[[HI:.*]] = memref.load %[[ROWPTR]][%[[I1]]]
-// CHECK:   %[[ROW:.*]]:3 = scf.for %[[K:.*]] = %{{.*}} to %{{.*}} step %c1 iter_args(%[[S0:.*]] = %cst, %[[S1:.*]] = %cst, %[[S2:.*]] = %cst) -> (f64, f64, f64) {
+// CHECK:   %[[ROW:.*]]:2 = scf.for %[[K:.*]] = %{{.*}} to %{{.*}} step %c1 iter_args(%[[S8:.*]] = %{{.*}}, %[[S1:.*]] = %{{.*}}) -> (vector<8xf64>, f64) {
 // CHECK:     %[[J32:.*]] = memref.load %[[COLIDX]][%[[K]]]
 // CHECK:     %[[J:.*]] = arith.index_cast %[[J32]]
 // CHECK:     %[[K00:.*]] = memref.load %[[KV]][%[[K]], %c0, %c0]
 // CHECK:     %[[X0:.*]] = memref.load %[[X]][%[[J]], %c0]
 // CHECK:     %[[P00:.*]] = arith.mulf %[[K00]], %[[X0]]
-// CHECK:     %[[T00:.*]] = arith.addf %[[S0]], %[[P00]]
 // CHECK:     %[[K01:.*]] = memref.load %[[KV]][%[[K]], %c0, %c1]
 // CHECK:     %[[X1:.*]] = memref.load %[[X]][%[[J]], %c1]
 // CHECK:     %[[P01:.*]] = arith.mulf %[[K01]], %[[X1]]
-// CHECK:     %[[T01:.*]] = arith.addf %[[T00]], %[[P01]]
-// CHECK:     %[[T02:.*]] = arith.addf %[[T01]], %{{.*}}
 // CHECK:     %[[K10:.*]] = memref.load %[[KV]][%[[K]], %c1, %c0]
 // CHECK:     %[[P10:.*]] = arith.mulf %[[K10]], %[[X0]]
-// CHECK:     %[[T10:.*]] = arith.addf %[[S1]], %[[P10]]
-// CHECK:     %[[T11:.*]] = arith.addf %[[T10]], %{{.*}}
-// CHECK:     %[[T12:.*]] = arith.addf %[[T11]], %{{.*}}
-// CHECK:     %[[T20:.*]] = arith.addf %[[S2]], %{{.*}}
-// CHECK:     %[[T21:.*]] = arith.addf %[[T20]], %{{.*}}
-// CHECK:     %[[T22:.*]] = arith.addf %[[T21]], %{{.*}}
-// CHECK:     scf.yield %[[T02]], %[[T12]], %[[T22]] : f64, f64, f64
+// CHECK:     %[[K22:.*]] = memref.load %[[KV]][%[[K]], %c2, %c2]
+// CHECK:     %[[P22:.*]] = arith.mulf %[[K22]], %{{.*}}
+// CHECK:     %[[TERMS:.*]] = vector.from_elements %[[P00]], %[[P01]], %{{.*}}, %[[P10]], %{{.*}}, %{{.*}}, %{{.*}}, %{{.*}} : vector<8xf64>
+// CHECK:     %[[T8:.*]] = arith.addf %[[S8]], %[[TERMS]] : vector<8xf64>
+// CHECK:     %[[T1:.*]] = arith.addf %[[S1]], %[[P22]] : f64
+// CHECK:     scf.yield %[[T8]], %[[T1]] : vector<8xf64>, f64
 // CHECK-NOT: memref.store
 // CHECK:   }
-// CHECK:   memref.store %[[ROW]]#0, %[[Y]][%[[I]], %c0]
-// CHECK:   memref.store %[[ROW]]#1, %[[Y]][%[[I]], %c1]
-// CHECK:   memref.store %[[ROW]]#2, %[[Y]][%[[I]], %c2]
+// CHECK:   %[[L0:.*]] = vector.extract %[[ROW]]#0[0]
+// CHECK:   %[[A0:.*]] = arith.addf %[[L0]], %cst
+// CHECK:   %[[L1:.*]] = vector.extract %[[ROW]]#0[1]
+// CHECK:   %[[A1:.*]] = arith.addf %[[A0]], %[[L1]]
+// CHECK:   %[[L2:.*]] = vector.extract %[[ROW]]#0[2]
+// CHECK:   %[[Y0:.*]] = arith.addf %[[A1]], %[[L2]]
+// CHECK:   %[[L8:.*]] = vector.extract %[[ROW]]#0[7]
+// CHECK:   %[[A8:.*]] = arith.addf %{{.*}}, %[[L8]]
+// CHECK:   %[[Y2:.*]] = arith.addf %[[A8]], %[[ROW]]#1
+// CHECK:   memref.store %[[Y0]], %[[Y]][%[[I]], %c0]
+// CHECK:   memref.store %{{.*}}, %[[Y]][%[[I]], %c1]
+// CHECK:   memref.store %[[Y2]], %[[Y]][%[[I]], %c2]
 // CHECK: return %[[Y]]
 func.func @spmv() -> !F attributes {simit.export} {
   %springs = simit.get_set @springs : !Springs

@@ -249,15 +249,17 @@ IndexExprLowering::sumTermsApart(const Choice &loop, SmallVector<Value> sums,
                                  function_ref<int64_t()> componentOf) {
   // Term k of every iteration (a block's entry (i, j) for y = A x) has a
   // sum of its own, a lane of loop-carried vectors of power-of-two sizes
-  // (9 terms: 8 + 1), so that each is a machine register: an iteration's
-  // terms are added with one vector addition per chunk, whose operands the
-  // SLP vectoriser builds with full-width loads and multiplications, and
-  // the loop's chain of dependent additions is one per iteration. Each
+  // up to kTermLanes (9 terms: 4 + 4 + 1), each a machine register: an
+  // iteration's terms are added with one vector addition per chunk, whose
+  // operands the SLP vectoriser builds with vector loads and
+  // multiplications, and the loop's chain of dependent additions is one
+  // per iteration. Each
   // component then adds its terms' sums in term order: a fixed order, so
   // results do not depend on threads.
   SmallVector<int64_t> chunks;
   for (int64_t left = terms; left > 0;)
-    chunks.push_back(int64_t(1) << llvm::Log2_64(left)), left -= chunks.back();
+    chunks.push_back(std::min(kTermLanes, int64_t(1) << llvm::Log2_64(left))),
+        left -= chunks.back();
   SmallVector<Value> zeros;
   for (int64_t size : chunks) {
     Type type = size == 1 ? scalarType : VectorType::get({size}, scalarType);

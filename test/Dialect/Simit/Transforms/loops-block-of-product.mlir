@@ -33,11 +33,11 @@ func.func @upper(%l : !Link, %ends : !simit.tuple<!Point x 2>) -> !A {
 // CHECK-NOT: memref.alloc
 // CHECK: %[[LO:.*]] = memref.load %[[ROWPTR]][%[[I]]]
 // CHECK: %[[HI:.*]] = memref.load %[[ROWPTR]][%{{.*}}]
-// CHECK: %[[SUMS:.*]]:2 = scf.for %[[K:.*]] = %{{.*}} to %{{.*}} step %c1 iter_args({{.*}}) -> (vector<8xf64>, f64) {
+// CHECK: %[[SUMS:.*]]:3 = scf.for %[[K:.*]] = %{{.*}} to %{{.*}} step %c1 iter_args({{.*}}) -> (vector<4xf64>, vector<4xf64>, f64) {
 // CHECK:   memref.load %[[COLIDX]][%[[K]]]
 // CHECK:   memref.load %[[AV]][%[[K]], %c0, %c0]
 // CHECK:   memref.load %[[X]]
-// CHECK:   vector.from_elements {{.*}} : vector<8xf64>
+// CHECK:   vector.from_elements {{.*}} : vector<4xf64>
 // CHECK:   scf.yield
 // CHECK: vector.extract %[[SUMS]]#0[0]
 // CHECK: vector.from_elements {{.*}} : vector<3xf64>

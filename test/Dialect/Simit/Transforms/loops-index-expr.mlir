@@ -30,10 +30,10 @@ func.func @stiffness(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> !K {
 
 // A pattern matrix times a vector: each row's blocks (rowptr/colidx) are
 // visited once; each of a block's nine terms (row of the block, column) is
-// summed over the row's blocks in a loop-carried lane of its own (eight in
-// a vector, the ninth alone), the lanes of each row component are added in
-// term order after the loop, and the row is stored once, so the result is
-// not zero filled.
+// summed over the row's blocks in a loop-carried lane of its own (two
+// vectors of four, the ninth alone), the lanes of each row component are
+// added in term order after the loop, and the row is stored once, so the
+// result is not zero filled.
 // CHECK-LABEL: func.func @spmv(
 // CHECK-SAME: %[[NP:[^:]*]]: index, {{.*}}%[[X:[^:]*]]: memref<?x3xf64>, %{{[^:]*}}: memref<?xf64>, %[[ROWPTR:[^:]*]]: memref<?xi32>, %[[COLIDX:[^:]*]]: memref<?xi32>, %{{[^:]*}}: memref<?x4xi32>)
 // CHECK: %[[KV:.*]] = memref.alloc
@@ -45,7 +45,7 @@ func.func @stiffness(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> !K {
 // CHECK:   %[[I1:.*]] = arith.addi %[[I]], %c1
 // CHECK:   %[[LO:.*]] = memref.load %[[ROWPTR]][%[[I]]]
 // CHECK:   %[[HI:.*]] = memref.load %[[ROWPTR]][%[[I1]]]
-// CHECK:   %[[ROW:.*]]:2 = scf.for %[[K:.*]] = %{{.*}} to %{{.*}} step %c1 iter_args(%[[S8:.*]] = %{{.*}}, %[[S1:.*]] = %{{.*}}) -> (vector<8xf64>, f64) {
+// CHECK:   %[[ROW:.*]]:3 = scf.for %[[K:.*]] = %{{.*}} to %{{.*}} step %c1 iter_args(%[[S4:.*]] = %{{.*}}, %[[T4:.*]] = %{{.*}}, %[[S1:.*]] = %{{.*}}) -> (vector<4xf64>, vector<4xf64>, f64) {
 // CHECK:     %[[J32:.*]] = memref.load %[[COLIDX]][%[[K]]]
 // CHECK:     %[[J:.*]] = arith.index_cast %[[J32]]
 // CHECK:     %[[K00:.*]] = memref.load %[[KV]][%[[K]], %c0, %c0]
@@ -58,10 +58,12 @@ func.func @stiffness(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> !K {
 // CHECK:     %[[P10:.*]] = arith.mulf %[[K10]], %[[X0]]
 // CHECK:     %[[K22:.*]] = memref.load %[[KV]][%[[K]], %c2, %c2]
 // CHECK:     %[[P22:.*]] = arith.mulf %[[K22]], %{{.*}}
-// CHECK:     %[[TERMS:.*]] = vector.from_elements %[[P00]], %[[P01]], %{{.*}}, %[[P10]], %{{.*}}, %{{.*}}, %{{.*}}, %{{.*}} : vector<8xf64>
-// CHECK:     %[[T8:.*]] = arith.addf %[[S8]], %[[TERMS]] : vector<8xf64>
-// CHECK:     %[[T1:.*]] = arith.addf %[[S1]], %[[P22]] : f64
-// CHECK:     scf.yield %[[T8]], %[[T1]] : vector<8xf64>, f64
+// CHECK:     %[[TERMS0:.*]] = vector.from_elements %[[P00]], %[[P01]], %{{.*}}, %[[P10]] : vector<4xf64>
+// CHECK:     %[[U4:.*]] = arith.addf %[[S4]], %[[TERMS0]] : vector<4xf64>
+// CHECK:     %[[TERMS1:.*]] = vector.from_elements %{{.*}}, %{{.*}}, %{{.*}}, %{{.*}} : vector<4xf64>
+// CHECK:     %[[V4:.*]] = arith.addf %[[T4]], %[[TERMS1]] : vector<4xf64>
+// CHECK:     %[[U1:.*]] = arith.addf %[[S1]], %[[P22]] : f64
+// CHECK:     scf.yield %[[U4]], %[[V4]], %[[U1]] : vector<4xf64>, vector<4xf64>, f64
 // CHECK-NOT: memref.store
 // CHECK:   }
 // CHECK:   %[[L0:.*]] = vector.extract %[[ROW]]#0[0]
@@ -70,9 +72,9 @@ func.func @stiffness(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> !K {
 // CHECK:   %[[A1:.*]] = arith.addf %[[A0]], %[[L1]]
 // CHECK:   %[[L2:.*]] = vector.extract %[[ROW]]#0[2]
 // CHECK:   %[[Y0:.*]] = arith.addf %[[A1]], %[[L2]]
-// CHECK:   %[[L8:.*]] = vector.extract %[[ROW]]#0[7]
+// CHECK:   %[[L8:.*]] = vector.extract %[[ROW]]#1[3]
 // CHECK:   %[[A8:.*]] = arith.addf %{{.*}}, %[[L8]]
-// CHECK:   %[[Y2:.*]] = arith.addf %[[A8]], %[[ROW]]#1
+// CHECK:   %[[Y2:.*]] = arith.addf %[[A8]], %[[ROW]]#2
 // CHECK:   memref.store %[[Y0]], %[[Y]][%[[I]], %c0]
 // CHECK:   memref.store %{{.*}}, %[[Y]][%[[I]], %c1]
 // CHECK:   memref.store %[[Y2]], %[[Y]][%[[I]], %c2]

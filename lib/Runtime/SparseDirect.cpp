@@ -58,15 +58,15 @@ struct Analysis {
   FactorKind kind = FactorKind::LU;
   int64_t rows = 0, blockSize = 1;
   std::vector<int32_t> rowptr, colidx;
-  /// The compressed columns (A^T's; Cholesky drops them once analysed)
-  /// and, per entry, its BCSR value index.
+  /// LU and LDLT: the compressed columns (A^T's) and, per entry, its BCSR
+  /// value index.
   std::vector<SuiteSparse_long> columnPointers, rowIndices;
   std::vector<int64_t> slots;
   SupernodalSymbolic supernodal;      // Cholesky
   cholmod_factor *symbolic = nullptr; // LDLT
   void *umfpackSymbolic = nullptr;    // LU
-  /// Cholesky: where each compressed-column entry lands in L's values.
-  std::vector<int64_t> factorPositions;
+  /// Cholesky: where each BCSR block lands in L's values.
+  std::vector<direct::BlockPlacement> blockPlacements;
 
   int64_t size() const { return rows * blockSize; }
   ~Analysis() {
@@ -370,7 +370,8 @@ FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
     analysis->blockSize = a.blockSize;
     analysis->rowptr.assign(a.rowptr, a.rowptr + a.rows + 1);
     analysis->colidx.assign(a.colidx, a.colidx + a.rowptr[a.rows]);
-    buildColumns(a, *analysis);
+    if (kind != FactorKind::Cholesky)
+      buildColumns(a, *analysis);
     if (kind == FactorKind::LU) {
       double info[UMFPACK_INFO];
       SuiteSparse_long status = umfpack_dl_symbolic(
@@ -385,13 +386,10 @@ FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
     } else if (kind == FactorKind::Cholesky) {
       analysis->supernodal =
           direct::analyse(a.rows, a.blockSize, a.rowptr, a.colidx);
-      analysis->factorPositions = direct::entryPositions(
-          analysis->supernodal.layout(),
-          analysis->supernodal.permutation.data(),
-          analysis->columnPointers.data(), analysis->rowIndices.data());
-      // Only the positions and slots are read from here on.
-      analysis->columnPointers = {};
-      analysis->rowIndices = {};
+      analysis->blockPlacements =
+          direct::blockPlacements(analysis->supernodal.layout(),
+                                  analysis->supernodal.permutation.data(),
+                                  a.rows, a.blockSize, a.rowptr, a.colidx);
     } else {
       cholmod_common &c = common->c;
       cholmod_sparse view = analysis->view(nullptr);
@@ -457,13 +455,23 @@ FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
                     .str());
   } else if (kind == FactorKind::Cholesky) {
     // The values of A(p, p)'s lower triangle at their places in L, zeros
-    // elsewhere, factorised in place.
+    // elsewhere, factorised in place: the blocks on and below the diagonal
+    // (the lower triangle of a diagonal one).
     const SupernodalSymbolic &symbolic = analysis.supernodal;
     factor->choleskyValues.assign(static_cast<size_t>(symbolic.values()), 0.0);
     double *lx = factor->choleskyValues.data();
-    const std::vector<int64_t> &positions = analysis.factorPositions;
-    for (size_t p = 0; p < positions.size(); ++p)
-      lx[positions[p]] = static_cast<double>(a.values[analysis.slots[p]]);
+    int64_t bs = a.blockSize;
+    for (int64_t r = 0; r < a.rows; ++r)
+      for (int32_t k = a.rowptr[r]; k < a.rowptr[r + 1]; ++k) {
+        if (a.colidx[k] > r)
+          continue;
+        const direct::BlockPlacement &place = analysis.blockPlacements[k];
+        const T *block = a.values + static_cast<int64_t>(k) * bs * bs;
+        for (int64_t i = 0; i < bs; ++i)
+          for (int64_t j = 0; j < (a.colidx[k] == r ? i + 1 : bs); ++j)
+            lx[place.position + i * place.rowStride + j * place.columnStride] =
+                static_cast<double>(block[i * bs + j]);
+      }
     int64_t failed = direct::factorise(symbolic.layout(), lx);
     if (failed < a.size())
       return notFactorisable(kind, symbolic.permutation[failed]);

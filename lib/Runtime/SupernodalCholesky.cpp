@@ -201,56 +201,76 @@ subtractGroupDots(const T *const *columns, const double *__restrict dense,
 
 } // namespace
 
-std::vector<int64_t> direct::entryPositions(const SupernodeLayout &layout,
-                                            const int64_t *permutation,
-                                            const int64_t *columnPointers,
-                                            const int64_t *rowIndices) {
-  int64_t n = layout.size();
+std::vector<BlockPlacement>
+direct::blockPlacements(const SupernodeLayout &layout,
+                        const int64_t *permutation, int64_t blockRows,
+                        int64_t blockSize, const int32_t *rowptr,
+                        const int32_t *colidx) {
+  int64_t n = layout.size(), bs = blockSize;
   std::vector<int64_t> inverse(static_cast<size_t>(n));
   for (int64_t k = 0; k < n; ++k)
     inverse[permutation[k]] = k;
+  // A block's unknowns must be consecutive in L for its entries to lie at
+  // fixed strides.
+  for (int64_t b = 0; b < blockRows; ++b)
+    for (int64_t i = 1; i < bs; ++i)
+      if (inverse[b * bs + i] != inverse[b * bs] + i)
+        llvm::report_fatal_error("simit: the Cholesky analysis split the "
+                                 "unknowns of a block");
   std::vector<int64_t> supernodeOf = supernodeOfColumns(layout);
-  // Entry (i, j), i >= j in L's order, lies in column j's supernode panel.
-  // The entries are sorted by that supernode (counting sort), so that each
-  // panel's rows are indexed once for all of its entries.
-  int64_t entries = columnPointers[n];
-  std::vector<int64_t> lower(static_cast<size_t>(entries)),
-      upper(static_cast<size_t>(entries)),
+  // Block (r, c), c <= r, in L's order: (max, min) of its rows' and
+  // columns' first unknowns. The blocks are sorted by the supernode of
+  // L's column (counting sort), so that each panel's rows are indexed once
+  // for all of its blocks.
+  int64_t blocks = rowptr[blockRows];
+  std::vector<int64_t> lower(static_cast<size_t>(blocks), -1),
+      upper(static_cast<size_t>(blocks)),
       bucketStart(static_cast<size_t>(layout.supernodes) + 1, 0);
-  for (int64_t column = 0; column < n; ++column)
-    for (int64_t p = columnPointers[column]; p < columnPointers[column + 1];
-         ++p) {
-      int64_t i = inverse[rowIndices[p]], j = inverse[column];
-      lower[p] = std::min(i, j);
-      upper[p] = std::max(i, j);
-      ++bucketStart[supernodeOf[lower[p]] + 1];
+  // Whether the block's rows come first in L's order: then its columns are
+  // L's rows (the block is read transposed).
+  std::vector<bool> transposed(static_cast<size_t>(blocks));
+  for (int64_t r = 0; r < blockRows; ++r)
+    for (int32_t k = rowptr[r]; k < rowptr[r + 1]; ++k) {
+      if (colidx[k] > r)
+        continue;
+      int64_t row = inverse[r * bs], column = inverse[colidx[k] * bs];
+      lower[k] = std::min(row, column);
+      upper[k] = std::max(row, column);
+      transposed[k] = row < column;
+      ++bucketStart[supernodeOf[lower[k]] + 1];
     }
   std::partial_sum(bucketStart.begin(), bucketStart.end(), bucketStart.begin());
-  std::vector<int64_t> sorted(static_cast<size_t>(entries)),
+  std::vector<int64_t> sorted(static_cast<size_t>(bucketStart.back())),
       filled(bucketStart.begin(), bucketStart.end() - 1);
-  for (int64_t p = 0; p < entries; ++p)
-    sorted[filled[supernodeOf[lower[p]]]++] = p;
+  for (int64_t k = 0; k < blocks; ++k)
+    if (lower[k] >= 0)
+      sorted[filled[supernodeOf[lower[k]]]++] = k;
 
-  std::vector<int64_t> positions(static_cast<size_t>(entries)),
-      indexInPanel(static_cast<size_t>(n));
+  std::vector<BlockPlacement> placements(static_cast<size_t>(blocks));
+  std::vector<int64_t> indexInPanel(static_cast<size_t>(n));
   for (int64_t s = 0; s < layout.supernodes; ++s) {
     int64_t height = layout.rowStart[s + 1] - layout.rowStart[s];
     const int64_t *rows = layout.rows + layout.rowStart[s];
     for (int64_t r = 0; r < height; ++r)
       indexInPanel[rows[r]] = r;
     for (int64_t q = bucketStart[s]; q < bucketStart[s + 1]; ++q) {
-      int64_t p = sorted[q];
-      int64_t row = indexInPanel[upper[p]];
+      int64_t k = sorted[q];
+      int64_t row = indexInPanel[upper[k]];
       // A symbolic analysis that missed an entry of A would have it land
       // on another entry of L: never a wrong factor, stop instead.
-      if (row >= height || rows[row] != upper[p])
-        llvm::report_fatal_error("simit: the Cholesky analysis lost an entry "
-                                 "of the matrix's pattern");
-      positions[p] =
-          layout.valueStart[s] + (lower[p] - layout.first[s]) * height + row;
+      for (int64_t i = 0; i < bs; ++i)
+        if (row + i >= height || rows[row + i] != upper[k] + i ||
+            supernodeOf[lower[k] + i] != s)
+          llvm::report_fatal_error("simit: the Cholesky analysis lost an "
+                                   "entry of the matrix's pattern");
+      BlockPlacement &placement = placements[k];
+      placement.position =
+          layout.valueStart[s] + (lower[k] - layout.first[s]) * height + row;
+      placement.rowStride = transposed[k] ? height : 1;
+      placement.columnStride = transposed[k] ? 1 : height;
     }
   }
-  return positions;
+  return placements;
 }
 
 int64_t direct::factorise(const SupernodeLayout &layout, double *values) {

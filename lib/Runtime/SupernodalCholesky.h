@@ -61,13 +61,22 @@ struct SupernodalSymbolic {
 SupernodalSymbolic analyse(int64_t blockRows, int64_t blockSize,
                            const int32_t *rowptr, const int32_t *colidx);
 
-/// For each entry of a matrix's upper triangle in compressed columns
-/// (columnPointers, rowIndices; original numbering), its position in L's
-/// values, where `permutation` maps L's columns to the matrix's.
-std::vector<int64_t> entryPositions(const SupernodeLayout &layout,
-                                    const int64_t *permutation,
-                                    const int64_t *columnPointers,
-                                    const int64_t *rowIndices);
+/// Where a block of the matrix lands in L's values: its entry (i, j) at
+/// position + i * rowStride + j * columnStride; a position of -1 for a
+/// block above the diagonal, whose mirror below it gives L its values.
+struct BlockPlacement {
+  int64_t position = -1, rowStride = 0, columnStride = 0;
+};
+
+/// The placement of each block of a pattern of blockRows x blockRows blocks
+/// (rowptr, colidx as in BCSR) in L, where `permutation` maps L's columns
+/// to the matrix's unknowns and keeps each block's unknowns together and
+/// in order (as analyse's does). A diagonal block gives its lower
+/// triangle, a block below the diagonal all its entries.
+std::vector<BlockPlacement>
+blockPlacements(const SupernodeLayout &layout, const int64_t *permutation,
+                int64_t blockRows, int64_t blockSize, const int32_t *rowptr,
+                const int32_t *colidx);
 
 /// L L^T = A in place: `values` holds A's entries at their positions and
 /// zeros elsewhere, and holds L on return. Returns L's column (in its own

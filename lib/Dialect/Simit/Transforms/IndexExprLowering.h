@@ -133,6 +133,10 @@ private:
   /// one per component in rowComponentLevels' order.
   FailureOr<SmallVector<Value>> rowSums(unsigned rowVar,
                                         ArrayRef<unsigned> all);
+  /// Binds `choice`'s static level to each of its values in turn, calling
+  /// `body` for each, and unbinds it after.
+  LogicalResult forEachStaticValue(const Choice &choice,
+                                   function_ref<LogicalResult()> body);
   /// The terms one iteration of `loop` adds when its body has no loop of
   /// its own (its static levels unrolled), else nullopt.
   std::optional<int64_t> termsPerInnermostIteration(const Choice &loop,

@@ -225,6 +225,22 @@ IndexExprLowering::rowComponentLevels(unsigned rowVar) {
   return levels;
 }
 
+LogicalResult
+IndexExprLowering::forEachStaticValue(const Choice &choice,
+                                      function_ref<LogicalResult()> body) {
+  unsigned v = choice.var;
+  if (!bound.count(v))
+    bound[v].assign(numLevels(v), Value());
+  int64_t size = cast<IntegerAttr>(level(v, choice.levelIndex)).getInt();
+  for (int64_t k = 0; k < size; ++k) {
+    bound[v][choice.levelIndex] = l.indexConstant(k);
+    if (failed(body()))
+      return failure();
+  }
+  bound[v][choice.levelIndex] = Value();
+  return success();
+}
+
 std::optional<int64_t>
 IndexExprLowering::termsPerInnermostIteration(const Choice &loop,
                                               ArrayRef<unsigned> all) {
@@ -253,9 +269,8 @@ IndexExprLowering::sumTermsApart(const Choice &loop, SmallVector<Value> sums,
   // iteration's terms are added with one vector addition per chunk, whose
   // operands the SLP vectoriser builds with vector loads and
   // multiplications, and the loop's chain of dependent additions is one
-  // per iteration. Each
-  // component then adds its terms' sums in term order: a fixed order, so
-  // results do not depend on threads.
+  // per iteration. Each component then adds its terms' sums in term order:
+  // a fixed order, so results do not depend on threads.
   SmallVector<int64_t> chunks;
   for (int64_t left = terms; left > 0;)
     chunks.push_back(std::min(kTermLanes, int64_t(1) << llvm::Log2_64(left))),
@@ -281,18 +296,7 @@ IndexExprLowering::sumTermsApart(const Choice &loop, SmallVector<Value> sums,
             termValues.push_back(*term);
             return success();
           }
-          unsigned v = choice->var;
-          if (!bound.count(v))
-            bound[v].assign(numLevels(v), Value());
-          int64_t size =
-              cast<IntegerAttr>(level(v, choice->levelIndex)).getInt();
-          for (int64_t k = 0; k < size; ++k) {
-            bound[v][choice->levelIndex] = l.indexConstant(k);
-            if (failed(unroll()))
-              return failure();
-          }
-          bound[v][choice->levelIndex] = Value();
-          return success();
+          return forEachStaticValue(*choice, unroll);
         };
         if (failed(unroll()) ||
             termValues.size() != static_cast<size_t>(terms)) {
@@ -353,21 +357,16 @@ IndexExprLowering::rowSums(unsigned rowVar, ArrayRef<unsigned> all) {
       sums[component] = add(sums[component], *term);
       return sums;
     }
-    unsigned v = choice->var;
     if (choice->coupledBy < 0 &&
-        isa<IntegerAttr>(level(v, choice->levelIndex))) {
-      if (!bound.count(v))
-        bound[v].assign(numLevels(v), Value());
-      int64_t size =
-          cast<IntegerAttr>(level(v, choice->levelIndex)).getInt();
-      for (int64_t k = 0; k < size; ++k) {
-        bound[v][choice->levelIndex] = l.indexConstant(k);
-        FailureOr<SmallVector<Value>> next = sumTerms(std::move(sums));
-        if (failed(next))
-          return failure();
-        sums = std::move(*next);
-      }
-      bound[v][choice->levelIndex] = Value();
+        isa<IntegerAttr>(level(choice->var, choice->levelIndex))) {
+      if (failed(forEachStaticValue(*choice, [&]() -> LogicalResult {
+            FailureOr<SmallVector<Value>> next = sumTerms(std::move(sums));
+            if (failed(next))
+              return failure();
+            sums = std::move(*next);
+            return success();
+          })))
+        return failure();
       return sums;
     }
     if (std::optional<int64_t> terms = termsPerInnermostIteration(*choice, all);

@@ -249,7 +249,7 @@ def SimitParallelLoops : Pass<"simit-parallel-loops", "::mlir::ModuleOp"> {
   let options = [
     Option<"reductionChunk", "reduction-chunk", "int64_t", /*default=*/"1024",
            "Iterations reduced in order into one partial result">,
-    Option<"scatterChunk", "scatter-chunk", "int64_t", /*default=*/"8",
+    Option<"scatterChunk", "scatter-chunk", "int64_t", /*default=*/"32",
            "Consecutive elements per coloured chunk of a scatter loop">,
     Option<"setOrderOnly", "set-order-only", "bool", /*default=*/"false",
            "Only make the element loops that must run in set order "
@@ -478,7 +478,7 @@ def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
     Option<"reductionChunk", "reduction-chunk", "int64_t",
            /*default=*/"1024",
            "simit-parallel-loops: iterations per partial of a reduction">,
-    Option<"scatterChunk", "scatter-chunk", "int64_t", /*default=*/"8",
+    Option<"scatterChunk", "scatter-chunk", "int64_t", /*default=*/"32",
            "simit-parallel-loops: elements per coloured chunk of a scatter "
            "loop">,
     Option<"foldSceneConstants", "fold-scene-constants", "bool",

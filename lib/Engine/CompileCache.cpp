@@ -26,9 +26,9 @@ using namespace simit;
 
 namespace {
 constexpr llvm::StringLiteral kMagic = "SIMITOBJ";
-/// Changes whenever the header or the payload's layout does (5: binding
-/// kinds gained incidence_endpoints, numbered in the payload).
-constexpr uint32_t kFormatVersion = 5;
+/// Changes whenever the header or the payload's layout does (6: a list of
+/// objects, one per partition of the module).
+constexpr uint32_t kFormatVersion = 6;
 using Hash = llvm::BLAKE3Result<32>;
 
 llvm::StringRef asText(const Hash &hash) {

@@ -2,6 +2,7 @@
 
 #include "Lowering.h"
 
+#include "ObjectCodegen.h"
 #include "Stopwatch.h"
 
 #include "simit/ABI/RuntimeFunctionNames.h"
@@ -393,23 +394,11 @@ simit::compileToObject(mlir::ModuleOp llvmModule,
                                                         targetMachine->get());
   for (const auto &entry : code.functions)
     addPackedEntryPoint(*module->getFunction(entry.getKey()));
-  auto optimize = mlir::makeOptimizingTransformer(
-      /*optLevel=*/3, /*sizeLevel=*/0, targetMachine->get());
-  if (llvm::Error err = optimize(module.get()))
-    return std::move(err);
-  times.optimizationMs = stopwatch.milliseconds();
-
-  stopwatch.restart();
-  llvm::SmallVector<char, 0> object;
-  llvm::raw_svector_ostream os(object);
-  llvm::legacy::PassManager codegen;
-  if ((*targetMachine)
-          ->addPassesToEmitFile(codegen, os, nullptr,
-                                llvm::CodeGenFileType::ObjectFile))
-    return llvm::createStringError("the host target cannot emit objects");
-  codegen.run(*module);
-  code.object.assign(object.begin(), object.end());
   code.dataLayout = module->getDataLayoutStr();
-  times.codegenMs = stopwatch.milliseconds();
+  times.optimizationMs = stopwatch.milliseconds();
+  auto objects = compileToObjects(*module, *target, /*partitions=*/0, times);
+  if (!objects)
+    return objects.takeError();
+  code.objects = std::move(*objects);
   return code;
 }

@@ -8,11 +8,12 @@
 
 #include "simit/ABI/RuntimeFunctions.h"
 
+#include "llvm/ADT/StringSet.h"
 #include "llvm/ExecutionEngine/Orc/ExecutionUtils.h"
 #include "llvm/ExecutionEngine/Orc/LLJIT.h"
+#include "llvm/IR/DataLayout.h"
 #include "llvm/Object/ObjectFile.h"
 #include "llvm/Support/DynamicLibrary.h"
-#include "llvm/IR/DataLayout.h"
 #include "llvm/Support/MemoryBuffer.h"
 #include "llvm/Support/TargetSelect.h"
 
@@ -35,30 +36,43 @@ llvm::Expected<llvm::orc::JITTargetMachineBuilder> simit::hostTarget() {
   return target;
 }
 
-/// Names the symbols the object needs that neither the runtime, the OpenMP
-/// runtime nor the process (its libraries, and the host libraries loaded
-/// for `extern func`s) defines, before the JIT would fail on them less
-/// clearly.
-static llvm::Error checkExternalSymbols(llvm::StringRef object,
+/// Names the symbols the objects need that none of them, the runtime, the
+/// OpenMP runtime nor the process (its libraries, and the host libraries
+/// loaded for `extern func`s) defines, before the JIT would fail on them
+/// less clearly.
+static llvm::Error checkExternalSymbols(llvm::ArrayRef<std::string> objects,
                                         const llvm::orc::SymbolMap &runtime,
                                         llvm::sys::DynamicLibrary &openMP,
                                         llvm::orc::MangleAndInterner &mangle) {
-  auto file = llvm::object::ObjectFile::createObjectFile(
-      llvm::MemoryBufferRef(object, "simit-module.o"));
-  if (!file)
-    return file.takeError();
-  std::string missing;
-  for (const llvm::object::SymbolRef &symbol : (*file)->symbols()) {
-    auto flags = symbol.getFlags();
-    if (!flags || !(*flags & llvm::object::SymbolRef::SF_Undefined))
-      continue;
-    auto name = symbol.getName();
-    if (!name || name->empty() || runtime.count(mangle(*name)) ||
-        openMP.getAddressOfSymbol(name->str().c_str()) ||
-        llvm::sys::DynamicLibrary::SearchForAddressOfSymbol(name->str()))
-      continue;
-    missing += (missing.empty() ? "" : ", ") + name->str();
+  std::vector<std::unique_ptr<llvm::object::ObjectFile>> files;
+  llvm::StringSet<> defined;
+  for (const std::string &object : objects) {
+    auto file = llvm::object::ObjectFile::createObjectFile(
+        llvm::MemoryBufferRef(object, "simit-module.o"));
+    if (!file)
+      return file.takeError();
+    for (const llvm::object::SymbolRef &symbol : (*file)->symbols()) {
+      auto flags = symbol.getFlags();
+      auto name = symbol.getName();
+      if (flags && !(*flags & llvm::object::SymbolRef::SF_Undefined) && name)
+        defined.insert(*name);
+    }
+    files.push_back(std::move(*file));
   }
+  std::string missing;
+  for (const auto &file : files)
+    for (const llvm::object::SymbolRef &symbol : file->symbols()) {
+      auto flags = symbol.getFlags();
+      if (!flags || !(*flags & llvm::object::SymbolRef::SF_Undefined))
+        continue;
+      auto name = symbol.getName();
+      if (!name || name->empty() || defined.contains(*name) ||
+          runtime.count(mangle(*name)) ||
+          openMP.getAddressOfSymbol(name->str().c_str()) ||
+          llvm::sys::DynamicLibrary::SearchForAddressOfSymbol(name->str()))
+        continue;
+      missing += (missing.empty() ? "" : ", ") + name->str();
+    }
   if (missing.empty())
     return llvm::Error::success();
   return llvm::createStringError(
@@ -103,7 +117,7 @@ simit::loadObjectCode(const ObjectCode &code) {
                                    (why.empty() ? "" : ": " + why));
   llvm::orc::SymbolMap runtime = runtimeSymbolMap(mangle);
   if (llvm::Error err =
-          checkExternalSymbols(code.object, runtime, openMPLibrary, mangle))
+          checkExternalSymbols(code.objects, runtime, openMPLibrary, mangle))
     return err;
   if (llvm::Error err = (*jit)->getMainJITDylib().define(
           llvm::orc::absoluteSymbols(std::move(runtime))))
@@ -113,9 +127,10 @@ simit::loadObjectCode(const ObjectCode &code) {
   if (!openMPSymbols)
     return openMPSymbols.takeError();
   (*jit)->getMainJITDylib().addGenerator(std::move(*openMPSymbols));
-  if (llvm::Error err = (*jit)->addObjectFile(
-          llvm::MemoryBuffer::getMemBufferCopy(code.object, "simit-module.o")))
-    return std::move(err);
+  for (const std::string &object : code.objects)
+    if (llvm::Error err = (*jit)->addObjectFile(
+            llvm::MemoryBuffer::getMemBufferCopy(object, "simit-module.o")))
+      return std::move(err);
 
   auto compiled = std::make_shared<CompiledModule>();
   compiled->functions = code.functions;

@@ -1,6 +1,6 @@
 //===--- ObjectCode.h - Compiled code before it is loaded -----------------===//
 //
-// A lowered module compiled for the host: a relocatable object that defines
+// A lowered module compiled for the host: relocatable objects that define
 // the packed entry point `_mlir_<name>(void **args)` of every exported
 // function, and the host ABI of each. Program compiles it (Lowering.h) or
 // reads it back from the compile cache (CompileCache.h), then loads it into
@@ -35,8 +35,9 @@ struct ObjectCode {
   /// The data layout the object was compiled for (the JIT mangles symbol
   /// names with it).
   std::string dataLayout;
-  /// The relocatable object file.
-  std::string object;
+  /// The relocatable object files, one per partition of the module
+  /// (ObjectCodegen.h), which refer to one another's symbols.
+  std::vector<std::string> objects;
   /// The fields of each extern set's elements, by set
   /// (Program::externSetFields()), so that a program loaded from the cache
   /// need not be imported.

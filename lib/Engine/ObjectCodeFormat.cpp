@@ -3,7 +3,7 @@
 // Integers in the host's byte order (a cache entry is only ever read on the
 // host it was compiled for), strings and lists with a 64-bit length first:
 //
-//   dataLayout, object, functions, then per function: name, convention,
+//   dataLayout, objects, functions, then per function: name, convention,
 //   arguments (kind, set, field, rows, cols, name, mid, the edge sets of
 //   union, gather and product bindings, index, chunk, type), results
 //   (type); a type is scalar, isMemRef, isVector, isComplex, shape; then
@@ -105,7 +105,9 @@ public:
 std::string simit::serializeObjectCode(const ObjectCode &code) {
   Writer out;
   out.string(code.dataLayout);
-  out.string(code.object);
+  out.integer<uint64_t>(code.objects.size());
+  for (const std::string &object : code.objects)
+    out.string(object);
   out.integer<uint64_t>(code.functions.size());
   for (const auto &entry : code.functions) {
     const CompiledFunction &function = entry.getValue();
@@ -163,7 +165,9 @@ llvm::Expected<ObjectCode> simit::deserializeObjectCode(llvm::StringRef bytes) {
   Reader in(bytes);
   ObjectCode code;
   code.dataLayout = in.string();
-  code.object = in.string();
+  code.objects.resize(in.count(sizeof(uint64_t)));
+  for (std::string &object : code.objects)
+    object = in.string();
   // Every function and argument takes at least one length word.
   uint64_t numFunctions = in.count(sizeof(uint64_t));
   for (uint64_t i = 0; i < numFunctions && !in.failed; ++i) {

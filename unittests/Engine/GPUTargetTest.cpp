@@ -32,7 +32,7 @@ using namespace simit;
 namespace {
 struct CompiledForGPU {
   ObjectCode code;
-  /// The object's undefined symbols.
+  /// The symbols the objects need and none of them defines.
   std::vector<std::string> undefined;
 };
 
@@ -66,19 +66,29 @@ CompiledForGPU compileForGPU(const std::string &relativePath,
     return result;
   }
   result.code = std::move(*code);
-  auto file = llvm::object::ObjectFile::createObjectFile(
-      llvm::MemoryBufferRef(result.code.object, "gpu.o"));
-  if (!file) {
-    ADD_FAILURE() << toString(file.takeError());
-    return result;
+  llvm::StringSet<> defined;
+  std::vector<std::string> needed;
+  for (const std::string &object : result.code.objects) {
+    auto file = llvm::object::ObjectFile::createObjectFile(
+        llvm::MemoryBufferRef(object, "gpu.o"));
+    if (!file) {
+      ADD_FAILURE() << toString(file.takeError());
+      return result;
+    }
+    for (const llvm::object::SymbolRef &symbol : (*file)->symbols()) {
+      auto flags = symbol.getFlags();
+      auto name = symbol.getName();
+      if (!flags || !name || name->empty())
+        continue;
+      if (*flags & llvm::object::SymbolRef::SF_Undefined)
+        needed.push_back(name->str());
+      else
+        defined.insert(*name);
+    }
   }
-  for (const llvm::object::SymbolRef &symbol : (*file)->symbols()) {
-    auto flags = symbol.getFlags();
-    auto name = symbol.getName();
-    if (flags && (*flags & llvm::object::SymbolRef::SF_Undefined) && name &&
-        !name->empty())
-      result.undefined.push_back(name->str());
-  }
+  for (const std::string &name : needed)
+    if (!defined.contains(name))
+      result.undefined.push_back(name);
   return result;
 }
 
@@ -123,8 +133,12 @@ void expectOnlyRuntimeSymbols(const std::string &path,
        {"mgpuModuleLoadJIT", "mgpuModuleGetFunction", "mgpuLaunchKernel",
         "mgpuMemAlloc", "mgpuMemcpy", "mgpuStreamSynchronize"})
     EXPECT_TRUE(mgpu.contains(name)) << name << " is not called";
-  EXPECT_NE(compiled.code.object.find(".visible .entry"), std::string::npos)
-      << "no PTX kernel in the object";
+  EXPECT_TRUE(llvm::any_of(compiled.code.objects,
+                           [](const std::string &object) {
+                             return object.find(".visible .entry") !=
+                                    std::string::npos;
+                           }))
+      << "no PTX kernel in the objects";
 }
 
 TEST(GPUTarget, SpringsNeedOnlyRuntimeSymbols) {

@@ -121,6 +121,11 @@ simit::compileToObjects(llvm::Module &module,
         module.getInstructionCount() / kInstructionsPerPartition, 1,
         std::clamp(cores, 1u, kMaxPartitions)));
   }
+  // Appending globals (llvm.used and the like) belong to one module each.
+  if (llvm::any_of(module.globals(), [](const llvm::GlobalVariable &global) {
+        return global.hasAppendingLinkage();
+      }))
+    partitions = 1;
   size_t definitions = llvm::count_if(
       module, [](const llvm::Function &f) { return !f.isDeclaration(); });
   partitions = static_cast<unsigned>(

@@ -6,7 +6,7 @@
 // iterations' stack slots move to the start of the parallel region: one set
 // per thread, reused by its iterations, as the sequential lowering reuses
 // one set for all (HoistParallelAllocas.cpp), so that LLVM keeps them in
-// registers.
+// registers. A region with little work runs on the calling thread alone.
 //
 //===----------------------------------------------------------------------===//
 
@@ -14,7 +14,9 @@
 
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
+#include "mlir/Dialect/Arith/IR/Arith.h"
 #include "mlir/Dialect/OpenMP/OpenMPDialect.h"
+#include "mlir/Dialect/SCF/IR/SCF.h"
 
 namespace mlir {
 namespace simit {
@@ -30,13 +32,53 @@ namespace {
 constexpr StringRef kRaise =
     runtimeName(::simit::abi::RuntimeFunction::RaiseParallelFailure);
 
-LogicalResult convertLoop(scf::ParallelOp loop) {
+/// Whether `loop` has enough work to share between threads: `owned` loops
+/// at least `minIterations` iterations, loops over chunks (`reduction`,
+/// `scatter`) at least two chunks.
+Value sharesWork(OpBuilder &b, scf::ParallelOp loop, int64_t minIterations) {
+  Location loc = loop.getLoc();
+  Value zero = arith::ConstantIndexOp::create(b, loc, 0);
+  Value trips = arith::ConstantIndexOp::create(b, loc, 1);
+  for (auto [lb, ub, step] :
+       llvm::zip(loop.getLowerBound(), loop.getUpperBound(), loop.getStep())) {
+    Value extent = arith::MaxSIOp::create(
+        b, loc, arith::SubIOp::create(b, loc, ub, lb), zero);
+    trips = arith::MulIOp::create(
+        b, loc, trips, arith::CeilDivUIOp::create(b, loc, extent, step));
+  }
+  auto kind = loop->getAttrOfType<StringAttr>(kParallelLoopAttr);
+  int64_t least = kind && kind.getValue() == "owned" ? minIterations : 2;
+  return arith::CmpIOp::create(b, loc, arith::CmpIPredicate::uge, trips,
+                               arith::ConstantIndexOp::create(b, loc, least));
+}
+
+/// Whether the body of `loop` has at most `maxOps` operations.
+bool isSmall(scf::ParallelOp loop, int64_t maxOps) {
+  int64_t ops = 0;
+  loop.getBody()->walk([&](Operation *) { ++ops; });
+  return ops <= maxOps;
+}
+
+LogicalResult convertLoop(scf::ParallelOp loop, int64_t minIterations,
+                          int64_t maxCopiedOps) {
   if (loop.getNumResults() != 0)
     return loop.emitError("a loop marked ")
            << kParallelLoopAttr << " must not have results";
   Location loc = loop.getLoc();
   OpBuilder b(loop);
-  auto region = omp::ParallelOp::create(b, loc, omp::ParallelOperands());
+  Value share = sharesWork(b, loop, minIterations);
+  omp::ParallelOperands operands;
+  if (isSmall(loop, maxCopiedOps)) {
+    // Even a region on one thread costs the runtime's bookkeeping: a small
+    // body is copied into a plain loop that runs instead.
+    auto branch = scf::IfOp::create(b, loc, share, /*withElseRegion=*/true);
+    b.setInsertionPointToStart(branch.elseBlock());
+    b.clone(*loop)->removeAttr(kParallelLoopAttr);
+    b.setInsertionPointToStart(branch.thenBlock());
+  } else {
+    operands.ifExpr = share;
+  }
+  auto region = omp::ParallelOp::create(b, loc, operands);
   b.createBlock(&region.getRegion());
   // The end of the region joins the threads: the loop needs no barrier of
   // its own.
@@ -92,6 +134,8 @@ LogicalResult convertLoop(scf::ParallelOp loop) {
 struct ParallelLoopsToOpenMP
     : public mlir::simit::impl::SimitParallelLoopsToOpenMPBase<
           ParallelLoopsToOpenMP> {
+  using Base::Base;
+
   void runOnOperation() override {
     SmallVector<scf::ParallelOp> marked;
     getOperation().walk([&](scf::ParallelOp loop) {
@@ -99,7 +143,7 @@ struct ParallelLoopsToOpenMP
         marked.push_back(loop);
     });
     for (scf::ParallelOp loop : marked)
-      if (failed(convertLoop(loop)))
+      if (failed(convertLoop(loop, minIterations, maxCopiedOps)))
         return signalPassFailure();
   }
 };

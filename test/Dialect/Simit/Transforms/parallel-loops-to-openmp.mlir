@@ -1,13 +1,22 @@
 // RUN: simit-opt %s --simit-parallel-loops-to-openmp | FileCheck %s
+// RUN: simit-opt %s --simit-parallel-loops-to-openmp=max-copied-ops=0 | FileCheck %s --check-prefix=CLAUSE
 
 // A marked loop becomes a parallel region with a worksharing loop over its
 // bounds (no barrier: the region's end joins the threads); its stack slots
 // move to the start of the region, one set per thread. Unmarked loops, and
-// loops nested in marked ones, stay scf.parallel (run sequentially).
+// loops nested in marked ones, stay scf.parallel (run sequentially). With
+// fewer than 2048 iterations (here n * 3) the work is not shared: a small
+// body runs as an unmarked copy instead; a larger one (max-copied-ops=0)
+// runs its region on the calling thread alone (the `if` clause).
 
 // CHECK-LABEL: func.func @marked(
 // CHECK-SAME: %[[N:[^:]*]]: index, %[[A:[^:]*]]: memref<?x3xf64>)
-// CHECK: omp.parallel {
+// CHECK: arith.muli
+// CHECK: %[[TRIPS:.*]] = arith.muli %{{.*}}, %{{.*}} : index
+// CHECK-NEXT: %[[LEAST:.*]] = arith.constant 2048 : index
+// CHECK-NEXT: %[[SHARE:.*]] = arith.cmpi uge, %[[TRIPS]], %[[LEAST]] : index
+// CHECK: scf.if %[[SHARE]] {
+// CHECK-NEXT: omp.parallel {
 // CHECK-NEXT: %[[SLOT:.*]] = memref.alloca() : memref<3xf64>
 // CHECK-NEXT: omp.wsloop nowait {
 // CHECK-NEXT: omp.loop_nest (%[[I:.*]], %[[J:.*]]) : index = (%{{.*}}, %{{.*}}) to (%[[N]], %{{.*}}) step (%{{.*}}, %{{.*}}) {
@@ -16,10 +25,22 @@
 // CHECK: memref.store %{{.*}}, %[[A]][%[[I]], %[[J]]]
 // CHECK: omp.yield
 // CHECK: omp.terminator
+// CHECK: } else {
+// CHECK-NEXT: scf.parallel (%[[CI:.*]], %[[CJ:.*]]) = (%{{.*}}, %{{.*}}) to (%[[N]], %{{.*}})
+// CHECK: memref.store %{{.*}}, %[[A]][%[[CI]], %[[CJ]]]
+// CHECK-NOT: simit.parallel
 // CHECK-NOT: omp.parallel
 // CHECK: scf.parallel
 // CHECK-NOT: simit.parallel
 // CHECK: return
+
+// CLAUSE-LABEL: func.func @marked(
+// CLAUSE: %[[SHARE:.*]] = arith.cmpi uge
+// CLAUSE-NOT: scf.if
+// CLAUSE: omp.parallel if(%[[SHARE]]) {
+// CLAUSE: omp.terminator
+// CLAUSE-NOT: omp.parallel
+// CLAUSE: return
 func.func @marked(%n : index, %a : memref<?x3xf64>) {
   %c0 = arith.constant 0 : index
   %c1 = arith.constant 1 : index
@@ -52,10 +73,12 @@ func.func @marked(%n : index, %a : memref<?x3xf64>) {
 // CHECK: omp.terminator
 // CHECK-NEXT: }
 // CHECK-NEXT: call @simit_rt_raise_parallel_failure() : () -> ()
+// CHECK: } else {
 // CHECK: omp.parallel {
 // CHECK: omp.terminator
 // CHECK-NEXT: }
-// CHECK-NEXT: return
+// CHECK-NEXT: } else {
+// CHECK: return
 func.func @may_fail(%n : index, %ok : i1, %p : !llvm.ptr) {
   %c0 = arith.constant 0 : index
   %c1 = arith.constant 1 : index

@@ -274,10 +274,30 @@ def SimitParallelLoopsToOpenMP : Pass<"simit-parallel-loops-to-openmp", "::mlir:
     `@simit_rt_raise_parallel_failure()`: inside the region the failure is
     only recorded, since no thread may leave it early, and the call ends
     the run with it once every thread has.
+
+    A loop with too little work to share runs on the calling thread alone:
+    an `owned` loop of fewer than `min-iterations` iterations, a
+    `reduction` or `scatter` loop over fewer than two chunks. Waking the
+    other threads costs microseconds, more than a vector update over a few
+    hundred points takes. A loop whose body has at most `max-copied-ops`
+    operations (vector updates and dot products, not element functions) is
+    copied: `scf.if` runs the region when the work is enough, else the
+    copy, an unmarked `scf.parallel` (sequential); a larger one gets the
+    region's `if` clause (the region on one thread). The order of the work,
+    and so every result, is the same either way.
   }];
+  let options = [
+    Option<"minIterations", "min-iterations", "int64_t", /*default=*/"2048",
+           "Owned loops of fewer iterations run on one thread">,
+    Option<"maxCopiedOps", "max-copied-ops", "int64_t", /*default=*/"256",
+           "Loops whose body has at most this many operations get a "
+           "sequential copy for when they run on one thread">,
+  ];
   let dependentDialects = ["::mlir::omp::OpenMPDialect",
+                           "::mlir::arith::ArithDialect",
                            "::mlir::func::FuncDialect",
-                           "::mlir::memref::MemRefDialect"];
+                           "::mlir::memref::MemRefDialect",
+                           "::mlir::scf::SCFDialect"];
 }
 
 def SimitHoistParallelAllocas : Pass<"simit-hoist-parallel-allocas", "::mlir::func::FuncOp"> {

@@ -9,6 +9,7 @@
 //
 //===----------------------------------------------------------------------===//
 
+#include "LoopTrips.h"
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
 #include "mlir/Dialect/GPU/IR/GPUDialect.h"
@@ -48,14 +49,6 @@ FailureOr<Combiner> matchCombiner(Region &reduction) {
   if (isa<arith::AddIOp>(combine))
     return Combiner{arith::AtomicRMWKind::addi, gpu::AllReduceOperation::ADD};
   return failure();
-}
-
-/// max(ceil((ub - lb) / step), 0) for one loop dimension.
-Value tripCount(OpBuilder &b, Location loc, Value lb, Value ub, Value step) {
-  Value zero = arith::ConstantIndexOp::create(b, loc, 0);
-  Value extent = b.createOrFold<arith::SubIOp>(loc, ub, lb);
-  extent = b.createOrFold<arith::MaxSIOp>(loc, extent, zero);
-  return b.createOrFold<arith::CeilDivUIOp>(loc, extent, step);
 }
 
 /// Adds the `contract` fast-math flag to every floating-point operation in
@@ -106,7 +99,7 @@ LogicalResult LoopToLaunch::run() {
   OpBuilder b(loop);
   for (auto [lb, ub, step] : llvm::zip(loop.getLowerBound(),
                                        loop.getUpperBound(), loop.getStep()))
-    trips.push_back(tripCount(b, loc, lb, ub, step));
+    trips.push_back(simit::tripCount(b, loc, lb, ub, step));
   Value total = trips.front();
   for (Value trip : llvm::drop_begin(trips))
     total = arith::MulIOp::create(b, loc, total, trip);

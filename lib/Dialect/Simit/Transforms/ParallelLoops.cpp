@@ -26,6 +26,7 @@
 //===----------------------------------------------------------------------===//
 
 #include "Accumulation.h"
+#include "LoopTrips.h"
 #include "RuntimeFunction.h"
 
 #include "simit/ABI/BindingKind.h"
@@ -395,14 +396,6 @@ TypedAttr neutralElement(Operation *combine) {
   return *arith::getNeutralElement(combine);
 }
 
-/// max(ceil((ub - lb) / step), 0).
-Value tripCount(OpBuilder &b, Location loc, Value lb, Value ub, Value step) {
-  Value zero = arith::ConstantIndexOp::create(b, loc, 0);
-  Value extent = b.createOrFold<arith::SubIOp>(loc, ub, lb);
-  extent = b.createOrFold<arith::MaxSIOp>(loc, extent, zero);
-  return b.createOrFold<arith::CeilDivUIOp>(loc, extent, step);
-}
-
 /// Iterations [first, last) of dimension 0 of `loop`, as bounds:
 /// lb + first * step, lb + last * step.
 std::pair<Value, Value> iterationBounds(OpBuilder &b, Location loc,
@@ -492,7 +485,7 @@ void ParallelLoops::parallelize(func::FuncOp function, scf::ParallelOp loop) {
   case LoopKind::Serial:
     return;
   case LoopKind::Owned:
-    return markParallel(loop, "owned");
+    return markParallel(loop, kOwnedLoop);
   case LoopKind::Reduction:
     return chunkReduction(loop);
   case LoopKind::Scatter:
@@ -547,7 +540,7 @@ void ParallelLoops::chunkReduction(scf::ParallelOp loop) {
   // element, into its partial.
   auto chunks = scf::ParallelOp::create(
       b, loc, zero, numChunks, one, [&](OpBuilder &, Location, ValueRange) {});
-  markParallel(chunks, "reduction");
+  markParallel(chunks, kReductionLoop);
   b.setInsertionPointToStart(chunks.getBody());
   Value c = chunks.getInductionVars()[0];
   Value first = arith::MulIOp::create(b, loc, c, chunk);
@@ -639,7 +632,7 @@ void ParallelLoops::colourScatter(func::FuncOp function, scf::ParallelOp loop,
   Value end = read(arith::AddIOp::create(b, loc, colour, two));
   auto chunks = scf::ParallelOp::create(
       b, loc, start, end, one, [&](OpBuilder &, Location, ValueRange) {});
-  markParallel(chunks, "scatter");
+  markParallel(chunks, kScatterLoop);
   b.setInsertionPointToStart(chunks.getBody());
   Value first = arith::MulIOp::create(
       b, loc, read(chunks.getInductionVars()[0]), chunk);

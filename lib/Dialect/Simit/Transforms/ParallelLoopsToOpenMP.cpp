@@ -10,6 +10,7 @@
 //
 //===----------------------------------------------------------------------===//
 
+#include "LoopTrips.h"
 #include "RuntimeFunction.h"
 
 #include "simit/Dialect/Simit/Transforms/Passes.h"
@@ -37,17 +38,13 @@ constexpr StringRef kRaise =
 /// `scatter`) at least two chunks.
 Value sharesWork(OpBuilder &b, scf::ParallelOp loop, int64_t minIterations) {
   Location loc = loop.getLoc();
-  Value zero = arith::ConstantIndexOp::create(b, loc, 0);
   Value trips = arith::ConstantIndexOp::create(b, loc, 1);
   for (auto [lb, ub, step] :
-       llvm::zip(loop.getLowerBound(), loop.getUpperBound(), loop.getStep())) {
-    Value extent = arith::MaxSIOp::create(
-        b, loc, arith::SubIOp::create(b, loc, ub, lb), zero);
-    trips = arith::MulIOp::create(
-        b, loc, trips, arith::CeilDivUIOp::create(b, loc, extent, step));
-  }
+       llvm::zip(loop.getLowerBound(), loop.getUpperBound(), loop.getStep()))
+    trips = b.createOrFold<arith::MulIOp>(loc, trips,
+                                          tripCount(b, loc, lb, ub, step));
   auto kind = loop->getAttrOfType<StringAttr>(kParallelLoopAttr);
-  int64_t least = kind && kind.getValue() == "owned" ? minIterations : 2;
+  int64_t least = kind && kind.getValue() == kOwnedLoop ? minIterations : 2;
   return arith::CmpIOp::create(b, loc, arith::CmpIPredicate::uge, trips,
                                arith::ConstantIndexOp::create(b, loc, least));
 }

@@ -11,8 +11,8 @@
 
 // CHECK-LABEL: func.func @marked(
 // CHECK-SAME: %[[N:[^:]*]]: index, %[[A:[^:]*]]: memref<?x3xf64>)
-// CHECK: arith.muli
-// CHECK: %[[TRIPS:.*]] = arith.muli %{{.*}}, %{{.*}} : index
+// CHECK: %[[EXTENT:.*]] = arith.maxsi %[[N]], %{{.*}} : index
+// CHECK: %[[TRIPS:.*]] = arith.muli %[[EXTENT]], %{{.*}} : index
 // CHECK-NEXT: %[[LEAST:.*]] = arith.constant 2048 : index
 // CHECK-NEXT: %[[SHARE:.*]] = arith.cmpi uge, %[[TRIPS]], %[[LEAST]] : index
 // CHECK: scf.if %[[SHARE]] {

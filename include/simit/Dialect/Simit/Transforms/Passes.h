@@ -38,6 +38,9 @@ constexpr llvm::StringLiteral kCheckNumericsAttr = "simit.check_numerics";
 /// chunks of a reduction) or "scatter" (a loop over the chunks of one colour
 /// of a scatter loop).
 constexpr llvm::StringLiteral kParallelLoopAttr = "simit.parallel";
+constexpr llvm::StringLiteral kOwnedLoop = "owned";
+constexpr llvm::StringLiteral kReductionLoop = "reduction";
+constexpr llvm::StringLiteral kScatterLoop = "scatter";
 
 /// Whether `function` is an entry point the host calls: it carries the
 /// `simit.export` unit attribute (the frontend's `export func`).

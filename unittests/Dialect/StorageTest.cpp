@@ -133,6 +133,26 @@ TEST_F(StorageTest, StencilsTransposeAndComposeIntoStencils) {
             StorageKind::Product);
 }
 
+// Two host calls may return any two patterns: a host encoding holds only
+// itself, and joins with anything else into a union.
+TEST_F(StorageTest, HostPatternsContainOnlyThemselves) {
+  StringAttr f = StringAttr::get(&ctx, "f");
+  StorageAttr first = storage::host(f, 0), second = storage::host(f, 1);
+  EXPECT_EQ(first.str(), "host(\"f\", 0)");
+  EXPECT_EQ(storage::host(f, 0), first);
+  EXPECT_TRUE(storage::contains(first, first));
+  EXPECT_TRUE(storage::contains(storage::dense(&ctx), first));
+  EXPECT_TRUE(storage::contains(first, storage::empty(&ctx)));
+  EXPECT_FALSE(storage::contains(first, second));
+  EXPECT_FALSE(storage::contains(first, diag("points")));
+  StorageAttr k = pattern("springs", {0, 1}, {0, 1});
+  EXPECT_FALSE(storage::contains(k, first));
+  EXPECT_EQ(storage::join(first, first), first);
+  EXPECT_EQ(storage::join(first, second).getKind(), StorageKind::Union);
+  EXPECT_EQ(storage::join(first, k).getKind(), StorageKind::Union);
+  EXPECT_EQ(storage::transpose(first).getKind(), StorageKind::Transpose);
+}
+
 TEST_F(StorageTest, LowRankAccumulatesTerms) {
   StorageAttr k = pattern("springs", {0, 1}, {0, 1});
   EXPECT_EQ(storage::lowRank(k, 0), k);

@@ -38,6 +38,8 @@
   X(TriangularSolveBCSRF32, simit_rt_triangular_solve_bcsr_f32, CInterface)    \
   X(SolveDiag, simit_rt_solve_diag, CInterface)                                \
   X(SolveDiagF32, simit_rt_solve_diag_f32, CInterface)                         \
+  X(HostMatrixBlocks, simit_rt_host_matrix_blocks, Plain)                      \
+  X(HostMatrixAdopt, simit_rt_host_matrix_adopt, Plain)                        \
   X(PrintF64, simit_rt_print_f64, Plain)                                       \
   X(PrintI64, simit_rt_print_i64, Plain)                                       \
   X(PrintStr, simit_rt_print_str, Plain)                                       \

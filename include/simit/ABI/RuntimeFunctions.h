@@ -187,6 +187,28 @@ void simit_rt_fail(const char *message);
 /// MLIR: func.func private @simit_rt_raise_parallel_failure()
 void simit_rt_raise_parallel_failure();
 
+/// A matrix result of a host function (`extern func`), BCSR arrays the
+/// host allocated with malloc: row pointers (rowBlocks + 1), column
+/// indices and blocks (rowptr[rowBlocks] each). Checks the arrays (row
+/// pointers from 0 and non-decreasing, columns in [0, colBlocks), no
+/// column twice in a row) and returns the number of blocks; a malformed
+/// matrix frees them and ends the run with an error naming `where`.
+/// MLIR: func.func private @simit_rt_host_matrix_blocks(!llvm.ptr,
+///   !llvm.ptr, !llvm.ptr, i64, i64, !llvm.ptr) -> i64
+int64_t simit_rt_host_matrix_blocks(int32_t *rowptr, int32_t *colidx,
+                                    void *blocks, int64_t rowBlocks,
+                                    int64_t colBlocks, const char *where);
+/// Copies those arrays into the lowered code's own (`rowptrOut`,
+/// `colidxOut`, `blocksOut`, blockBytes per block), each row's blocks in
+/// ascending column order, and frees the host's. Returns 0: lowered code
+/// calls it through the shim of host functions (LowerHostCalls.cpp).
+/// MLIR: func.func private @simit_rt_host_matrix_adopt(!llvm.ptr, !llvm.ptr,
+///   !llvm.ptr, i64, i64, !llvm.ptr, !llvm.ptr, !llvm.ptr) -> i32
+int32_t simit_rt_host_matrix_adopt(int32_t *rowptr, int32_t *colidx,
+                                   void *blocks, int64_t rowBlocks,
+                                   int64_t blockBytes, int32_t *rowptrOut,
+                                   int32_t *colidxOut, void *blocksOut);
+
 /// print/println of scalars and strings (lowered simit.print).
 void simit_rt_print_f64(double value);
 void simit_rt_print_i64(int64_t value);

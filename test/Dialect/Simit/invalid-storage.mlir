@@ -106,3 +106,14 @@ func.func @f(%a : !simit.tensor<["points", "points"] x f64, #simit.storage<diag(
       -> !simit.tensor<["points", "points"] x f64, #simit.storage<diag("points")>>
   return
 }
+
+// -----
+
+// A host function's matrix is named after the function.
+// expected-error @+1 {{'host' needs a set name}}
+func.func @f(%a : !simit.tensor<["points", "points"] x f64, #simit.storage<host("", 0)>>)
+
+// -----
+
+// expected-error @+1 {{'host' needs a non-negative call number}}
+func.func @f(%a : !simit.tensor<["points", "points"] x f64, #simit.storage<host("neg", -1)>>)

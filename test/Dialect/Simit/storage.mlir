@@ -11,6 +11,7 @@
 // CHECK-DAG: #union = #simit.storage<union(pattern("hinges", rows [0, 1], cols [0, 1]), pattern("springs", rows [0, 1], cols [0, 1]))>
 // CHECK-DAG: #product = #simit.storage<product(pattern("springs", rows [0, 1], cols [0, 1]), pattern("springs", rows [0, 1], cols [0, 1]))>
 // CHECK-DAG: #lowrank = #simit.storage<lowrank(diag("points"), 2)>
+// CHECK-DAG: #host_neg_1 = #simit.storage<host("neg", 1)>
 
 // CHECK-LABEL: func.func @encodings
 // CHECK-SAME: !simit.tensor<["points", "points"] x tensor<3x3xf64>, #diag_points>
@@ -22,6 +23,7 @@
 // CHECK-SAME: !simit.tensor<["points", "points"] x f64, #union>
 // CHECK-SAME: !simit.tensor<["points", "points"] x f64, #product>
 // CHECK-SAME: !simit.tensor<["points", "points"] x f64, #lowrank>
+// CHECK-SAME: !simit.tensor<["points", "points"] x f64, #host_neg_1>
 // CHECK-SAME: !simit.tensor<["points", "points"] x f64, #simit.storage<dense>>
 // CHECK-SAME: !simit.tensor<["points", "points"] x f64, #simit.storage<empty>>
 // CHECK-SAME: !simit.ref<!simit.tensor<["points", "points"] x f64, #diag_points>>
@@ -37,6 +39,7 @@ func.func @encodings(
     %u : !simit.tensor<["points", "points"] x f64, #simit.storage<union(pattern("hinges", rows [0, 1], cols [0, 1]), pattern("springs", rows [0, 1], cols [0, 1]))>>,
     %m : !simit.tensor<["points", "points"] x f64, #simit.storage<product(pattern("springs", rows [0, 1], cols [0, 1]), pattern("springs", rows [0, 1], cols [0, 1]))>>,
     %l : !simit.tensor<["points", "points"] x f64, #simit.storage<lowrank(diag("points"), 2)>>,
+    %host : !simit.tensor<["points", "points"] x f64, #simit.storage<host("neg", 1)>>,
     %full : !simit.tensor<["points", "points"] x f64, #simit.storage<dense>>,
     %none : !simit.tensor<["points", "points"] x f64, #simit.storage<empty>>,
     %slot : !simit.ref<!simit.tensor<["points", "points"] x f64, #simit.storage<diag("points")>>>,

@@ -22,7 +22,8 @@ struct SimitOpAsmInterface : public OpAsmDialectInterface {
   using OpAsmDialectInterface::OpAsmDialectInterface;
 
   /// Names a storage encoding after its kind and set (`#pat_springs`,
-  /// `#diag_points`, `#inc_springs_t` for a transposed incidence).
+  /// `#diag_points`, `#inc_springs_t` for a transposed incidence,
+  /// `#host_f_0` for the first matrix a host function call returns).
   AliasResult getAlias(Attribute attr, raw_ostream &os) const override {
     auto encoding = dyn_cast<StorageAttr>(attr);
     if (!encoding)
@@ -45,6 +46,10 @@ struct SimitOpAsmInterface : public OpAsmDialectInterface {
       break;
     case StorageKind::Stencil:
       os << "stencil_" << encoding.getSet().getValue();
+      break;
+    case StorageKind::Host:
+      os << "host_" << encoding.getSet().getValue() << "_"
+         << encoding.getCall();
       break;
     default:
       os << stringifyStorageKind(encoding.getKind());

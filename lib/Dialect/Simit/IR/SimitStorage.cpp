@@ -59,6 +59,9 @@ void StorageAttr::printBody(raw_ostream &os) const {
     getOperand().printBody(os);
     os << ", " << getRank() << ")";
     return;
+  case StorageKind::Host:
+    os << "(\"" << getSet().getValue() << "\", " << getCall() << ")";
+    return;
   case StorageKind::Transpose:
   case StorageKind::Union:
   case StorageKind::Product:
@@ -110,7 +113,7 @@ static StorageAttr parseBody(AsmParser &parser) {
   SmallVector<int64_t> rows, cols;
   SmallVector<DenseI64ArrayAttr> offsets;
   SmallVector<Attribute> members;
-  int64_t rank = 0;
+  int64_t rank = 0, call = 0;
   auto parseSet = [&]() -> ParseResult {
     std::string name;
     if (parser.parseString(&name))
@@ -165,6 +168,11 @@ static StorageAttr parseBody(AsmParser &parser) {
                      parser.parseComma() || parser.parseInteger(rank) ||
                      parser.parseRParen());
     break;
+  case StorageKind::Host:
+    result =
+        failure(parser.parseLParen() || parseSet() || parser.parseComma() ||
+                parser.parseInteger(call) || parser.parseRParen());
+    break;
   case StorageKind::Transpose:
   case StorageKind::Union:
   case StorageKind::Product:
@@ -174,10 +182,11 @@ static StorageAttr parseBody(AsmParser &parser) {
   }
   if (failed(result))
     return {};
-  return StorageAttr::getChecked(
-      [&] { return parser.emitError(loc); }, ctx, *kind, set,
-      ArrayRef<int64_t>(rows), ArrayRef<int64_t>(cols),
-      ArrayRef<DenseI64ArrayAttr>(offsets), ArrayRef<Attribute>(members), rank);
+  return StorageAttr::getChecked([&] { return parser.emitError(loc); }, ctx,
+                                 *kind, set, ArrayRef<int64_t>(rows),
+                                 ArrayRef<int64_t>(cols),
+                                 ArrayRef<DenseI64ArrayAttr>(offsets),
+                                 ArrayRef<Attribute>(members), rank, call);
 }
 
 Attribute StorageAttr::parse(AsmParser &parser, Type) {
@@ -217,11 +226,11 @@ LogicalResult
 StorageAttr::verify(function_ref<InFlightDiagnostic()> emitError,
                     StorageKind kind, StringAttr set, ArrayRef<int64_t> rows,
                     ArrayRef<int64_t> cols, ArrayRef<DenseI64ArrayAttr> offsets,
-                    ArrayRef<Attribute> members, int64_t rank) {
+                    ArrayRef<Attribute> members, int64_t rank, int64_t call) {
   StringRef name = stringifyStorageKind(kind);
   bool wantsSet = kind == StorageKind::Diag || kind == StorageKind::Pattern ||
                   kind == StorageKind::Incidence ||
-                  kind == StorageKind::Stencil;
+                  kind == StorageKind::Stencil || kind == StorageKind::Host;
   if (wantsSet != static_cast<bool>(set) || (set && set.getValue().empty()))
     return emitError() << "'" << name << "' "
                        << (wantsSet ? "needs a set name" : "takes no set");
@@ -234,6 +243,8 @@ StorageAttr::verify(function_ref<InFlightDiagnostic()> emitError,
     return emitError() << "'" << name << "' takes no offsets";
   if (rank != 0 && kind != StorageKind::LowRank)
     return emitError() << "'" << name << "' takes no rank";
+  if (call != 0 && kind != StorageKind::Host)
+    return emitError() << "'" << name << "' takes no call number";
   for (Attribute member : members)
     if (!isa<StorageAttr>(member))
       return emitError() << "members of '" << name
@@ -255,6 +266,12 @@ StorageAttr::verify(function_ref<InFlightDiagnostic()> emitError,
   case StorageKind::Diag:
     if (!members.empty())
       return emitError() << "'" << name << "' has no members";
+    return success();
+  case StorageKind::Host:
+    if (!members.empty())
+      return emitError() << "'host' has no members";
+    if (call < 0)
+      return emitError() << "'host' needs a non-negative call number";
     return success();
   case StorageKind::Pattern:
     if (!members.empty())
@@ -357,14 +374,15 @@ StorageAttr::verify(function_ref<InFlightDiagnostic()> emitError,
 // Builders
 //===----------------------------------------------------------------------===//
 
-static StorageAttr make(MLIRContext *ctx, StorageKind kind,
-                        StringAttr set = {}, ArrayRef<int64_t> rows = {},
+static StorageAttr make(MLIRContext *ctx, StorageKind kind, StringAttr set = {},
+                        ArrayRef<int64_t> rows = {},
                         ArrayRef<int64_t> cols = {},
                         ArrayRef<DenseI64ArrayAttr> offsets = {},
-                        ArrayRef<StorageAttr> members = {}, int64_t rank = 0) {
+                        ArrayRef<StorageAttr> members = {}, int64_t rank = 0,
+                        int64_t call = 0) {
   SmallVector<Attribute> memberAttrs(members.begin(), members.end());
   return StorageAttr::get(ctx, kind, set, rows, cols, offsets,
-                          ArrayRef<Attribute>(memberAttrs), rank);
+                          ArrayRef<Attribute>(memberAttrs), rank, call);
 }
 
 static SmallVector<int64_t> sortedUnique(ArrayRef<int64_t> values) {
@@ -408,6 +426,11 @@ StorageAttr storage::stencil(StringAttr grid,
   SmallVector<DenseI64ArrayAttr> attrs = llvm::map_to_vector(
       sorted, [&](ArrayRef<int64_t> o) { return DenseI64ArrayAttr::get(ctx, o); });
   return make(ctx, StorageKind::Stencil, grid, {}, {}, attrs);
+}
+
+StorageAttr storage::host(StringAttr function, int64_t call) {
+  return make(function.getContext(), StorageKind::Host, function, {}, {}, {},
+              {}, 0, call);
 }
 
 StorageAttr storage::transpose(StorageAttr x) {

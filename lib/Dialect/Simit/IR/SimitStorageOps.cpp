@@ -12,8 +12,13 @@ LogicalResult ConvertOp::verify() {
                             "encodings, got "
                          << source << " and " << result;
   StorageAttr from = source.getEncoding(), to = result.getEncoding();
-  if (!from)
+  if (!from) {
+    // A host function's matrix result, declared unencoded, gets its
+    // pattern known at run time.
+    if (to && to.getKind() == StorageKind::Host && !getRestrict())
+      return success();
     return emitOpError() << "needs a storage encoding on its source";
+  }
   if (!to) {
     if (getRestrict())
       return emitOpError() << "'restrict' needs a storage encoding on its "

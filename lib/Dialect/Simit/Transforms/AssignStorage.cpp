@@ -206,6 +206,30 @@ static LogicalResult convertOperands(Operation *op) {
       .Default([](Operation *) { return success(); });
 }
 
+/// A call returns the types its callee declares: a host function's matrix
+/// result keeps its unencoded type and a `simit.convert` after the call
+/// gives it its storage.
+static void convertCallResults(func::FuncOp function) {
+  function.walk([](func::CallOp call) {
+    auto callee = SymbolTable::lookupNearestSymbolFrom<func::FuncOp>(
+        call, call.getCalleeAttr());
+    if (!callee)
+      return;
+    OpBuilder builder(call->getContext());
+    builder.setInsertionPointAfter(call);
+    for (auto [result, declared] :
+         llvm::zip_equal(call.getResults(), callee.getResultTypes())) {
+      if (result.getType() == declared)
+        continue;
+      Type encoded = result.getType();
+      result.setType(declared);
+      auto convert = ConvertOp::create(builder, call.getLoc(), encoded, result,
+                                       /*restrict=*/false);
+      result.replaceAllUsesExcept(convert, convert);
+    }
+  });
+}
+
 LogicalResult mlir::simit::assignStorage(func::FuncOp function) {
   DataFlowSolver solver(DataFlowConfig().setInterprocedural(false));
   solver.load<dataflow::DeadCodeAnalysis>();
@@ -215,6 +239,7 @@ LogicalResult mlir::simit::assignStorage(func::FuncOp function) {
       failed(reportUnsupported(function, solver)))
     return failure();
   retype(function, solver);
+  convertCallResults(function);
   SmallVector<Operation *> ops;
   function.walk([&](Operation *op) { ops.push_back(op); });
   for (Operation *op : ops)
@@ -231,9 +256,10 @@ bool mlir::simit::needsStorageAssignment(func::FuncOp function) {
     return holdsSetMatrix(type) && !getStorage(type);
   };
   WalkResult walk = function.walk([&](Operation *op) {
-    // A conversion to a type without storage feeds a runtime function.
-    bool found =
-        !isa<ConvertOp>(op) && llvm::any_of(op->getResults(), unassigned);
+    // A conversion to a type without storage feeds a runtime function; a
+    // host function's matrix result gets its storage by a conversion.
+    bool found = !isa<ConvertOp, func::CallOp>(op) &&
+                 llvm::any_of(op->getResults(), unassigned);
     for (Region &region : op->getRegions())
       for (Block &block : region)
         found |= llvm::any_of(block.getArguments(), unassigned);

@@ -93,6 +93,19 @@ void FunctionLowering::carryStorage(Value to, Value from) {
     storages[to] = storages[from];
 }
 
+/// A host encoding inside `encoding` (a member of a union, a product, a
+/// transpose or a low-rank term), or null.
+static StorageAttr hostMember(StorageAttr encoding) {
+  for (Attribute member : encoding.getMembers()) {
+    auto inner = cast<StorageAttr>(member);
+    if (inner.getKind() == StorageKind::Host)
+      return inner;
+    if (StorageAttr nested = hostMember(inner))
+      return nested;
+  }
+  return {};
+}
+
 LogicalResult FunctionLowering::checkStorages(func::FuncOp original) {
   auto collect = [&](Type type) {
     if (auto set = dyn_cast<SetType>(type))
@@ -107,16 +120,45 @@ LogicalResult FunctionLowering::checkStorages(func::FuncOp original) {
       collect(type);
   });
   bool unsupported = false;
+  // Each encoding is reported once, where it first appears.
+  DenseSet<StorageAttr> reported;
   auto check = [&](Value value) {
     SystemTensorType type = matrixTypeOf(value.getType());
     StorageAttr encoding = type ? getStorage(type) : StorageAttr();
-    if (!encoding ||
-        storageOfEncoding(encoding, cast<StringAttr>(type.getDims()[0]),
+    if (!encoding || reported.contains(encoding))
+      return;
+    Location loc = value.getDefiningOp() ? value.getDefiningOp()->getLoc()
+                                         : value.getLoc();
+    // The arrays of a host function's matrix exist from its call on: a
+    // value that a loop or an if carries, or a slot, would need them
+    // carried too; another pattern joined to it, a pattern built at run
+    // time.
+    Operation *producer = value.getDefiningOp();
+    if (encoding.getKind() == StorageKind::Host &&
+        (!producer || isa<RegionBranchOpInterface>(producer) ||
+         isa<RefType>(value.getType()))) {
+      unsupported = true;
+      reported.insert(encoding);
+      emitError(loc, "the matrix host function '")
+          << encoding.getSet().getValue()
+          << "' returns cannot be carried by a loop, an if or a variable "
+             "slot yet";
+      return;
+    }
+    if (storageOfEncoding(encoding, cast<StringAttr>(type.getDims()[0]),
                           cast<StringAttr>(type.getDims()[1]), setTypes))
       return;
     unsupported = true;
-    Location loc = value.getDefiningOp() ? value.getDefiningOp()->getLoc()
-                                         : value.getLoc();
+    reported.insert(encoding);
+    if (StorageAttr host = hostMember(encoding)) {
+      emitError(loc, "the pattern of the matrix host function '")
+          << host.getSet().getValue()
+          << "' returns cannot be joined with others (a matrix stored as '"
+          << encoding.str()
+          << "': a sum stored, a transpose stored, a product, or a loop or "
+             "an if carrying it) yet";
+      return;
+    }
     emitError(loc, "a matrix stored as '")
         << encoding.str() << "' is not supported by the loop lowering yet";
   };
@@ -174,7 +216,8 @@ Value FunctionLowering::numBlocks(const Storage &storage,
     return getSetSize(storage.rows);
   case Storage::Kind::Pattern:
   case Storage::Kind::Union:
-  case Storage::Kind::Product: {
+  case Storage::Kind::Product:
+  case Storage::Kind::Host: {
     Value rowPtr = rowPointers(storage);
     Value last = memref::LoadOp::create(b, loc, rowPtr,
                                         ValueRange{getSetSize(storage.rows)});

@@ -154,6 +154,8 @@ static std::string productMids(const Storage &storage) {
 }
 
 Value FunctionLowering::rowPointers(const Storage &storage) {
+  if (storage.kind == Storage::Kind::Host)
+    return hostPatterns.lookup(storage.hostCall).first;
   if (storage.kind == Storage::Kind::Product)
     return getBinding(BindingKind::ProductRowPtr,
                       {productKey(storage), storage.rows.getValue(),
@@ -169,6 +171,8 @@ Value FunctionLowering::rowPointers(const Storage &storage) {
 }
 
 Value FunctionLowering::columnIndices(const Storage &storage) {
+  if (storage.kind == Storage::Kind::Host)
+    return hostPatterns.lookup(storage.hostCall).second;
   if (storage.kind == Storage::Kind::Product)
     return getBinding(BindingKind::ProductColIdx,
                       {productKey(storage), storage.rows.getValue(),

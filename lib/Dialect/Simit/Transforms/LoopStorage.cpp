@@ -130,6 +130,7 @@ std::optional<Storage> mlir::simit::loops::transposedStorage(const Storage &s) {
   }
   case Storage::Kind::Product:
   case Storage::Kind::Incidence:
+  case Storage::Kind::Host:
     return std::nullopt;
   }
   llvm_unreachable("storage kind");
@@ -204,6 +205,9 @@ std::string Storage::describe() const {
     return "product of matrices over " + over + "', '" +
            cols.getValue().str() + "')";
   }
+  case Kind::Host:
+    return ("matrix returned by host function '" + edges.getValue() + "'")
+        .str();
   }
   llvm_unreachable("storage kind");
 }
@@ -418,6 +422,8 @@ struct EncodingReader {
       // stored zero-filled in the smallest layout that needs no pattern.
       return rows == cols ? Storage::diagonal(rows)
                           : Storage::denseMatrix(rows, cols);
+    case StorageKind::Host:
+      return Storage::host(e.getSet(), e.getCall(), rows, cols);
     case StorageKind::LowRank:
       return std::nullopt;
     }

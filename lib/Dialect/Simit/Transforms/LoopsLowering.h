@@ -92,7 +92,12 @@ struct Storage {
     /// A matrix over (rows, cols) with every block stored: block
     /// r * |cols| + c is (r, c). The solution of `lumatsolve` and
     /// `lltmatsolve` (A^-1 B is dense); no index arrays.
-    DenseMatrix
+    DenseMatrix,
+    /// A BCSR matrix over (rows, cols) on a pattern a host function
+    /// returned (`edges` names it, `hostCall` numbers the result): its
+    /// row pointers and column indices are arrays the call's lowering
+    /// made, not bindings.
+    Host
   };
   Kind kind = Kind::Dense;
   /// Diagonal: rows == cols == the set. Pattern: the edge set and the two
@@ -115,6 +120,8 @@ struct Storage {
   SmallVector<StringAttr, 2> members;
   /// Product: its chains, sorted and unique.
   SmallVector<ProductChain, 0> chains;
+  /// Host: which matrix result of the function's host calls.
+  int64_t hostCall = 0;
 
   static Storage dense() { return Storage(); }
   static Storage diagonal(StringAttr set) {
@@ -129,6 +136,12 @@ struct Storage {
   }
   static Storage denseMatrix(StringAttr rows, StringAttr cols) {
     return Storage{Kind::DenseMatrix, nullptr, rows, cols};
+  }
+  static Storage host(StringAttr function, int64_t call, StringAttr rows,
+                      StringAttr cols) {
+    Storage s{Kind::Host, function, rows, cols};
+    s.hostCall = call;
+    return s;
   }
   /// The incidence of an edge set of `cardinality` endpoints over (edges,
   /// cols), cols at endpoint `positions` (all when empty).
@@ -160,7 +173,7 @@ struct Storage {
   /// indices (rowPointers/columnIndices of FunctionLowering).
   bool isBCSR() const {
     return kind == Kind::Pattern || kind == Kind::Union ||
-           kind == Kind::Product;
+           kind == Kind::Product || kind == Kind::Host;
   }
   /// Whether the storage is a pattern or union of edge sets' patterns:
   /// gather maps between two such over the same sets are built once per
@@ -176,7 +189,7 @@ struct Storage {
            cols == o.cols && offsets == o.offsets &&
            cardinality == o.cardinality && positions == o.positions &&
            transposed == o.transposed && members == o.members &&
-           chains == o.chains;
+           chains == o.chains && hostCall == o.hostCall;
   }
   bool operator!=(const Storage &o) const { return !(*this == o); }
   /// Whether every block of `o` is a block of this storage (an edge pattern
@@ -501,6 +514,16 @@ private:
   /// Calls of host functions (`extern func`, LowerHostCalls.cpp) with the
   /// original Simit runtime's C conventions.
   LogicalResult lowerHostCall(func::CallOp call, func::FuncOp callee);
+  /// Matrix result `result` (stored as `storage`, a host storage) of the
+  /// host call `call`, from the pointers the host stored in `slots` (row
+  /// pointers, column indices, blocks): checked by the runtime, copied into
+  /// arrays of the lowered code, recorded in hostPatterns; returns the
+  /// blocks.
+  Value adoptHostMatrix(func::CallOp call, Value result, const Storage &storage,
+                        std::array<Value, 3> slots);
+  /// The row pointers and column indices of the host storages lowered so
+  /// far, by Storage::hostCall.
+  DenseMap<int64_t, std::pair<Value, Value>> hostPatterns;
   /// simit.print and strings (C strings as !llvm.ptr) through runtime
   /// functions (simit_rt_print_*, simit_rt_string_*).
   LogicalResult lowerPrintOrString(Operation *op);

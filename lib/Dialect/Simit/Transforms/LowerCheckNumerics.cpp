@@ -38,6 +38,7 @@ SimitNumericsLayout layoutOf(const Storage &storage) {
   case Storage::Kind::Pattern:
   case Storage::Kind::Union:
   case Storage::Kind::Product:
+  case Storage::Kind::Host:
     return SIMIT_NUMERICS_PATTERN;
   case Storage::Kind::Incidence:
     return SIMIT_NUMERICS_FIXED_ROWS;

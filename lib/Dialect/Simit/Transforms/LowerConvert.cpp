@@ -26,6 +26,13 @@ LogicalResult FunctionLowering::lowerConvert(ConvertOp op) {
     alias(op, op.getSource());
     return success();
   }
+  // A host function's matrix gets its storage after the call, which
+  // lowered it as that storage.
+  if (op.getSource().getDefiningOp<func::CallOp>() &&
+      !getStorage(op.getSource().getType())) {
+    map(op, source);
+    return success();
+  }
   Storage from = storageOf(op.getSource()), to = storageOf(op);
   if (op.getRestrict())
     return op.emitError("restricting a matrix stored as ")

@@ -15,8 +15,11 @@
 //                       cols in components (blocks times the block's
 //                       extent), rowptr of rows / blockRows + 1 entries
 //   opaque             void *; a result by pointer
-// Matrix results are not supported. A non-zero status ends the run with
-// the call's position.
+//   matrix result      (int rows, int cols, int **rowptr, int **colidx,
+//                       int blockRows, int blockCols, T **blocks): the host
+//                       mallocs the three arrays and stores them; Simit
+//                       checks them, takes a copy and frees them
+// A non-zero status ends the run with the call's position.
 //
 // Arrays travel as pointers, which the buffer deallocation would not see
 // as uses: the call goes through a private shim whose memref parameters
@@ -32,6 +35,23 @@
 using namespace mlir;
 using namespace mlir::simit;
 using namespace mlir::simit::loops;
+
+/// The address of the first component of `memref` (!llvm.ptr).
+static Value addressOf(OpBuilder &b, Location loc, ModuleOp module,
+                       Value memref) {
+  auto type = cast<MemRefType>(memref.getType());
+  auto metadata = memref::ExtractStridedMetadataOp::create(b, loc, memref);
+  Value base = memref::ExtractAlignedPointerAsIndexOp::create(b, loc, memref);
+  // Bytes per component: an opaque result's slot holds !llvm.ptr.
+  Value width = arith::ConstantIndexOp::create(
+      b, loc,
+      DataLayout(module).getTypeSize(type.getElementType()).getFixedValue());
+  Value offset = arith::MulIOp::create(b, loc, metadata.getOffset(), width);
+  Value address = arith::IndexCastOp::create(
+      b, loc, b.getI64Type(), arith::AddIOp::create(b, loc, base, offset));
+  return LLVM::IntToPtrOp::create(
+      b, loc, LLVM::LLVMPointerType::get(b.getContext()), address);
+}
 
 namespace {
 /// The shim `name`(args) -> i32 that passes its memref arguments to the
@@ -64,26 +84,10 @@ func::FuncOp getOrCreateShim(OpBuilder &b, ModuleOp module, Location loc,
   Block *entry = shim.addEntryBlock();
   b.setInsertionPointToStart(entry);
   SmallVector<Value> hostArgs;
-  for (BlockArgument arg : entry->getArguments()) {
-    auto memref = dyn_cast<MemRefType>(arg.getType());
-    if (!memref) {
-      hostArgs.push_back(arg);
-      continue;
-    }
-    auto metadata = memref::ExtractStridedMetadataOp::create(b, loc, arg);
-    Value base = memref::ExtractAlignedPointerAsIndexOp::create(b, loc, arg);
-    // Bytes per component: an opaque result's slot holds !llvm.ptr.
-    Value width =
-        arith::ConstantIndexOp::create(b, loc,
-                                       DataLayout(module)
-                                           .getTypeSize(memref.getElementType())
-                                           .getFixedValue());
-    Value offset =
-        arith::MulIOp::create(b, loc, metadata.getOffset(), width);
-    Value address = arith::IndexCastOp::create(
-        b, loc, b.getI64Type(), arith::AddIOp::create(b, loc, base, offset));
-    hostArgs.push_back(LLVM::IntToPtrOp::create(b, loc, ptr, address));
-  }
+  for (BlockArgument arg : entry->getArguments())
+    hostArgs.push_back(isa<MemRefType>(arg.getType())
+                           ? addressOf(b, loc, module, arg)
+                           : Value(arg));
   auto call = func::CallOp::create(b, loc, symbol, TypeRange{i32}, hostArgs);
   func::ReturnOp::create(b, loc, call.getResults());
   return shim;
@@ -144,6 +148,21 @@ LogicalResult FunctionLowering::lowerHostCall(func::CallOp call,
            << " cannot cross to the host";
   };
 
+  // A matrix's blocks are blockRows x blockCols (1 x 1 for scalars); its
+  // rows and columns cross counted in components.
+  auto blockShape = [](SystemTensorType system) {
+    SmallVector<int64_t> block = system.getBlockShape();
+    while (block.size() < 2)
+      block.push_back(1);
+    return block;
+  };
+  auto extent = [&](StringAttr set, int64_t blockExtent) {
+    Value n = getSetSize(set);
+    if (blockExtent != 1)
+      n = arith::MulIOp::create(b, loc, n, indexConstant(blockExtent));
+    return i32Of(n);
+  };
+
   // Local tensors go through a stack slot (vector values have no address),
   // allocated once however often the call runs.
   SmallVector<Value> args;
@@ -185,15 +204,7 @@ LogicalResult FunctionLowering::lowerHostCall(func::CallOp call,
       return call.emitError("extern func '")
              << name << "': matrices stored as " << storage.describe()
              << " cannot cross to the host (BCSR matrices can)";
-    SmallVector<int64_t> block = system.getBlockShape();
-    while (block.size() < 2)
-      block.push_back(1);
-    auto extent = [&](StringAttr set, int64_t blockExtent) {
-      Value n = getSetSize(set);
-      if (blockExtent != 1)
-        n = arith::MulIOp::create(b, loc, n, indexConstant(blockExtent));
-      return i32Of(n);
-    };
+    SmallVector<int64_t> block = blockShape(system);
     args.append({extent(storage.rows, block[0]), extent(storage.cols, block[1]),
                  flatten(b, loc, rowPointers(storage)),
                  flatten(b, loc, columnIndices(storage)), i32Constant(block[0]),
@@ -233,8 +244,32 @@ LogicalResult FunctionLowering::lowerHostCall(func::CallOp call,
       });
       continue;
     }
-    if (system.getOrder() != 1)
-      return unsupported(type, "a matrix result");
+    if (system.getOrder() != 1) {
+      // simit-assign-storage gives the result its storage with a
+      // simit.convert after the call.
+      auto convert = result.hasOneUse()
+                         ? dyn_cast<ConvertOp>(*result.getUsers().begin())
+                         : ConvertOp();
+      Storage storage = convert ? storageOf(convert) : Storage();
+      if (storage.kind != Storage::Kind::Host)
+        return unsupported(type, "a result");
+      SmallVector<int64_t> block = blockShape(system);
+      Type ptr = LLVM::LLVMPointerType::get(b.getContext());
+      auto slotType = MemRefType::get({1}, ptr);
+      Value rowptrSlot = allocaSlot(loc, slotType);
+      Value colidxSlot = allocaSlot(loc, slotType);
+      Value blocksSlot = allocaSlot(loc, slotType);
+      args.append({extent(storage.rows, block[0]),
+                   extent(storage.cols, block[1]), flatten(b, loc, rowptrSlot),
+                   flatten(b, loc, colidxSlot), i32Constant(block[0]),
+                   i32Constant(block[1]), flatten(b, loc, blocksSlot)});
+      readResults.push_back(
+          [&, result, storage, rowptrSlot, colidxSlot, blocksSlot]() -> Value {
+            return adoptHostMatrix(call, result, storage,
+                                   {rowptrSlot, colidxSlot, blocksSlot});
+          });
+      continue;
+    }
     Value array = allocSystem(loc, type, Storage::dense());
     args.append({components(array), flatten(b, loc, array)});
     readResults.push_back([array]() { return array; });
@@ -253,4 +288,59 @@ LogicalResult FunctionLowering::lowerHostCall(func::CallOp call,
   for (auto [result, read] : llvm::zip_equal(call.getResults(), readResults))
     map(result, read());
   return success();
+}
+
+Value FunctionLowering::adoptHostMatrix(func::CallOp call, Value result,
+                                        const Storage &storage,
+                                        std::array<Value, 3> slots) {
+  Location loc = call.getLoc();
+  Type i64 = b.getI64Type();
+  SmallVector<Value, 3> host;
+  for (Value slot : slots)
+    host.push_back(
+        memref::LoadOp::create(b, loc, slot, ValueRange{indexConstant(0)}));
+  auto i64Of = [&](Value index) -> Value {
+    return arith::IndexCastOp::create(b, loc, i64, index);
+  };
+  Value rowBlocks = getSetSize(storage.rows);
+  Value where =
+      stringConstant(loc, ("extern func '" + storage.edges.getValue() + "'" +
+                           sourcePositionSuffix(call))
+                              .str());
+  Value blocks = callRuntime(
+      loc, runtimeName(::simit::abi::RuntimeFunction::HostMatrixBlocks), {i64},
+      {host[0], host[1], host[2], i64Of(rowBlocks),
+       i64Of(getSetSize(storage.cols)), where});
+  Value count = arith::IndexCastOp::create(b, loc, b.getIndexType(), blocks);
+
+  auto indexArray = MemRefType::get({ShapedType::kDynamic}, b.getI32Type());
+  Value rowptr = memref::AllocOp::create(
+      b, loc, indexArray,
+      ValueRange{arith::AddIOp::create(b, loc, rowBlocks, indexConstant(1))});
+  Value colidx = memref::AllocOp::create(b, loc, indexArray, ValueRange{count});
+  auto valuesType = cast<MemRefType>(convertType(result.getType()));
+  Value values = memref::AllocOp::create(b, loc, valuesType, ValueRange{count});
+  int64_t blockBytes = DataLayout(module)
+                           .getTypeSize(valuesType.getElementType())
+                           .getFixedValue();
+  for (int64_t d : valuesType.getShape().drop_front())
+    blockBytes *= d;
+  // Through a shim, like the host's own functions: the arrays it fills are
+  // memref arguments the buffer deallocation sees.
+  SmallVector<Value> adoptArgs = {
+      host[0],
+      host[1],
+      host[2],
+      i64Of(rowBlocks),
+      arith::ConstantIntOp::create(b, loc, i64, blockBytes),
+      rowptr,
+      colidx,
+      flatten(b, loc, values)};
+  func::FuncOp adopt = getOrCreateShim(
+      b, module, loc,
+      runtimeName(::simit::abi::RuntimeFunction::HostMatrixAdopt),
+      ValueRange(adoptArgs).getTypes());
+  func::CallOp::create(b, loc, adopt, adoptArgs);
+  hostPatterns[storage.hostCall] = {rowptr, colidx};
+  return values;
 }

@@ -311,6 +311,7 @@ static FailureOr<SmallVector<Value>> resultBlock(FunctionLowering &l,
   }
   case Storage::Kind::Union:
   case Storage::Kind::DenseMatrix:
+  case Storage::Kind::Host:
     return op->emitError("a map result cannot be stored as ")
            << storage.describe();
   }

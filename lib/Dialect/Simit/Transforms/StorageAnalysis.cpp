@@ -132,6 +132,23 @@ static StorageRule divStorage(StorageAttr dividend, StorageAttr divisor) {
                             "dividend");
 }
 
+/// The number of the first matrix result of host function call `call`
+/// among those of its function, in program order.
+static int64_t hostMatrixNumber(func::CallOp call) {
+  auto function = call->getParentOfType<func::FuncOp>();
+  int64_t number = 0;
+  function.walk([&](func::CallOp other) {
+    if (other == call)
+      return WalkResult::interrupt();
+    auto callee = SymbolTable::lookupNearestSymbolFrom<func::FuncOp>(
+        other, other.getCalleeAttr());
+    if (callee && callee->hasAttr("simit.extern_function"))
+      number += llvm::count_if(other.getResultTypes(), holdsSetMatrix);
+    return WalkResult::advance();
+  });
+  return number;
+}
+
 namespace {
 /// The storage and producer of the operands of the op being visited.
 struct Operands {
@@ -253,6 +270,28 @@ StorageAnalysis::visitOperation(Operation *op,
           inputs.push_back(in[i]);
         setResult(0, getIndexExprStorage(expr, inputs), op);
       })
+      .Case([&](func::CallOp call) {
+        // A host function's matrix results have whatever pattern it gives
+        // them at run time: each its own, numbered within the function.
+        auto callee = SymbolTable::lookupNearestSymbolFrom<func::FuncOp>(
+            call, call.getCalleeAttr());
+        StringAttr name =
+            callee ? callee->getAttrOfType<StringAttr>("simit.extern_function")
+                   : StringAttr();
+        if (!name) {
+          for (unsigned i = 0, e = call.getNumResults(); i < e; ++i)
+            if (holdsSetMatrix(call.getResult(i).getType()))
+              setResult(i,
+                        StorageRule::error("the storage of this value is not "
+                                           "known"),
+                        op);
+          return;
+        }
+        int64_t number = hostMatrixNumber(call);
+        for (unsigned i = 0, e = call.getNumResults(); i < e; ++i)
+          if (holdsSetMatrix(call.getResult(i).getType()))
+            setResult(i, StorageRule::of(storage::host(name, number++)), op);
+      })
       .Case([&](ExternRefOp) {
         setResult(0,
                   StorageRule::error("extern system matrices have no storage"),
@@ -266,6 +305,12 @@ StorageAnalysis::visitOperation(Operation *op,
                                    op->getName().getStringRef().str() + "'"));
       });
   return success();
+}
+
+void StorageAnalysis::visitExternalCall(
+    CallOpInterface call, ArrayRef<const StorageLattice *> arguments,
+    ArrayRef<StorageLattice *> results) {
+  (void)visitOperation(call, arguments, results);
 }
 
 void StorageAnalysis::setToEntryState(StorageLattice *lattice) {

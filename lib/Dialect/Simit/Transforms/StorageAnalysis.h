@@ -91,6 +91,11 @@ public:
   LogicalResult visitOperation(Operation *op,
                                ArrayRef<const StorageLattice *> operands,
                                ArrayRef<StorageLattice *> results) override;
+  /// Calls of host functions (the only calls left after inlining) follow
+  /// the rule of visitOperation.
+  void visitExternalCall(CallOpInterface call,
+                         ArrayRef<const StorageLattice *> arguments,
+                         ArrayRef<StorageLattice *> results) override;
   void setToEntryState(StorageLattice *lattice) override;
 };
 

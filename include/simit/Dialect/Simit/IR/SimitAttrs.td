@@ -69,7 +69,8 @@ def Simit_StorageKind : I32EnumAttr<"StorageKind",
       I32EnumAttrCase<"Stencil", 6, "stencil">,
       I32EnumAttrCase<"Union", 7, "union">,
       I32EnumAttrCase<"Product", 8, "product">,
-      I32EnumAttrCase<"LowRank", 9, "lowrank">]> {
+      I32EnumAttrCase<"LowRank", 9, "lowrank">,
+      I32EnumAttrCase<"Host", 10, "host">]> {
   let cppNamespace = "::mlir::simit";
   let genSpecializedAttr = 0;
 }
@@ -95,17 +96,21 @@ def Simit_StorageAttr : Simit_Attr<"Storage", "storage"> {
     | `union(X, Y, ...)` | any member's |
     | `product(X, Y, ...)` | (r, c) with a path r -> m -> c through X then Y ... |
     | `lowrank(X, k)` | X's, plus k rank-one terms kept as factors |
+    | `host("f", n)` | whatever host function `f` returned: the n-th matrix result of the host calls of the function, which carries its own row pointers and column indices |
 
     ```mlir
     #simit.storage<pattern("springs", rows [0, 1], cols [0, 1])>
     #simit.storage<transpose(incidence("springs", cols [0, 1]))>
     #simit.storage<union(diag("points"), stencil("cells", [[0, 0], [1, 0]]))>
+    #simit.storage<host("matrix_neg", 0)>
     ```
 
     Equal encodings are one attribute: the builders of `SimitStorage.h`
     canonicalise, and the verifier rejects text that is not canonical.
     Unions are flat, sorted, without duplicates, empty or dense members or
     members contained in another, and hold at most one stencil per grid.
+    A `host` encoding contains only itself: two calls may return any two
+    patterns.
     `transpose` does not wrap `transpose`, `diag`, `empty` or `lowrank`.
     Products are flat, have no `diag`, `empty` or `lowrank` factor and no
     factor pair `transpose(incidence(E, P))`, `incidence(E, Q)` (that is
@@ -121,7 +126,9 @@ def Simit_StorageAttr : Simit_Attr<"Storage", "storage"> {
     OptionalArrayRefParameter<"int64_t", "column endpoint positions">:$cols,
     OptionalArrayRefParameter<"::mlir::DenseI64ArrayAttr", "stencil offsets">:$offsets,
     OptionalArrayRefParameter<"::mlir::Attribute", "member encodings">:$members,
-    DefaultValuedParameter<"int64_t", "0", "rank-one terms (lowrank)">:$rank);
+    DefaultValuedParameter<"int64_t", "0", "rank-one terms (lowrank)">:$rank,
+    DefaultValuedParameter<"int64_t", "0",
+                           "which matrix result of a host call (host)">:$call);
   let hasCustomAssemblyFormat = 1;
   let genVerifyDecl = 1;
   let extraClassDeclaration = [{

@@ -38,6 +38,9 @@ StorageAttr incidence(StringAttr edges, ArrayRef<int64_t> cols);
 /// The offsets (one per written neighbour, each of the grid's rank) are
 /// sorted and made unique; offset 0 is added.
 StorageAttr stencil(StringAttr grid, ArrayRef<SmallVector<int64_t>> offsets);
+/// Matrix result number `call` of the host function calls of a function,
+/// one of `function` (an `extern func`): a pattern known only at run time.
+StorageAttr host(StringAttr function, int64_t call);
 /// transpose(transpose(X)) = X, transpose(diag) = diag, transpose(empty) =
 /// empty, transpose(dense) = dense, and rank-one terms stay outermost.
 StorageAttr transpose(StorageAttr x);

@@ -12,10 +12,12 @@ def Simit_ConvertOp : Simit_Op<"convert", [Pure]> {
   let summary = "Changes the storage encoding of a system matrix";
   let description = [{
     The same matrix in another storage: the types differ only in their
-    encodings; the source has one. Without `restrict` the result's contains
+    encodings; the source has one (but see below). Without `restrict` the result's contains
     the source's (widening keeps every value); `restrict` drops the blocks
     the result does not store. A result without an encoding forgets the
-    storage (for callees declared on unassigned types, such as `lu`).
+    storage (for callees declared on unassigned types, such as `lu`). A
+    source without one is the matrix result of a host function (`extern
+    func`), declared unencoded: the result's `host` encoding names it.
 
     ```mlir
     %w = simit.convert %d : !simit.tensor<["points", "points"] x f64, #simit.storage<diag("points")>>

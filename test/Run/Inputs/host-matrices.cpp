@@ -1,0 +1,99 @@
+// C functions of the extern funcs of host-matrices.sim and
+// host-matrices-blocked.sim: matrix results in the original Simit
+// runtime's convention (docs/lowering.md, "Host functions"), three arrays
+// the host mallocs and Simit frees.
+
+#include <cstdlib>
+#include <cstring>
+
+namespace {
+template <typename T>
+void allocate(int blockRows, int blocks, int blockSize, int **rowptr,
+              int **colidx, T **values) {
+  *rowptr = static_cast<int *>(std::malloc((blockRows + 1) * sizeof(int)));
+  *colidx = static_cast<int *>(std::malloc(blocks * sizeof(int)));
+  *values = static_cast<T *>(std::malloc(blocks * blockSize * sizeof(T)));
+}
+
+// -B on B's pattern, each row's blocks stored in descending column order
+// (Simit sorts them).
+template <typename T>
+int negate(int rows, int, const int *rowptr, const int *colidx, int blockRows,
+           int blockCols, const T *b, int, int, int **resultRowptr,
+           int **resultColidx, int resultBlockRows, int resultBlockCols,
+           T **result) {
+  if (blockRows != resultBlockRows || blockCols != resultBlockCols)
+    return 1;
+  int n = rows / blockRows, blocks = rowptr[n], size = blockRows * blockCols;
+  allocate(n, blocks, size, resultRowptr, resultColidx, result);
+  std::memcpy(*resultRowptr, rowptr, (n + 1) * sizeof(int));
+  for (int r = 0; r < n; ++r)
+    for (int k = rowptr[r], to = rowptr[r + 1] - 1; k < rowptr[r + 1];
+         ++k, --to) {
+      (*resultColidx)[to] = colidx[k];
+      for (int c = 0; c < size; ++c)
+        (*result)[to * size + c] = -b[k * size + c];
+    }
+  return 0;
+}
+} // namespace
+
+extern "C" {
+
+int dmatrix_neg(int rows, int cols, int *rowptr, int *colidx, int blockRows,
+                int blockCols, double *b, int resultRows, int resultCols,
+                int **resultRowptr, int **resultColidx, int resultBlockRows,
+                int resultBlockCols, double **result) {
+  return negate(rows, cols, rowptr, colidx, blockRows, blockCols, b, resultRows,
+                resultCols, resultRowptr, resultColidx, resultBlockRows,
+                resultBlockCols, result);
+}
+
+int smatrix_neg(int rows, int cols, int *rowptr, int *colidx, int blockRows,
+                int blockCols, float *b, int resultRows, int resultCols,
+                int **resultRowptr, int **resultColidx, int resultBlockRows,
+                int resultBlockCols, float **result) {
+  return negate(rows, cols, rowptr, colidx, blockRows, blockCols, b, resultRows,
+                resultCols, resultRowptr, resultColidx, resultBlockRows,
+                resultBlockCols, result);
+}
+
+// The n x n tridiagonal matrix with 4 on the diagonal and -1 beside it.
+int dtridiagonal(int rows, int, int **rowptr, int **colidx, int, int,
+                 double **values) {
+  allocate(rows, 3 * rows, 1, rowptr, colidx, values);
+  int k = 0;
+  for (int r = 0; r < rows; ++r) {
+    (*rowptr)[r] = k;
+    for (int c = r - 1; c <= r + 1; ++c)
+      if (c >= 0 && c < rows) {
+        (*colidx)[k] = c;
+        (*values)[k++] = c == r ? 4.0 : -1.0;
+      }
+  }
+  (*rowptr)[rows] = k;
+  return 0;
+}
+
+// One block in row 0, at column `rows` (outside the matrix).
+int doutside(int rows, int, int **rowptr, int **colidx, int, int,
+             double **values) {
+  allocate(rows, 1, 1, rowptr, colidx, values);
+  for (int r = 0; r <= rows; ++r)
+    (*rowptr)[r] = r == 0 ? 0 : 1;
+  (*colidx)[0] = rows;
+  (*values)[0] = 1;
+  return 0;
+}
+
+// Row 0 holds column 0 twice.
+int dtwice(int rows, int, int **rowptr, int **colidx, int, int,
+           double **values) {
+  allocate(rows, 2, 1, rowptr, colidx, values);
+  for (int r = 0; r <= rows; ++r)
+    (*rowptr)[r] = r == 0 ? 0 : 2;
+  (*colidx)[0] = (*colidx)[1] = 0;
+  (*values)[0] = (*values)[1] = 1;
+  return 0;
+}
+}

@@ -6,7 +6,9 @@
 
 #include "gtest/gtest.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <random>
 #include <type_traits>
 #include <vector>
@@ -286,4 +288,103 @@ TEST(RuntimeFunctionsTest, CheckNumericsPlacesBlocksByLayout) {
   diagonal[2] = 3;
   scan(dm, SIMIT_NUMERICS_DIAGONAL, 0, none, none, "M", "p", "p");
   EXPECT_FALSE(simit::takeNumericsProblem());
+}
+
+namespace {
+/// A malloc'd copy of `values`, as a host function returns its arrays.
+template <typename T> T *mallocCopy(const std::vector<T> &values) {
+  auto *copy = static_cast<T *>(std::malloc(values.size() * sizeof(T)));
+  std::copy(values.begin(), values.end(), copy);
+  return copy;
+}
+
+/// The entry point of a "program" that checks the host matrix args[0..2]
+/// (malloc'd rowptr, colidx, blocks of 3 x 3 block rows and columns).
+void checkHostMatrixEntry(void **args) {
+  simit_rt_host_matrix_blocks(static_cast<int32_t *>(args[0]),
+                              static_cast<int32_t *>(args[1]), args[2], 3, 3,
+                              "extern func 'f' (program.sim:4:5)");
+}
+} // namespace
+
+// A host function's matrix is copied with each row sorted by column (the
+// blocks move with their columns), and a malformed one ends the run naming
+// the call and the first bad block.
+TEST(RuntimeFunctionsTest, HostMatricesAreCheckedAndSorted) {
+  std::vector<int32_t> rowptr = {0, 2, 2, 3}, colidx = {2, 0, 1};
+  std::vector<double> blocks = {20, 21, 0, 1, 11, 12};
+  int32_t *hostRowptr = mallocCopy(rowptr), *hostColidx = mallocCopy(colidx);
+  double *hostBlocks = mallocCopy(blocks);
+  ASSERT_EQ(simit_rt_host_matrix_blocks(hostRowptr, hostColidx, hostBlocks, 3,
+                                        3, "f"),
+            3);
+  std::vector<int32_t> rowptrOut(4), colidxOut(3);
+  std::vector<double> blocksOut(6);
+  EXPECT_EQ(simit_rt_host_matrix_adopt(hostRowptr, hostColidx, hostBlocks, 3,
+                                       2 * sizeof(double), rowptrOut.data(),
+                                       colidxOut.data(), blocksOut.data()),
+            0);
+  EXPECT_EQ(rowptrOut, rowptr);
+  EXPECT_EQ(colidxOut, (std::vector<int32_t>{0, 2, 1}));
+  EXPECT_EQ(blocksOut, (std::vector<double>{0, 1, 20, 21, 11, 12}));
+
+  auto expectRejected = [](std::vector<int32_t> rowptr,
+                           std::vector<int32_t> colidx,
+                           llvm::StringRef problem) {
+    void *args[] = {mallocCopy(rowptr), mallocCopy(colidx),
+                    mallocCopy(std::vector<double>(colidx.size(), 1.0))};
+    llvm::Error err = simit::runGuarded(checkHostMatrixEntry, args);
+    ASSERT_TRUE(bool(err));
+    std::string message = llvm::toString(std::move(err));
+    EXPECT_NE(
+        message.find("extern func 'f' (program.sim:4:5): " + problem.str()),
+        std::string::npos)
+        << message;
+  };
+  expectRejected({1, 1, 1, 1}, {0},
+                 "returned a matrix whose row pointers start at 1, not 0");
+  expectRejected({0, 2, 1, 2}, {0, 1},
+                 "returned a matrix whose row pointers decrease at block row "
+                 "1 (2 then 1)");
+  expectRejected({0, 1, 1, 1}, {3},
+                 "returned a matrix with a block at (block row 0, block "
+                 "column 3) outside its 3 block columns");
+  expectRejected({0, 0, 2, 2}, {1, 1},
+                 "returned a matrix with two blocks at (block row 1, block "
+                 "column 1)");
+}
+
+// Patterns of products and sums with a host function's matrix, against
+// the blocks a dense computation finds.
+TEST(RuntimeFunctionsTest, RuntimeProductAndUnionPatterns) {
+  // A = [x x .; . x .; . . x], B = [. x .; . . x; x . .] over 3 x 3 blocks.
+  std::vector<int32_t> rpA = {0, 2, 3, 4}, ciA = {0, 1, 1, 2};
+  std::vector<int32_t> rpB = {0, 1, 2, 3}, ciB = {1, 2, 0};
+  auto rA = describe<int32_t, 1>(rpA.data(), {4});
+  auto cA = describe<int32_t, 1>(ciA.data(), {4});
+  auto rB = describe<int32_t, 1>(rpB.data(), {4});
+  auto cB = describe<int32_t, 1>(ciB.data(), {3});
+  auto take = [](void *handle) {
+    int64_t blocks = simit_rt_pattern_blocks(handle);
+    std::vector<int32_t> rowptr(4), colidx(blocks);
+    auto r = describe<int32_t, 1>(rowptr.data(), {4});
+    auto c = describe<int32_t, 1>(colidx.data(), {blocks});
+    _mlir_ciface_simit_rt_pattern_take(handle, &r, &c);
+    return std::make_pair(rowptr, colidx);
+  };
+  // A B = [x x .; . . x; x . .].
+  auto product =
+      take(_mlir_ciface_simit_rt_product_pattern(&rA, &cA, &rB, &cB, 3));
+  EXPECT_EQ(product.first, (std::vector<int32_t>{0, 2, 3, 4}));
+  EXPECT_EQ(product.second, (std::vector<int32_t>{1, 2, 2, 0}));
+  // A + B = [x x .; . x x; x . x]; with the diagonal (layout 1) B + I.
+  auto sum =
+      take(_mlir_ciface_simit_rt_union_pattern(0, &rA, &cA, 0, &rB, &cB, 3, 3));
+  EXPECT_EQ(sum.first, (std::vector<int32_t>{0, 2, 4, 6}));
+  EXPECT_EQ(sum.second, (std::vector<int32_t>{0, 1, 1, 2, 0, 2}));
+  MemRefDescriptor<int32_t, 1> none = {nullptr, nullptr, 0, {0}, {1}};
+  auto withDiagonal = take(
+      _mlir_ciface_simit_rt_union_pattern(1, &none, &none, 0, &rB, &cB, 3, 3));
+  EXPECT_EQ(withDiagonal.first, (std::vector<int32_t>{0, 2, 4, 6}));
+  EXPECT_EQ(withDiagonal.second, (std::vector<int32_t>{0, 1, 1, 2, 0, 2}));
 }

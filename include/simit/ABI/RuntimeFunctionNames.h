@@ -40,6 +40,10 @@
   X(SolveDiagF32, simit_rt_solve_diag_f32, CInterface)                         \
   X(HostMatrixBlocks, simit_rt_host_matrix_blocks, Plain)                      \
   X(HostMatrixAdopt, simit_rt_host_matrix_adopt, Plain)                        \
+  X(ProductPattern, simit_rt_product_pattern, CInterface)                      \
+  X(UnionPattern, simit_rt_union_pattern, CInterface)                          \
+  X(PatternBlocks, simit_rt_pattern_blocks, Plain)                             \
+  X(PatternTake, simit_rt_pattern_take, CInterface)                            \
   X(PrintF64, simit_rt_print_f64, Plain)                                       \
   X(PrintI64, simit_rt_print_i64, Plain)                                       \
   X(PrintStr, simit_rt_print_str, Plain)                                       \

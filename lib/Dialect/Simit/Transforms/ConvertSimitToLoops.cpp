@@ -129,34 +129,36 @@ LogicalResult FunctionLowering::checkStorages(func::FuncOp original) {
       return;
     Location loc = value.getDefiningOp() ? value.getDefiningOp()->getLoc()
                                          : value.getLoc();
-    // The arrays of a host function's matrix exist from its call on: a
-    // value that a loop or an if carries, or a slot, would need them
-    // carried too; another pattern joined to it, a pattern built at run
-    // time.
+    std::optional<Storage> storage =
+        storageOfEncoding(encoding, cast<StringAttr>(type.getDims()[0]),
+                          cast<StringAttr>(type.getDims()[1]), setTypes);
+    // The arrays of a pattern known at run time exist from the op that
+    // computes the value on: a value that a loop or an if carries, or a
+    // slot, would need them carried too.
     Operation *producer = value.getDefiningOp();
-    if (encoding.getKind() == StorageKind::Host &&
+    if (storage && storage->kind == Storage::Kind::Host &&
         (!producer || isa<RegionBranchOpInterface>(producer) ||
          isa<RefType>(value.getType()))) {
       unsupported = true;
       reported.insert(encoding);
-      emitError(loc, "the matrix host function '")
-          << encoding.getSet().getValue()
-          << "' returns cannot be carried by a loop, an if or a variable "
-             "slot yet";
+      emitError(loc, "a matrix stored as '")
+          << encoding.str()
+          << "' (a pattern known only at run time, of a host function's "
+             "matrix) cannot be carried by a loop, an if or a variable slot "
+             "yet";
       return;
     }
-    if (storageOfEncoding(encoding, cast<StringAttr>(type.getDims()[0]),
-                          cast<StringAttr>(type.getDims()[1]), setTypes))
+    if (storage)
       return;
     unsupported = true;
     reported.insert(encoding);
     if (StorageAttr host = hostMember(encoding)) {
-      emitError(loc, "the pattern of the matrix host function '")
+      emitError(loc, "a matrix stored as '")
+          << encoding.str() << "' (with the pattern host function '"
           << host.getSet().getValue()
-          << "' returns cannot be joined with others (a matrix stored as '"
-          << encoding.str()
-          << "': a sum stored, a transpose stored, a product, or a loop or "
-             "an if carrying it) yet";
+          << "' returns) is not supported by the loop lowering yet: of "
+             "such patterns, products, and sums with matrices stored BCSR "
+             "or block diagonal have a layout";
       return;
     }
     emitError(loc, "a matrix stored as '")

@@ -153,9 +153,38 @@ static std::string productMids(const Storage &storage) {
   return mids;
 }
 
+std::pair<Value, Value>
+FunctionLowering::runtimePattern(const Storage &storage) {
+  if (std::optional<std::pair<Value, Value>> built =
+          builtRuntimePattern(storage))
+    return *built;
+  buildRuntimePattern(function.getLoc(), storage);
+  return runtimePatterns.lookup(storage.runtimeEncoding);
+}
+
+std::optional<std::pair<Value, Value>>
+FunctionLowering::builtRuntimePattern(const Storage &storage) {
+  auto it = runtimePatterns.find(storage.runtimeEncoding);
+  if (it == runtimePatterns.end())
+    return std::nullopt;
+  // Arrays built in a block that does not hold the code being lowered (a
+  // sibling branch, an earlier loop's body) are out of reach there. A
+  // block not attached yet is the body of an op being built here.
+  Block *defined = it->second.first.getParentBlock();
+  for (Block *block = b.getInsertionBlock(); block != defined;) {
+    Operation *parent = block->getParentOp();
+    if (!parent)
+      return it->second;
+    block = parent->getBlock();
+    if (!block)
+      return std::nullopt;
+  }
+  return it->second;
+}
+
 Value FunctionLowering::rowPointers(const Storage &storage) {
   if (storage.kind == Storage::Kind::Host)
-    return hostPatterns.lookup(storage.hostCall).first;
+    return runtimePattern(storage).first;
   if (storage.kind == Storage::Kind::Product)
     return getBinding(BindingKind::ProductRowPtr,
                       {productKey(storage), storage.rows.getValue(),
@@ -172,7 +201,7 @@ Value FunctionLowering::rowPointers(const Storage &storage) {
 
 Value FunctionLowering::columnIndices(const Storage &storage) {
   if (storage.kind == Storage::Kind::Host)
-    return hostPatterns.lookup(storage.hostCall).second;
+    return runtimePattern(storage).second;
   if (storage.kind == Storage::Kind::Product)
     return getBinding(BindingKind::ProductColIdx,
                       {productKey(storage), storage.rows.getValue(),

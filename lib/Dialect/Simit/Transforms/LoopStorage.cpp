@@ -206,8 +206,10 @@ std::string Storage::describe() const {
            cols.getValue().str() + "')";
   }
   case Kind::Host:
-    return ("matrix returned by host function '" + edges.getValue() + "'")
-        .str();
+    if (edges)
+      return ("matrix returned by host function '" + edges.getValue() + "'")
+          .str();
+    return "pattern built at run time (" + runtimeEncoding.str() + ")";
   }
   llvm_unreachable("storage kind");
 }
@@ -355,6 +357,32 @@ struct EncodingReader {
     return sum;
   }
 
+  /// Whether a host function's matrix is among the members of `e`.
+  static bool holdsHost(StorageAttr e) {
+    return llvm::any_of(e.getMembers(), [](Attribute m) {
+      auto member = cast<StorageAttr>(m);
+      return member.getKind() == StorageKind::Host || holdsHost(member);
+    });
+  }
+
+  /// A pattern built at run time: a union of members that are all stored
+  /// BCSR or block diagonal (its pattern comes from theirs), or any
+  /// product (the product's comes from its operands').
+  std::optional<Storage> runtimePattern(StorageAttr e, StringAttr rows,
+                                        StringAttr cols) {
+    if (e.getKind() == StorageKind::Union)
+      for (unsigned i = 0, n = e.getMembers().size(); i < n; ++i) {
+        std::optional<Storage> member = read(e.getMember(i), rows, cols);
+        if (!member ||
+            !(member->isBCSR() || member->kind == Storage::Kind::Diagonal))
+          return std::nullopt;
+      }
+    if (e.getKind() != StorageKind::Host && e.getKind() != StorageKind::Union &&
+        e.getKind() != StorageKind::Product)
+      return std::nullopt;
+    return Storage::runtimePattern(e, rows, cols);
+  }
+
   std::optional<Storage> read(StorageAttr e, StringAttr rows,
                               StringAttr cols) {
     switch (e.getKind()) {
@@ -391,6 +419,10 @@ struct EncodingReader {
       return stored ? transposedStorage(*stored) : std::nullopt;
     }
     case StorageKind::Union: {
+      // With a host function's matrix in it, the pattern is built at run
+      // time from the members' (all BCSR).
+      if (holdsHost(e))
+        return runtimePattern(e, rows, cols);
       // A square pattern, union, product or stencil stores the diagonal
       // (runtime patterns over one set hold every (r, r)): a diagonal
       // member next to one other member adds nothing.
@@ -408,6 +440,8 @@ struct EncodingReader {
       return sumOfProducts(e, rows, cols);
     }
     case StorageKind::Product: {
+      if (holdsHost(e))
+        return runtimePattern(e, rows, cols);
       std::optional<ProductChain> chain = productChain(e, rows, cols);
       if (!chain)
         return std::nullopt;
@@ -423,7 +457,7 @@ struct EncodingReader {
       return rows == cols ? Storage::diagonal(rows)
                           : Storage::denseMatrix(rows, cols);
     case StorageKind::Host:
-      return Storage::host(e.getSet(), e.getCall(), rows, cols);
+      return Storage::runtimePattern(e, rows, cols);
     case StorageKind::LowRank:
       return std::nullopt;
     }

@@ -5,16 +5,18 @@
 // stored as its type's encoding says, and bindings become new function
 // arguments as the lowering first needs them. The implementation is split
 // by subject: ConvertSimitToLoops.cpp (driver, types, op dispatch),
-// LoopStorage.cpp (layouts of encodings, containment, joins), LoopBindings.cpp (function arguments),
-// LowerControlFlow.cpp (scf ops), LowerSystemOps.cpp (host-level ops on
-// system tensors), LowerLocalTensors.cpp (small dense tensors as flat
-// vectors), LowerMaps.cpp (map/assemble as set loops), LowerGridStencils.cpp
-// (maps through grids), LowerMatrixBlocks.cpp (blocks and slices of
-// matrices), LowerConvert.cpp (simit.convert), LowerIndexExpr.cpp and
+// LoopStorage.cpp (layouts of encodings, containment, joins), LoopBindings.cpp
+// (function arguments), LowerControlFlow.cpp (scf ops), LowerSystemOps.cpp
+// (host-level ops on system tensors), LowerLocalTensors.cpp (small dense
+// tensors as flat vectors), LowerMaps.cpp (map/assemble as set loops),
+// LowerGridStencils.cpp (maps through grids), LowerMatrixBlocks.cpp (blocks and
+// slices of matrices), LowerConvert.cpp (simit.convert), LowerIndexExpr.cpp and
 // IndexExprLoops.cpp (index expressions as loop nests),
 // LowerProducts.cpp (matrix products), LowerSolvers.cpp (solves and
-// factorisations), LowerPrint.cpp (printing and strings) and
-// LowerCheckNumerics.cpp (scans of results for --check-numerics).
+// factorisations), LowerHostCalls.cpp (extern funcs),
+// LowerRuntimePatterns.cpp (patterns known only at run time),
+// LowerPrint.cpp (printing and strings) and LowerCheckNumerics.cpp (scans
+// of results for --check-numerics).
 //
 //===----------------------------------------------------------------------===//
 
@@ -93,10 +95,12 @@ struct Storage {
     /// r * |cols| + c is (r, c). The solution of `lumatsolve` and
     /// `lltmatsolve` (A^-1 B is dense); no index arrays.
     DenseMatrix,
-    /// A BCSR matrix over (rows, cols) on a pattern a host function
-    /// returned (`edges` names it, `hostCall` numbers the result): its
-    /// row pointers and column indices are arrays the call's lowering
-    /// made, not bindings.
+    /// A BCSR matrix over (rows, cols) on a pattern known only at run
+    /// time (`runtimeEncoding`): one a host function returned (`edges`
+    /// names the function), or a product or sum with one, whose pattern
+    /// the runtime builds each time it is computed. Its row pointers and
+    /// column indices are arrays the lowering made, not bindings
+    /// (FunctionLowering::runtimePatterns).
     Host
   };
   Kind kind = Kind::Dense;
@@ -120,8 +124,8 @@ struct Storage {
   SmallVector<StringAttr, 2> members;
   /// Product: its chains, sorted and unique.
   SmallVector<ProductChain, 0> chains;
-  /// Host: which matrix result of the function's host calls.
-  int64_t hostCall = 0;
+  /// Host: the encoding, which names the pattern.
+  StorageAttr runtimeEncoding;
 
   static Storage dense() { return Storage(); }
   static Storage diagonal(StringAttr set) {
@@ -137,10 +141,13 @@ struct Storage {
   static Storage denseMatrix(StringAttr rows, StringAttr cols) {
     return Storage{Kind::DenseMatrix, nullptr, rows, cols};
   }
-  static Storage host(StringAttr function, int64_t call, StringAttr rows,
-                      StringAttr cols) {
-    Storage s{Kind::Host, function, rows, cols};
-    s.hostCall = call;
+  /// A pattern known at run time: `encoding` is host(...) or holds one.
+  static Storage runtimePattern(StorageAttr encoding, StringAttr rows,
+                                StringAttr cols) {
+    Storage s{Kind::Host, nullptr, rows, cols};
+    if (encoding.getKind() == StorageKind::Host)
+      s.edges = encoding.getSet();
+    s.runtimeEncoding = encoding;
     return s;
   }
   /// The incidence of an edge set of `cardinality` endpoints over (edges,
@@ -189,7 +196,7 @@ struct Storage {
            cols == o.cols && offsets == o.offsets &&
            cardinality == o.cardinality && positions == o.positions &&
            transposed == o.transposed && members == o.members &&
-           chains == o.chains && hostCall == o.hostCall;
+           chains == o.chains && runtimeEncoding == o.runtimeEncoding;
   }
   bool operator!=(const Storage &o) const { return !(*this == o); }
   /// Whether every block of `o` is a block of this storage (an edge pattern
@@ -517,13 +524,29 @@ private:
   /// Matrix result `result` (stored as `storage`, a host storage) of the
   /// host call `call`, from the pointers the host stored in `slots` (row
   /// pointers, column indices, blocks): checked by the runtime, copied into
-  /// arrays of the lowered code, recorded in hostPatterns; returns the
+  /// arrays of the lowered code, recorded in runtimePatterns; returns the
   /// blocks.
   Value adoptHostMatrix(func::CallOp call, Value result, const Storage &storage,
                         std::array<Value, 3> slots);
-  /// The row pointers and column indices of the host storages lowered so
-  /// far, by Storage::hostCall.
-  DenseMap<int64_t, std::pair<Value, Value>> hostPatterns;
+  /// The row pointers and column indices of the patterns known at run
+  /// time built so far, by Storage::runtimeEncoding.
+  DenseMap<Attribute, std::pair<Value, Value>> runtimePatterns;
+  /// The index arrays of `storage` (Kind::Host) where the code is being
+  /// lowered: built already and in reach, or a union's built now.
+  std::pair<Value, Value> runtimePattern(const Storage &storage);
+  /// The index arrays of `storage` built already and in reach, if any.
+  std::optional<std::pair<Value, Value>>
+  builtRuntimePattern(const Storage &storage);
+  /// Builds the pattern of a union with a host member from its members'
+  /// (simit_rt_union_pattern), or of the product `lhs` `rhs`
+  /// (simit_rt_product_pattern), and records it in runtimePatterns.
+  void buildRuntimePattern(Location loc, const Storage &storage);
+  void buildProductPattern(Location loc, const Storage &storage,
+                           const Storage &lhs, const Storage &rhs);
+  /// Copies the runtime's pattern `handle` over `rows` block rows into
+  /// fresh arrays (simit_rt_pattern_blocks, simit_rt_pattern_take).
+  std::pair<Value, Value> takeRuntimePattern(Location loc, Value handle,
+                                             Value rows);
   /// simit.print and strings (C strings as !llvm.ptr) through runtime
   /// functions (simit_rt_print_*, simit_rt_string_*).
   LogicalResult lowerPrintOrString(Operation *op);

@@ -341,6 +341,6 @@ Value FunctionLowering::adoptHostMatrix(func::CallOp call, Value result,
       runtimeName(::simit::abi::RuntimeFunction::HostMatrixAdopt),
       ValueRange(adoptArgs).getTypes());
   func::CallOp::create(b, loc, adopt, adoptArgs);
-  hostPatterns[storage.hostCall] = {rowptr, colidx};
+  runtimePatterns[storage.runtimeEncoding] = {rowptr, colidx};
   return values;
 }

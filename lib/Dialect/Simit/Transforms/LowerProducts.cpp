@@ -299,6 +299,14 @@ LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
     }
     args.push_back(asRuntimeBlocks(loc, array, values));
   };
+  // A product with a host function's matrix gets its pattern now.
+  if (storage.kind == Storage::Kind::Host && !builtRuntimePattern(storage)) {
+    if (!a.isBCSR() || !b2.isBCSR())
+      return op.emitError("a product with a matrix a host function returns "
+                          "needs BCSR factors; these are stored as ")
+             << a.describe() << " and " << b2.describe();
+    buildProductPattern(loc, storage, a, b2);
+  }
   addMatrix(a, lookup(op.getLhs()), /*isFactor=*/true);
   addMatrix(b2, lookup(op.getRhs()), /*isFactor=*/true);
   Value result = allocSystem(loc, type, storage, /*zeroFill=*/false);

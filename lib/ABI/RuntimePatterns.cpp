@@ -1,16 +1,19 @@
-//===--- HostMatrices.cpp - Matrices that host functions return -----------===//
+//===--- RuntimePatterns.cpp - Patterns known only at run time ------------===//
 //
 // A host function (`extern func`) returns a system matrix as BCSR arrays it
 // allocated itself, in the original Simit runtime's convention. Lowered code
 // checks them here before it trusts a single index, then copies them into
 // arrays of its own (rows sorted by column, as every BCSR consumer of the
-// runtime expects) and frees the host's.
+// runtime expects) and frees the host's. Products and sums with such a
+// matrix get their patterns here too, each time they are computed.
 //
 //===----------------------------------------------------------------------===//
 
 #include "RunState.h"
 
 #include "simit/ABI/RuntimeFunctions.h"
+#include "simit/Runtime/PatternAlgebra.h"
+#include "simit/Runtime/SparsityPattern.h"
 
 #include "llvm/Support/FormatVariadic.h"
 
@@ -22,6 +25,7 @@
 
 using simit::abi::abandonRun;
 using simit::abi::fail;
+using simit::abi::MemRefDescriptor;
 
 namespace {
 void freeHostArrays(int32_t *rowptr, int32_t *colidx, void *blocks) {
@@ -114,4 +118,69 @@ extern "C" int32_t simit_rt_host_matrix_adopt(int32_t *rowptr, int32_t *colidx,
   }
   freeHostArrays(rowptr, colidx, blocks);
   return 0;
+}
+
+namespace {
+using IndexArray = MemRefDescriptor<int32_t, 1>;
+
+/// A BCSR pattern of lowered code's arrays, as the runtime's pattern
+/// algebra takes it.
+std::shared_ptr<const simit::SparsityPattern>
+patternOf(const IndexArray *rowptr, const IndexArray *colidx, int64_t cols) {
+  const int32_t *r = rowptr->data + rowptr->offset;
+  const int32_t *c = colidx->data + colidx->offset;
+  int64_t rows = rowptr->sizes[0] - 1;
+  return simit::SparsityPattern::fromArrays(
+      static_cast<int>(rows), static_cast<int>(cols),
+      std::vector<int32_t>(r, r + rows + 1),
+      std::vector<int32_t>(c, c + r[rows]));
+}
+
+/// What simit_rt_product_pattern and simit_rt_union_pattern return.
+struct PatternHandle {
+  std::shared_ptr<const simit::SparsityPattern> pattern;
+};
+} // namespace
+
+extern "C" void *_mlir_ciface_simit_rt_product_pattern(IndexArray *rowptrA,
+                                                       IndexArray *colidxA,
+                                                       IndexArray *rowptrB,
+                                                       IndexArray *colidxB,
+                                                       int64_t cols) {
+  int64_t mid = rowptrB->sizes[0] - 1;
+  return new PatternHandle{simit::productPattern(
+      *patternOf(rowptrA, colidxA, mid), *patternOf(rowptrB, colidxB, cols),
+      /*withDiagonal=*/false)};
+}
+
+extern "C" void *_mlir_ciface_simit_rt_union_pattern(
+    int32_t layoutA, IndexArray *rowptrA, IndexArray *colidxA, int32_t layoutB,
+    IndexArray *rowptrB, IndexArray *colidxB, int64_t rows, int64_t cols) {
+  auto member = [&](int32_t layout, IndexArray *rowptr, IndexArray *colidx) {
+    if (layout != 1)
+      return patternOf(rowptr, colidx, cols);
+    std::vector<int32_t> diagonal(rows + 1);
+    std::iota(diagonal.begin(), diagonal.end(), 0);
+    return simit::SparsityPattern::fromArrays(
+        static_cast<int>(rows), static_cast<int>(cols), diagonal,
+        std::vector<int32_t>(diagonal.begin(), diagonal.end() - 1));
+  };
+  auto a = member(layoutA, rowptrA, colidxA);
+  auto b = member(layoutB, rowptrB, colidxB);
+  return new PatternHandle{simit::unionPattern({a.get(), b.get()})};
+}
+
+extern "C" int64_t simit_rt_pattern_blocks(void *handle) {
+  return static_cast<PatternHandle *>(handle)->pattern->numBlocks();
+}
+
+extern "C" void _mlir_ciface_simit_rt_pattern_take(void *handle,
+                                                   IndexArray *rowptr,
+                                                   IndexArray *colidx) {
+  auto *pattern = static_cast<PatternHandle *>(handle);
+  llvm::ArrayRef<int32_t> r = pattern->pattern->rowPointers();
+  llvm::ArrayRef<int32_t> c = pattern->pattern->columnIndices();
+  std::copy(r.begin(), r.end(), rowptr->data + rowptr->offset);
+  std::copy(c.begin(), c.end(), colidx->data + colidx->offset);
+  delete pattern;
 }

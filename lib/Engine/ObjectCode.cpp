@@ -39,9 +39,12 @@ llvm::Expected<llvm::orc::JITTargetMachineBuilder> simit::hostTarget() {
 /// Names the symbols the objects need that none of them, the runtime, the
 /// OpenMP runtime nor the process (its libraries, and the host libraries
 /// loaded for `extern func`s) defines, before the JIT would fail on them
-/// less clearly.
+/// less clearly. A host function without floats is called by its name;
+/// the original Simit runtime's later versions prefix every host symbol
+/// with the precision ('d' or 's', both the same function then): such a
+/// definition serves too, added to `runtime` under the name.
 static llvm::Error checkExternalSymbols(llvm::ArrayRef<std::string> objects,
-                                        const llvm::orc::SymbolMap &runtime,
+                                        llvm::orc::SymbolMap &runtime,
                                         llvm::sys::DynamicLibrary &openMP,
                                         llvm::orc::MangleAndInterner &mangle) {
   std::vector<std::unique_ptr<llvm::object::ObjectFile>> files;
@@ -71,6 +74,16 @@ static llvm::Error checkExternalSymbols(llvm::ArrayRef<std::string> objects,
           openMP.getAddressOfSymbol(name->str().c_str()) ||
           llvm::sys::DynamicLibrary::SearchForAddressOfSymbol(name->str()))
         continue;
+      void *prefixed = nullptr;
+      for (const char *precision : {"d", "s"})
+        if (!prefixed)
+          prefixed = llvm::sys::DynamicLibrary::SearchForAddressOfSymbol(
+              precision + name->str());
+      if (prefixed) {
+        runtime[mangle(*name)] = {llvm::orc::ExecutorAddr::fromPtr(prefixed),
+                                  llvm::JITSymbolFlags::Exported};
+        continue;
+      }
       missing += (missing.empty() ? "" : ", ") + name->str();
     }
   if (missing.empty())

@@ -44,7 +44,8 @@ int dgemv(int rows, int cols, const int *rowptr, const int *colidx,
   return 0;
 }
 
-// An opaque handle: a result by pointer, a parameter by value.
+// An opaque handle: a result and a parameter by the address of the handle
+// (the original runtime's ffi/opaque test's convention).
 int make_counter(int start, void **handle) {
   static int counter;
   counter = start;
@@ -52,8 +53,8 @@ int make_counter(int start, void **handle) {
   return 0;
 }
 
-int bump_counter(void *handle, int *n) {
-  *n = ++*static_cast<int *>(handle);
+int bump_counter(void **handle, int *n) {
+  *n = ++*static_cast<int *>(*handle);
   return 0;
 }
 

@@ -20,7 +20,9 @@ func.func private @tridiagonal() -> !K attributes {simit.extern_function = "trid
 // CHECK-DAG: %[[COLIDX:.*]] = memref.alloca() : memref<1x!llvm.ptr>
 // CHECK-DAG: %[[ROWPTR:.*]] = memref.alloca() : memref<1x!llvm.ptr>
 // CHECK: call @simit_host.dtridiagonal(%{{.*}}, %{{.*}}, %{{.*}}, %{{.*}}, %c1_i32, %c1_i32, %{{.*}})
-// CHECK: cf.assert
+// Functions with matrix results may return void (the original runtime's
+// tests declare them so): no status check, the arrays are checked.
+// CHECK-NOT: cf.assert
 // CHECK: %[[R:.*]] = memref.load %[[ROWPTR]][%c0]
 // CHECK: %[[C:.*]] = memref.load %[[COLIDX]][%c0]
 // CHECK: %[[B:.*]] = memref.load %[[BLOCKS]][%c0]

@@ -4,8 +4,8 @@
 // allocated itself, in the original Simit runtime's convention. Lowered code
 // checks them here before it trusts a single index, then copies them into
 // arrays of its own (rows sorted by column, as every BCSR consumer of the
-// runtime expects) and frees the host's. Products and sums with such a
-// matrix get their patterns here too, each time they are computed.
+// runtime expects) and frees the host's. Products, sums and transposes of
+// such a matrix get their patterns here too, each time they are computed.
 //
 //===----------------------------------------------------------------------===//
 
@@ -14,6 +14,7 @@
 #include "simit/ABI/RuntimeFunctions.h"
 #include "simit/Runtime/PatternAlgebra.h"
 #include "simit/Runtime/SparsityPattern.h"
+#include "simit/ffi.h"
 
 #include "llvm/Support/FormatVariadic.h"
 
@@ -26,6 +27,10 @@
 using simit::abi::abandonRun;
 using simit::abi::fail;
 using simit::abi::MemRefDescriptor;
+
+void *simit::ffi::simit_malloc(std::size_t bytes) { return std::malloc(bytes); }
+
+void simit::ffi::simit_free(void *memory) { std::free(memory); }
 
 namespace {
 void freeHostArrays(int32_t *rowptr, int32_t *colidx, void *blocks) {
@@ -168,6 +173,27 @@ extern "C" void *_mlir_ciface_simit_rt_union_pattern(
   auto a = member(layoutA, rowptrA, colidxA);
   auto b = member(layoutB, rowptrB, colidxB);
   return new PatternHandle{simit::unionPattern({a.get(), b.get()})};
+}
+
+extern "C" void *_mlir_ciface_simit_rt_transpose_pattern(IndexArray *rowptr,
+                                                         IndexArray *colidx,
+                                                         int64_t cols) {
+  const int32_t *r = rowptr->data + rowptr->offset;
+  const int32_t *c = colidx->data + colidx->offset;
+  int64_t rows = rowptr->sizes[0] - 1;
+  // Counting sort by column; rows visited in order keep each transposed
+  // row sorted.
+  std::vector<int32_t> start(cols + 1, 0), columns(r[rows]);
+  for (int32_t k = 0; k < r[rows]; ++k)
+    ++start[c[k] + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<int32_t> next(start.begin(), start.end() - 1);
+  for (int64_t row = 0; row < rows; ++row)
+    for (int32_t k = r[row]; k < r[row + 1]; ++k)
+      columns[next[c[k]]++] = static_cast<int32_t>(row);
+  return new PatternHandle{simit::SparsityPattern::fromArrays(
+      static_cast<int>(cols), static_cast<int>(rows), std::move(start),
+      std::move(columns))};
 }
 
 extern "C" int64_t simit_rt_pattern_blocks(void *handle) {

@@ -354,8 +354,8 @@ TEST(RuntimeFunctionsTest, HostMatricesAreCheckedAndSorted) {
                  "column 1)");
 }
 
-// Patterns of products and sums with a host function's matrix, against
-// the blocks a dense computation finds.
+// Patterns of products, sums and transposes of a host function's matrix,
+// against the blocks worked out by hand.
 TEST(RuntimeFunctionsTest, RuntimeProductAndUnionPatterns) {
   // A = [x x .; . x .; . . x], B = [. x .; . . x; x . .] over 3 x 3 blocks.
   std::vector<int32_t> rpA = {0, 2, 3, 4}, ciA = {0, 1, 1, 2};
@@ -387,4 +387,8 @@ TEST(RuntimeFunctionsTest, RuntimeProductAndUnionPatterns) {
       _mlir_ciface_simit_rt_union_pattern(1, &none, &none, 0, &rB, &cB, 3, 3));
   EXPECT_EQ(withDiagonal.first, (std::vector<int32_t>{0, 2, 4, 6}));
   EXPECT_EQ(withDiagonal.second, (std::vector<int32_t>{0, 1, 1, 2, 0, 2}));
+  // A' = [x . .; x x .; . . x].
+  auto transposed = take(_mlir_ciface_simit_rt_transpose_pattern(&rA, &cA, 3));
+  EXPECT_EQ(transposed.first, (std::vector<int32_t>{0, 1, 3, 4}));
+  EXPECT_EQ(transposed.second, (std::vector<int32_t>{0, 0, 1, 2}));
 }

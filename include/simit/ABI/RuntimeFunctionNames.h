@@ -42,6 +42,7 @@
   X(HostMatrixAdopt, simit_rt_host_matrix_adopt, Plain)                        \
   X(ProductPattern, simit_rt_product_pattern, CInterface)                      \
   X(UnionPattern, simit_rt_union_pattern, CInterface)                          \
+  X(TransposePattern, simit_rt_transpose_pattern, CInterface)                  \
   X(PatternBlocks, simit_rt_pattern_blocks, Plain)                             \
   X(PatternTake, simit_rt_pattern_take, CInterface)                            \
   X(PrintF64, simit_rt_print_f64, Plain)                                       \

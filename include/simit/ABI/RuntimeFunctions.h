@@ -236,6 +236,12 @@ void *_mlir_ciface_simit_rt_union_pattern(
     simit::abi::MemRefDescriptor<int32_t, 1> *rowptrB,
     simit::abi::MemRefDescriptor<int32_t, 1> *colidxB, int64_t rows,
     int64_t cols);
+/// The pattern of A' for A (rowptr, colidx) of `cols` block columns.
+/// MLIR: func.func private @simit_rt_transpose_pattern(memref<?xi32>,
+///   memref<?xi32>, i64) -> !llvm.ptr attributes {llvm.emit_c_interface}
+void *_mlir_ciface_simit_rt_transpose_pattern(
+    simit::abi::MemRefDescriptor<int32_t, 1> *rowptr,
+    simit::abi::MemRefDescriptor<int32_t, 1> *colidx, int64_t cols);
 int64_t simit_rt_pattern_blocks(void *pattern);
 void _mlir_ciface_simit_rt_pattern_take(
     void *pattern, simit::abi::MemRefDescriptor<int32_t, 1> *rowptr,

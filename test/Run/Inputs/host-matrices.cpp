@@ -3,15 +3,20 @@
 // runtime's convention (docs/lowering.md, "Host functions"), three arrays
 // the host mallocs and Simit frees.
 
+#include "simit/ffi.h"
+
 #include <cstdlib>
 #include <cstring>
 
 namespace {
+// The original runtime's simit_malloc (what the process of simit-run
+// defines) and plain malloc both serve.
 template <typename T>
 void allocate(int blockRows, int blocks, int blockSize, int **rowptr,
               int **colidx, T **values) {
-  *rowptr = static_cast<int *>(std::malloc((blockRows + 1) * sizeof(int)));
-  *colidx = static_cast<int *>(std::malloc(blocks * sizeof(int)));
+  *rowptr = static_cast<int *>(
+      simit::ffi::simit_malloc((blockRows + 1) * sizeof(int)));
+  *colidx = static_cast<int *>(simit::ffi::simit_malloc(blocks * sizeof(int)));
   *values = static_cast<T *>(std::malloc(blocks * blockSize * sizeof(T)));
 }
 

@@ -157,8 +157,8 @@ LogicalResult FunctionLowering::checkStorages(func::FuncOp original) {
           << encoding.str() << "' (with the pattern host function '"
           << host.getSet().getValue()
           << "' returns) is not supported by the loop lowering yet: of "
-             "such patterns, products, and sums with matrices stored BCSR "
-             "or block diagonal have a layout";
+             "such patterns, products, transposes, and sums with matrices "
+             "stored BCSR or block diagonal have a layout";
       return;
     }
     emitError(loc, "a matrix stored as '")

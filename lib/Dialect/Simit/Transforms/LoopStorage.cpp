@@ -366,8 +366,9 @@ struct EncodingReader {
   }
 
   /// A pattern built at run time: a union of members that are all stored
-  /// BCSR or block diagonal (its pattern comes from theirs), or any
-  /// product (the product's comes from its operands').
+  /// BCSR or block diagonal (its pattern comes from theirs), the transpose
+  /// of a BCSR one, or any product (the product's comes from its
+  /// operands').
   std::optional<Storage> runtimePattern(StorageAttr e, StringAttr rows,
                                         StringAttr cols) {
     if (e.getKind() == StorageKind::Union)
@@ -377,8 +378,14 @@ struct EncodingReader {
             !(member->isBCSR() || member->kind == Storage::Kind::Diagonal))
           return std::nullopt;
       }
+    if (e.getKind() == StorageKind::Transpose) {
+      std::optional<Storage> inner = read(e.getOperand(), cols, rows);
+      if (!inner || !inner->isBCSR())
+        return std::nullopt;
+    }
     if (e.getKind() != StorageKind::Host && e.getKind() != StorageKind::Union &&
-        e.getKind() != StorageKind::Product)
+        e.getKind() != StorageKind::Product &&
+        e.getKind() != StorageKind::Transpose)
       return std::nullopt;
     return Storage::runtimePattern(e, rows, cols);
   }
@@ -409,6 +416,10 @@ struct EncodingReader {
     }
     case StorageKind::Transpose: {
       StorageAttr inner = e.getOperand();
+      // A host function's matrix transposed is stored on its transposed
+      // pattern, built at run time.
+      if (inner.getKind() == StorageKind::Host || holdsHost(inner))
+        return runtimePattern(e, rows, cols);
       if (inner.getKind() == StorageKind::Incidence) {
         std::optional<Storage> stored = read(inner, cols, rows);
         if (!stored)

@@ -67,14 +67,32 @@ void FunctionLowering::buildProductPattern(Location loc, const Storage &storage,
 void FunctionLowering::buildRuntimePattern(Location loc,
                                            const Storage &storage) {
   // Products are built where they are computed (lowerMatMul), host
-  // functions' matrices where they are returned: what is left is a union,
-  // of members that are all BCSR or block diagonal (storageOfEncoding).
+  // functions' matrices where they are returned: what is left is a
+  // transpose of a BCSR matrix or a union of members that are all BCSR or
+  // block diagonal (storageOfEncoding).
   StorageAttr encoding = storage.runtimeEncoding;
-  assert(encoding.getKind() == StorageKind::Union &&
-         "a runtime pattern neither returned nor computed");
   MLIRContext *ctx = b.getContext();
   Type i32 = b.getI32Type(), i64 = b.getI64Type();
   auto indexArray = MemRefType::get({ShapedType::kDynamic}, i32);
+  if (encoding.getKind() == StorageKind::Transpose) {
+    Storage stored = *storageOfEncoding(encoding.getOperand(), storage.cols,
+                                        storage.rows, setTypes);
+    func::FuncOp transpose =
+        declareRuntime(loc, runtimeName(RuntimeFunction::TransposePattern),
+                       FunctionType::get(ctx, {indexArray, indexArray, i64},
+                                         {LLVM::LLVMPointerType::get(ctx)}));
+    Value handle = func::CallOp::create(
+                       b, loc, transpose,
+                       ValueRange{rowPointers(stored), columnIndices(stored),
+                                  arith::IndexCastOp::create(
+                                      b, loc, i64, getSetSize(storage.rows))})
+                       .getResult(0);
+    runtimePatterns[encoding] =
+        takeRuntimePattern(loc, handle, getSetSize(storage.rows));
+    return;
+  }
+  assert(encoding.getKind() == StorageKind::Union &&
+         "a runtime pattern neither returned nor computed");
   func::FuncOp unite =
       declareRuntime(loc, runtimeName(RuntimeFunction::UnionPattern),
                      FunctionType::get(ctx,

@@ -2,10 +2,11 @@
 
 // Patterns known only at run time: a product with a host function's matrix
 // gets its pattern from the runtime where it is computed
-// (simit_rt_product_pattern), a stored sum with one where it is first
-// needed (simit_rt_union_pattern; a diagonal member has layout 1 and no
-// index arrays); simit_rt_pattern_take copies each into fresh arrays,
-// which the product and the reads then use.
+// (simit_rt_product_pattern), a stored sum or transpose of one where it is
+// first needed (simit_rt_union_pattern, where a diagonal member has layout
+// 1 and no index arrays; simit_rt_transpose_pattern);
+// simit_rt_pattern_take copies each into fresh arrays, which the product
+// and the reads then use.
 
 !Point = !simit.element<"Point", {x : f64, y : f64, m : f64}>
 !Points = !simit.set<"points", !Point>
@@ -52,6 +53,24 @@ func.func @sum() attributes {simit.export} {
   %M = simit.assemble @mass() to %points reduce <add> : (!Points) -> !K
   %T = func.call @tridiagonal() : () -> !K
   %B = simit.add %T, %M : !K
+  %x = simit.field_read %points["x"] : !Points -> !X
+  %y = simit.matvec %B, %x : !K, !X -> !X
+  %z = simit.matvec %B, %y : !K, !X -> !X
+  simit.field_write %z, %points["y"] : !X, !Points
+  return
+}
+
+// CHECK-LABEL: func.func @transposed(
+// CHECK: call @simit_host.simit_rt_host_matrix_adopt(%{{.*}}, %{{.*}}, %{{.*}}, %{{.*}}, %{{.*}}, %[[RP:[^,]*]], %[[CI:[^,]*]], %{{.*}})
+// CHECK: %[[H:.*]] = call @simit_rt_transpose_pattern(%[[RP]], %[[CI]], %{{.*}}) : (memref<?xi32>, memref<?xi32>, i64) -> !llvm.ptr
+// CHECK: call @simit_rt_pattern_blocks(%[[H]])
+// CHECK: call @simit_rt_pattern_take(%[[H]], %[[TRP:[^,]*]], %[[TCI:[^)]*]])
+// CHECK: scf.parallel
+// CHECK: memref.load %[[TRP]]
+func.func @transposed() attributes {simit.export} {
+  %points = simit.get_set @points : !Points
+  %T = func.call @tridiagonal() : () -> !K
+  %B = simit.transpose %T : !K -> !K
   %x = simit.field_read %points["x"] : !Points -> !X
   %y = simit.matvec %B, %x : !K, !X -> !X
   %z = simit.matvec %B, %y : !K, !X -> !X

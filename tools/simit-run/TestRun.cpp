@@ -208,6 +208,9 @@ int simit::runEval(const EvalOptions &options, llvm::raw_ostream &os) {
   }
   ProgramOptions programOptions = options.program;
   programOptions.hostFunctions = {call->function};
+  // Only the function called is compiled (as a scene's uncalled ones are
+  // not): another that does not lower yet does not stop it.
+  programOptions.specialisation.entryFunctions = {call->function};
   Program program(programOptions);
   if (llvm::Error err = program.loadFile(options.path)) {
     llvm::errs() << llvm::toString(std::move(err)) << "\n";

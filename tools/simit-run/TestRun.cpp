@@ -228,8 +228,12 @@ int simit::runEval(const EvalOptions &options, llvm::raw_ostream &os) {
     return 1;
   }
   if (llvm::Error err = function->run()) {
-    llvm::errs() << options.path << ": function '" << call->function
-                 << "': " << llvm::toString(std::move(err)) << "\n";
+    // Binding errors name the function already; failures of the run not.
+    std::string message = llvm::toString(std::move(err));
+    std::string prefix = "function '" + call->function + "': ";
+    if (!llvm::StringRef(message).starts_with(prefix))
+      message = prefix + message;
+    llvm::errs() << options.path << ": " << message << "\n";
     return 1;
   }
   for (const HostValue &result : function->results())

@@ -1,6 +1,7 @@
 //===--- RuntimeFunctionsTest.cpp - Host functions of lowered code --------===//
 
 #include "simit/ABI/RuntimeFunctions.h"
+#include "simit/ffi.h"
 
 #include <Eigen/Dense>
 
@@ -391,4 +392,24 @@ TEST(RuntimeFunctionsTest, RuntimeProductAndUnionPatterns) {
   auto transposed = take(_mlir_ciface_simit_rt_transpose_pattern(&rA, &cA, 3));
   EXPECT_EQ(transposed.first, (std::vector<int32_t>{0, 1, 3, 4}));
   EXPECT_EQ(transposed.second, (std::vector<int32_t>{0, 0, 1, 2}));
+}
+
+// The ffi header's convertToCSR expands 2 x 2 blocks: [1 2 | 0 0; 3 4 | 0 0;
+// 0 0 | 5 6; 7 8 | 9 10] from block rows {(0, 0)} and {(1, 0), (1, 1)}.
+TEST(RuntimeFunctionsTest, ConvertToCSRExpandsBlocks) {
+  std::vector<int> rowptr = {0, 1, 3}, colidx = {0, 0, 1};
+  std::vector<double> blocks = {1, 2, 3, 4, 0, 0, 7, 8, 5, 6, 9, 10};
+  int *csrRowptr = nullptr, *csrColidx = nullptr;
+  double *csrValues = nullptr;
+  simit::ffi::convertToCSR(blocks.data(), rowptr.data(), colidx.data(), 4, 4, 2,
+                           2, &csrRowptr, &csrColidx, &csrValues);
+  EXPECT_EQ(std::vector<int>(csrRowptr, csrRowptr + 5),
+            (std::vector<int>{0, 2, 4, 8, 12}));
+  EXPECT_EQ(std::vector<int>(csrColidx, csrColidx + 12),
+            (std::vector<int>{0, 1, 0, 1, 0, 1, 2, 3, 0, 1, 2, 3}));
+  EXPECT_EQ(std::vector<double>(csrValues, csrValues + 12),
+            (std::vector<double>{1, 2, 3, 4, 0, 0, 5, 6, 7, 8, 9, 10}));
+  std::free(csrRowptr);
+  std::free(csrColidx);
+  std::free(csrValues);
 }

@@ -205,6 +205,11 @@ struct Storage {
   std::string describe() const;
 };
 
+/// Whether a matrix stored as `s` can be read as BCSR arrays
+/// (FunctionLowering::bcsrArrays): a BCSR storage, or a square diagonal,
+/// stencil or dense one.
+bool hasBCSRView(const Storage &s);
+
 /// The storage of the transpose of a matrix stored as `s` (a pattern over
 /// (C, R) for one over (R, C): the same endpoint pairs, swapped; a stencil
 /// of the negated offsets); none for products and incidences.
@@ -320,6 +325,12 @@ public:
   /// simit::StencilPattern) and a fresh array of values on it.
   std::array<Value, 3> stencilAsBCSR(Location loc, const Storage &storage,
                                      Value array);
+  /// The BCSR row pointers, column indices and blocks of `matrix`, stored
+  /// as `storage` (hasBCSRView): its own, or for a diagonal or dense
+  /// matrix arrays of its layout's pattern made here and its blocks, for a
+  /// stencil its bind-time pattern and a copy of its blocks on it.
+  std::array<Value, 3> bcsrArrays(Location loc, const Storage &storage,
+                                  Value matrix);
   /// An empty memref<?xi32> for runtime functions whose index arrays a
   /// layout does not use.
   Value emptyIndexArray();

@@ -209,15 +209,18 @@ LogicalResult FunctionLowering::lowerHostCall(func::CallOp call,
       args.append({components(lowered), flatten(b, loc, lowered)});
       continue;
     }
-    if (!storage.isBCSR())
+    // Block diagonal, stencil and dense matrices cross as BCSR too.
+    if (!hasBCSRView(storage))
       return call.emitError("extern func '")
              << name << "': matrices stored as " << storage.describe()
-             << " cannot cross to the host (BCSR matrices can)";
+             << " cannot cross to the host (BCSR matrices, and square "
+                "diagonal, stencil and dense ones, can)";
+    auto [rowptr, colidx, blocks] = bcsrArrays(loc, storage, operand);
     SmallVector<int64_t> block = blockShape(system);
     args.append({extent(storage.rows, block[0]), extent(storage.cols, block[1]),
-                 flatten(b, loc, rowPointers(storage)),
-                 flatten(b, loc, columnIndices(storage)), i32Constant(block[0]),
-                 i32Constant(block[1]), flatten(b, loc, lowered)});
+                 flatten(b, loc, rowptr), flatten(b, loc, colidx),
+                 i32Constant(block[0]), i32Constant(block[1]),
+                 flatten(b, loc, blocks)});
   }
 
   SmallVector<Value> resultValues;

@@ -97,20 +97,23 @@ static std::pair<Value, Value> bcsrIndices(FunctionLowering &l, Location loc,
 /// Whether the runtime's sparse solvers take a matrix stored as `s` (a
 /// stencil through its bind-time BCSR pattern).
 static bool isSparseSquare(const Storage &s) {
-  return (s.isBCSR() || s.kind == Storage::Kind::Diagonal ||
-          s.kind == Storage::Kind::Stencil ||
-          s.kind == Storage::Kind::DenseMatrix) &&
-         s.rows == s.cols;
+  return hasBCSRView(s) && s.rows == s.cols;
 }
 
-/// The BCSR row pointers, column indices and values the runtime's sparse
-/// solvers take for `matrix`, stored as `storage` (isSparseSquare).
-static std::array<Value, 3> bcsrArrays(FunctionLowering &l, Location loc,
-                                       const Storage &storage, Value matrix) {
+bool mlir::simit::loops::hasBCSRView(const Storage &s) {
+  return s.isBCSR() || ((s.kind == Storage::Kind::Diagonal ||
+                         s.kind == Storage::Kind::Stencil ||
+                         s.kind == Storage::Kind::DenseMatrix) &&
+                        s.rows == s.cols);
+}
+
+std::array<Value, 3> FunctionLowering::bcsrArrays(Location loc,
+                                                  const Storage &storage,
+                                                  Value matrix) {
   if (storage.kind == Storage::Kind::Stencil)
-    return l.stencilAsBCSR(loc, storage, l.lookup(matrix));
-  auto [rowPtr, colIdx] = bcsrIndices(l, loc, storage);
-  return {rowPtr, colIdx, l.lookup(matrix)};
+    return stencilAsBCSR(loc, storage, lookup(matrix));
+  auto [rowPtr, colIdx] = bcsrIndices(*this, loc, storage);
+  return {rowPtr, colIdx, lookup(matrix)};
 }
 
 /// `\`: the runtime's SolveSession (lib/ABI/SystemSolves.cpp).
@@ -182,7 +185,7 @@ LogicalResult FunctionLowering::lowerSystemSolve(Operation *op, Value matrix,
   if (diagonal) {
     args.push_back(asRuntimeBlocks(loc, lookup(matrix), values));
   } else {
-    auto [rowPtr, colIdx, blocks] = bcsrArrays(*this, loc, storage, matrix);
+    auto [rowPtr, colIdx, blocks] = bcsrArrays(loc, storage, matrix);
     args.append({rowPtr, colIdx, asRuntimeBlocks(loc, blocks, values)});
   }
   for (Value input : vectors)
@@ -318,7 +321,7 @@ LogicalResult FunctionLowering::lowerSystemFactorisation(Operation *op) {
     if (!callee)
       return op->emitError("@") << runtimeName
                                 << " is declared with another type";
-    auto [rowPtr, colIdx, blocks] = bcsrArrays(*this, loc, storage, matrix);
+    auto [rowPtr, colIdx, blocks] = bcsrArrays(loc, storage, matrix);
     auto lowered = func::CallOp::create(
         b, loc, callee,
         ValueRange{rowPtr, colIdx, asRuntimeBlocks(loc, blocks, values),

@@ -158,20 +158,13 @@ extern "C" void *_mlir_ciface_simit_rt_product_pattern(IndexArray *rowptrA,
       /*withDiagonal=*/false)};
 }
 
-extern "C" void *_mlir_ciface_simit_rt_union_pattern(
-    int32_t layoutA, IndexArray *rowptrA, IndexArray *colidxA, int32_t layoutB,
-    IndexArray *rowptrB, IndexArray *colidxB, int64_t rows, int64_t cols) {
-  auto member = [&](int32_t layout, IndexArray *rowptr, IndexArray *colidx) {
-    if (layout != 1)
-      return patternOf(rowptr, colidx, cols);
-    std::vector<int32_t> diagonal(rows + 1);
-    std::iota(diagonal.begin(), diagonal.end(), 0);
-    return simit::SparsityPattern::fromArrays(
-        static_cast<int>(rows), static_cast<int>(cols), diagonal,
-        std::vector<int32_t>(diagonal.begin(), diagonal.end() - 1));
-  };
-  auto a = member(layoutA, rowptrA, colidxA);
-  auto b = member(layoutB, rowptrB, colidxB);
+extern "C" void *_mlir_ciface_simit_rt_union_pattern(IndexArray *rowptrA,
+                                                     IndexArray *colidxA,
+                                                     IndexArray *rowptrB,
+                                                     IndexArray *colidxB,
+                                                     int64_t cols) {
+  auto a = patternOf(rowptrA, colidxA, cols);
+  auto b = patternOf(rowptrB, colidxB, cols);
   return new PatternHandle{simit::unionPattern({a.get(), b.get()})};
 }
 

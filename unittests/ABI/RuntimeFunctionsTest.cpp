@@ -378,14 +378,16 @@ TEST(RuntimeFunctionsTest, RuntimeProductAndUnionPatterns) {
       take(_mlir_ciface_simit_rt_product_pattern(&rA, &cA, &rB, &cB, 3));
   EXPECT_EQ(product.first, (std::vector<int32_t>{0, 2, 3, 4}));
   EXPECT_EQ(product.second, (std::vector<int32_t>{1, 2, 2, 0}));
-  // A + B = [x x .; . x x; x . x]; with the diagonal (layout 1) B + I.
-  auto sum =
-      take(_mlir_ciface_simit_rt_union_pattern(0, &rA, &cA, 0, &rB, &cB, 3, 3));
+  // A + B = [x x .; . x x; x . x]; B + I, the diagonal as its BCSR
+  // pattern.
+  auto sum = take(_mlir_ciface_simit_rt_union_pattern(&rA, &cA, &rB, &cB, 3));
   EXPECT_EQ(sum.first, (std::vector<int32_t>{0, 2, 4, 6}));
   EXPECT_EQ(sum.second, (std::vector<int32_t>{0, 1, 1, 2, 0, 2}));
-  MemRefDescriptor<int32_t, 1> none = {nullptr, nullptr, 0, {0}, {1}};
-  auto withDiagonal = take(
-      _mlir_ciface_simit_rt_union_pattern(1, &none, &none, 0, &rB, &cB, 3, 3));
+  std::vector<int32_t> rpI = {0, 1, 2, 3}, ciI = {0, 1, 2};
+  auto rI = describe<int32_t, 1>(rpI.data(), {4});
+  auto cI = describe<int32_t, 1>(ciI.data(), {3});
+  auto withDiagonal =
+      take(_mlir_ciface_simit_rt_union_pattern(&rI, &cI, &rB, &cB, 3));
   EXPECT_EQ(withDiagonal.first, (std::vector<int32_t>{0, 2, 4, 6}));
   EXPECT_EQ(withDiagonal.second, (std::vector<int32_t>{0, 1, 1, 2, 0, 2}));
   // A' = [x . .; x x .; . . x].

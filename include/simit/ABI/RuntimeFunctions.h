@@ -211,17 +211,14 @@ int32_t simit_rt_host_matrix_adopt(int32_t *rowptr, int32_t *colidx,
 
 /// The pattern of A B (product) or A + B (union) of matrices whose
 /// patterns are known only at run time (a host function's matrix in them):
-/// rowptr and colidx of A and B (BCSR; for the union also block diagonal,
-/// layout 1, whose index arrays are empty), A over rows x mid blocks and B
+/// rowptr and colidx of A and B (BCSR), A over rows x mid blocks and B
 /// over mid x cols for the product, both over rows x cols for the union.
 /// Returns a handle to the pattern for simit_rt_pattern_blocks (its number
 /// of blocks) and simit_rt_pattern_take (which copies it into the lowered
 /// code's arrays, rows + 1 and blocks long, and frees it).
 /// MLIR: func.func private @simit_rt_product_pattern(memref<?xi32>,
 ///   memref<?xi32>, memref<?xi32>, memref<?xi32>, i64) -> !llvm.ptr
-///   attributes {llvm.emit_c_interface};
-///   @simit_rt_union_pattern(i32, memref<?xi32>, memref<?xi32>, i32,
-///   memref<?xi32>, memref<?xi32>, i64, i64) -> !llvm.ptr (C interface);
+///   attributes {llvm.emit_c_interface}; @simit_rt_union_pattern alike;
 ///   @simit_rt_pattern_blocks(!llvm.ptr) -> i64;
 ///   @simit_rt_pattern_take(!llvm.ptr, memref<?xi32>, memref<?xi32>)
 ///   attributes {llvm.emit_c_interface}
@@ -231,11 +228,10 @@ void *_mlir_ciface_simit_rt_product_pattern(
     simit::abi::MemRefDescriptor<int32_t, 1> *rowptrB,
     simit::abi::MemRefDescriptor<int32_t, 1> *colidxB, int64_t cols);
 void *_mlir_ciface_simit_rt_union_pattern(
-    int32_t layoutA, simit::abi::MemRefDescriptor<int32_t, 1> *rowptrA,
-    simit::abi::MemRefDescriptor<int32_t, 1> *colidxA, int32_t layoutB,
+    simit::abi::MemRefDescriptor<int32_t, 1> *rowptrA,
+    simit::abi::MemRefDescriptor<int32_t, 1> *colidxA,
     simit::abi::MemRefDescriptor<int32_t, 1> *rowptrB,
-    simit::abi::MemRefDescriptor<int32_t, 1> *colidxB, int64_t rows,
-    int64_t cols);
+    simit::abi::MemRefDescriptor<int32_t, 1> *colidxB, int64_t cols);
 /// The pattern of A' for A (rowptr, colidx) of `cols` block columns.
 /// MLIR: func.func private @simit_rt_transpose_pattern(memref<?xi32>,
 ///   memref<?xi32>, i64) -> !llvm.ptr attributes {llvm.emit_c_interface}

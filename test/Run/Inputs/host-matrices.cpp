@@ -5,8 +5,10 @@
 
 #include "simit/ffi.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <initializer_list>
 
 namespace {
 // The original runtime's simit_malloc (what the process of simit-run
@@ -36,6 +38,18 @@ void negate(int rows, int, const int *rowptr, const int *colidx, int blockRows,
       for (int c = 0; c < size; ++c)
         (*result)[to * size + c] = -b[k * size + c];
     }
+}
+
+// Blocks of value 1 in row 0 only, at `columns`.
+int firstRowOnly(int rows, std::initializer_list<int> columns, int **rowptr,
+                 int **colidx, double **values) {
+  int blocks = static_cast<int>(columns.size());
+  allocate(rows, blocks, 1, rowptr, colidx, values);
+  for (int r = 0; r <= rows; ++r)
+    (*rowptr)[r] = r == 0 ? 0 : blocks;
+  std::copy(columns.begin(), columns.end(), *colidx);
+  std::fill(*values, *values + blocks, 1.0);
+  return 0;
 }
 } // namespace
 
@@ -80,12 +94,7 @@ int dtridiagonal(int rows, int, int **rowptr, int **colidx, int, int,
 // One block in row 0, at column `rows` (outside the matrix).
 int doutside(int rows, int, int **rowptr, int **colidx, int, int,
              double **values) {
-  allocate(rows, 1, 1, rowptr, colidx, values);
-  for (int r = 0; r <= rows; ++r)
-    (*rowptr)[r] = r == 0 ? 0 : 1;
-  (*colidx)[0] = rows;
-  (*values)[0] = 1;
-  return 0;
+  return firstRowOnly(rows, {rows}, rowptr, colidx, values);
 }
 
 // A function without floats defined with the precision's prefix, as the
@@ -98,11 +107,6 @@ int dseven(int *v) {
 // Row 0 holds column 0 twice.
 int dtwice(int rows, int, int **rowptr, int **colidx, int, int,
            double **values) {
-  allocate(rows, 2, 1, rowptr, colidx, values);
-  for (int r = 0; r <= rows; ++r)
-    (*rowptr)[r] = r == 0 ? 0 : 2;
-  (*colidx)[0] = (*colidx)[1] = 0;
-  (*values)[0] = (*values)[1] = 1;
-  return 0;
+  return firstRowOnly(rows, {0, 0}, rowptr, colidx, values);
 }
 }

@@ -647,6 +647,15 @@ bool storage::contains(StorageAttr outer, StorageAttr inner) {
   }
 }
 
+StorageAttr storage::findHost(StorageAttr x) {
+  if (x.getKind() == StorageKind::Host)
+    return x;
+  for (unsigned i = 0, e = x.getMembers().size(); i < e; ++i)
+    if (StorageAttr host = findHost(x.getMember(i)))
+      return host;
+  return {};
+}
+
 StorageAttr storage::join(StorageAttr a, StorageAttr b) {
   if (contains(a, b))
     return a;

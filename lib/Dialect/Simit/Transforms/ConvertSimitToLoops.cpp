@@ -93,19 +93,6 @@ void FunctionLowering::carryStorage(Value to, Value from) {
     storages[to] = storages[from];
 }
 
-/// A host encoding inside `encoding` (a member of a union, a product, a
-/// transpose or a low-rank term), or null.
-static StorageAttr hostMember(StorageAttr encoding) {
-  for (Attribute member : encoding.getMembers()) {
-    auto inner = cast<StorageAttr>(member);
-    if (inner.getKind() == StorageKind::Host)
-      return inner;
-    if (StorageAttr nested = hostMember(inner))
-      return nested;
-  }
-  return {};
-}
-
 LogicalResult FunctionLowering::checkStorages(func::FuncOp original) {
   auto collect = [&](Type type) {
     if (auto set = dyn_cast<SetType>(type))
@@ -152,7 +139,7 @@ LogicalResult FunctionLowering::checkStorages(func::FuncOp original) {
       return;
     unsupported = true;
     reported.insert(encoding);
-    if (StorageAttr host = hostMember(encoding)) {
+    if (StorageAttr host = storage::findHost(encoding)) {
       emitError(loc, "a matrix stored as '")
           << encoding.str() << "' (with the pattern host function '"
           << host.getSet().getValue()

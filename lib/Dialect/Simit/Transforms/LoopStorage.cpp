@@ -357,14 +357,6 @@ struct EncodingReader {
     return sum;
   }
 
-  /// Whether a host function's matrix is among the members of `e`.
-  static bool holdsHost(StorageAttr e) {
-    return llvm::any_of(e.getMembers(), [](Attribute m) {
-      auto member = cast<StorageAttr>(m);
-      return member.getKind() == StorageKind::Host || holdsHost(member);
-    });
-  }
-
   /// A pattern built at run time: a union of members that are all stored
   /// BCSR or block diagonal (its pattern comes from theirs), the transpose
   /// of a BCSR one, or any product (the product's comes from its
@@ -418,7 +410,7 @@ struct EncodingReader {
       StorageAttr inner = e.getOperand();
       // A host function's matrix transposed is stored on its transposed
       // pattern, built at run time.
-      if (inner.getKind() == StorageKind::Host || holdsHost(inner))
+      if (storage::findHost(inner))
         return runtimePattern(e, rows, cols);
       if (inner.getKind() == StorageKind::Incidence) {
         std::optional<Storage> stored = read(inner, cols, rows);
@@ -432,7 +424,7 @@ struct EncodingReader {
     case StorageKind::Union: {
       // With a host function's matrix in it, the pattern is built at run
       // time from the members' (all BCSR).
-      if (holdsHost(e))
+      if (storage::findHost(e))
         return runtimePattern(e, rows, cols);
       // A square pattern, union, product or stencil stores the diagonal
       // (runtime patterns over one set hold every (r, r)): a diagonal
@@ -451,7 +443,7 @@ struct EncodingReader {
       return sumOfProducts(e, rows, cols);
     }
     case StorageKind::Product: {
-      if (holdsHost(e))
+      if (storage::findHost(e))
         return runtimePattern(e, rows, cols);
       std::optional<ProductChain> chain = productChain(e, rows, cols);
       if (!chain)

@@ -325,6 +325,10 @@ public:
   /// simit::StencilPattern) and a fresh array of values on it.
   std::array<Value, 3> stencilAsBCSR(Location loc, const Storage &storage,
                                      Value array);
+  /// The BCSR row pointers and column indices of a matrix stored as
+  /// `storage` (hasBCSRView, not a stencil): its own, or arrays of the
+  /// pattern of a diagonal or dense layout made here.
+  std::pair<Value, Value> bcsrIndexArrays(Location loc, const Storage &storage);
   /// The BCSR row pointers, column indices and blocks of `matrix`, stored
   /// as `storage` (hasBCSRView): its own, or for a diagonal or dense
   /// matrix arrays of its layout's pattern made here and its blocks, for a
@@ -554,10 +558,12 @@ private:
   void buildRuntimePattern(Location loc, const Storage &storage);
   void buildProductPattern(Location loc, const Storage &storage,
                            const Storage &lhs, const Storage &rhs);
-  /// Copies the runtime's pattern `handle` over `rows` block rows into
+  /// The pattern the runtime's `function` (product, union or transpose
+  /// pattern) builds from `args`, over the blocks of `rows`, copied into
   /// fresh arrays (simit_rt_pattern_blocks, simit_rt_pattern_take).
-  std::pair<Value, Value> takeRuntimePattern(Location loc, Value handle,
-                                             Value rows);
+  std::pair<Value, Value>
+  runtimePatternOf(Location loc, ::simit::abi::RuntimeFunction function,
+                   ValueRange args, StringAttr rows);
   /// simit.print and strings (C strings as !llvm.ptr) through runtime
   /// functions (simit_rt_print_*, simit_rt_string_*).
   LogicalResult lowerPrintOrString(Operation *op);

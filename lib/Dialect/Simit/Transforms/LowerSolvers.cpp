@@ -45,15 +45,14 @@ Value FunctionLowering::asRuntimeBlocks(Location loc, Value array,
   return memref::CastOp::create(b, loc, target, array);
 }
 
-/// The row pointers and column indices of a BCSR matrix, or of a diagonal
-/// or dense one seen as BCSR (row r holds the block at column r, or the
-/// blocks at every column: r * n + c is the dense layout's block (r, c)):
-/// the runtime's sparse factorisations take both.
-static std::pair<Value, Value> bcsrIndices(FunctionLowering &l, Location loc,
-                                           const Storage &storage) {
+// A diagonal or dense matrix seen as BCSR: row r holds the block at column
+// r, or the blocks at every column (r * n + c is the dense layout's block
+// (r, c)).
+std::pair<Value, Value>
+FunctionLowering::bcsrIndexArrays(Location loc, const Storage &storage) {
   if (storage.isBCSR())
-    return {l.rowPointers(storage), l.columnIndices(storage)};
-  OpBuilder &b = l.b;
+    return {rowPointers(storage), columnIndices(storage)};
+  FunctionLowering &l = *this;
   bool dense = storage.kind == Storage::Kind::DenseMatrix;
   Value n = l.getSetSize(storage.rows);
   Value one = l.indexConstant(1);
@@ -112,7 +111,7 @@ std::array<Value, 3> FunctionLowering::bcsrArrays(Location loc,
                                                   Value matrix) {
   if (storage.kind == Storage::Kind::Stencil)
     return stencilAsBCSR(loc, storage, lookup(matrix));
-  auto [rowPtr, colIdx] = bcsrIndices(*this, loc, storage);
+  auto [rowPtr, colIdx] = bcsrIndexArrays(loc, storage);
   return {rowPtr, colIdx, lookup(matrix)};
 }
 

@@ -3,8 +3,8 @@
 // Patterns known only at run time: a product with a host function's matrix
 // gets its pattern from the runtime where it is computed
 // (simit_rt_product_pattern), a stored sum or transpose of one where it is
-// first needed (simit_rt_union_pattern, where a diagonal member has layout
-// 1 and no index arrays; simit_rt_transpose_pattern);
+// first needed (simit_rt_union_pattern, a diagonal member through the
+// BCSR pattern of its layout, one block a row; simit_rt_transpose_pattern);
 // simit_rt_pattern_take copies each into fresh arrays, which the product
 // and the reads then use.
 
@@ -43,7 +43,12 @@ func.func @product() attributes {simit.export} {
 
 // CHECK-LABEL: func.func @sum(
 // CHECK: call @simit_host.simit_rt_host_matrix_adopt(%{{.*}}, %{{.*}}, %{{.*}}, %{{.*}}, %{{.*}}, %[[RP:[^,]*]], %[[CI:[^,]*]], %{{.*}})
-// CHECK: %[[H:.*]] = call @simit_rt_union_pattern(%c1_i32, %[[EMPTY:[^,]*]], %[[EMPTY]], %c0_i32, %[[RP]], %[[CI]], %{{.*}}, %{{.*}})
+// CHECK: %[[DRP:.*]] = memref.alloc(%{{.*}}) : memref<?xi32>
+// CHECK: %[[DCI:.*]] = memref.alloc(%{{.*}}) : memref<?xi32>
+// CHECK: scf.for %[[R:[^ ]*]] =
+// CHECK: memref.store %{{.*}}, %[[DRP]][%[[R]]]
+// CHECK: memref.store %{{.*}}, %[[DCI]][%[[R]]]
+// CHECK: %[[H:.*]] = call @simit_rt_union_pattern(%[[DRP]], %[[DCI]], %[[RP]], %[[CI]], %{{.*}}) : (memref<?xi32>, memref<?xi32>, memref<?xi32>, memref<?xi32>, i64) -> !llvm.ptr
 // CHECK: call @simit_rt_pattern_blocks(%[[H]])
 // CHECK: call @simit_rt_pattern_take(%[[H]], %[[URP:[^,]*]], %[[UCI:[^)]*]])
 // CHECK: scf.parallel

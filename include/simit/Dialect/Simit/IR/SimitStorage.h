@@ -56,6 +56,11 @@ StorageAttr product(ArrayRef<StorageAttr> factors);
 /// `lowrank(X, a + b)`, and rank 0 is `x`.
 StorageAttr lowRank(StorageAttr x, int64_t rank);
 
+/// `x` if it is a host function's matrix (`host`), else the first such
+/// among its members (of a union, product, transpose or lowrank), else
+/// null: a pattern known only at run time is part of `x`.
+StorageAttr findHost(StorageAttr x);
+
 /// Whether `outer` stores every block `inner` stores, for encodings of
 /// matrices over the same two sets. Structural and conservative: a false
 /// "no" costs an index, never correctness. Equality; `empty` is below and

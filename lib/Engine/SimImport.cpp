@@ -34,6 +34,7 @@ simit::importSimit(llvm::StringRef source, llvm::StringRef bufferName,
       func->isExport = true;
   frontend::IRGenOptions irgenOptions;
   irgenOptions.singlePrecision = options.precision == FloatPrecision::Single;
+  irgenOptions.onlyFunctions = options.specialisation.entryFunctions;
   mlir::OwningOpRef<mlir::ModuleOp> module =
       frontend::generateIR(*program, diags, context, irgenOptions);
   if (!module || diags.hasErrors()) {

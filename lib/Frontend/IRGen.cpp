@@ -64,11 +64,40 @@ IRGenerator::IRGenerator(const Program &program, frontend::DiagnosticEngine &dia
   fileName = StringAttr::get(&context, name);
 }
 
+/// The functions `names` name and those they use, or null when a name is
+/// no function of `program` (everything is generated then, and compiling
+/// reports the unknown name).
+static std::optional<llvm::SmallPtrSet<const FuncDecl *, 16>>
+reachableFunctions(const Program &program, ArrayRef<std::string> names) {
+  if (names.empty())
+    return std::nullopt;
+  SmallVector<const FuncDecl *> work;
+  for (const std::string &name : names) {
+    auto found = llvm::find_if(program.funcs, [&](const auto &func) {
+      return func->name == name && !func->isGeneric();
+    });
+    if (found == program.funcs.end())
+      return std::nullopt;
+    work.push_back(found->get());
+  }
+  llvm::SmallPtrSet<const FuncDecl *, 16> reached;
+  while (!work.empty()) {
+    const FuncDecl *func = work.pop_back_val();
+    if (func && reached.insert(func).second)
+      llvm::append_range(work, func->callees);
+  }
+  return reached;
+}
+
 OwningOpRef<ModuleOp> IRGenerator::generate() {
   OwningOpRef<ModuleOp> owned =
       ModuleOp::create(FileLineColLoc::get(fileName, 1, 1));
   module = *owned;
   builder.setInsertionPointToEnd(module.getBody());
+  auto reached = reachableFunctions(program, options.onlyFunctions);
+  auto wanted = [&](const FuncDecl &func) {
+    return !reached || reached->contains(&func);
+  };
   for (const Decl *decl : program.order) {
     if (auto *var = dyn_cast<VarDecl>(decl)) {
       if (var->role == VarDecl::Role::Extern)
@@ -80,10 +109,12 @@ OwningOpRef<ModuleOp> IRGenerator::generate() {
       continue; // extern functions are declared where they are called
     if (func->isGeneric()) {
       for (const auto &instance : func->instances)
-        genFunction(*instance);
+        if (wanted(*instance))
+          genFunction(*instance);
       continue;
     }
-    genFunction(*func);
+    if (wanted(*func))
+      genFunction(*func);
   }
   if (failed)
     return nullptr;

@@ -242,20 +242,32 @@ void IRGenerator::genIndexAssign(const AssignStmt &stmt) {
   state.component = dialect::getComponentType(targetType);
   mlir::Type resultType = targetType;
   if (!direct) {
-    // The value over the distinct variables, as a dense tensor.
+    // The value over the distinct variables: a dense tensor over ranges, a
+    // system tensor over sets (`B(i,i) = 2.0 * A(i,i)` on a system matrix).
     SmallVector<int64_t> shape;
+    SmallVector<Attribute> sets;
     for (int64_t v : resultIndices) {
       ArrayAttr domain = state.domains[v];
-      auto size = domain.size() == 1 ? dyn_cast<IntegerAttr>(domain[0])
-                                     : IntegerAttr();
-      if (!size) {
-        unsupported(target.loc, "a target with repeated index variables or "
-                                "fixed indices over sets or blocks");
-        return;
-      }
-      shape.push_back(size.getInt());
+      Attribute dim = domain.size() == 1 ? domain[0] : Attribute();
+      if (auto size = dyn_cast_or_null<IntegerAttr>(dim))
+        shape.push_back(size.getInt());
+      else if (isa_and_nonnull<StringAttr>(dim))
+        sets.push_back(dim);
+      else
+        shape.push_back(ShapedType::kDynamic);
     }
-    resultType = RankedTensorType::get(shape, state.component);
+    if (llvm::is_contained(shape, ShapedType::kDynamic) ||
+        (!shape.empty() && !sets.empty())) {
+      unsupported(target.loc, "a target with repeated index variables or "
+                              "fixed indices over blocks, or over both sets "
+                              "and ranges");
+      return;
+    }
+    resultType =
+        sets.empty()
+            ? mlir::Type(RankedTensorType::get(shape, state.component))
+            : mlir::Type(dialect::SystemTensorType::get(
+                  &context, builder.getArrayAttr(sets), state.component));
   }
 
   collectIndexInputs(value, state);
@@ -327,13 +339,27 @@ void IRGenerator::writeIndexedTarget(const ReadExpr &target, Value value,
   Location l = loc(target.loc);
   SmallVector<Value> ivs;
   for (int64_t v : distinct) {
-    int64_t size = cast<IntegerAttr>(state.domains[v][0]).getInt();
+    // A set domain: a loop over its elements, which index the value and
+    // the target.
+    const VarDecl *set = nullptr;
+    for (auto [pos, index] : llvm::enumerate(target.indices))
+      if (indexVarOf(index.get()) == state.vars[v] &&
+          pos < target.base->type->dims.size() &&
+          target.base->type->dims[pos].kind == Dim::Kind::Set)
+        set = target.base->type->dims[pos].set;
+    Value setValue = set ? genSet(set, target.loc) : Value();
     Value lower = indexConstant(0, target.loc);
-    Value upper = indexConstant(size, target.loc);
+    Value upper =
+        set ? dialect::SetSizeOp::create(builder, l, setValue).getResult()
+            : indexConstant(cast<IntegerAttr>(state.domains[v][0]).getInt(),
+                            target.loc);
     Value one = indexConstant(1, target.loc);
     auto loop = scf::ForOp::create(builder, l, lower, upper, one);
     builder.setInsertionPoint(loop.getBody()->getTerminator());
-    ivs.push_back(loop.getInductionVar());
+    ivs.push_back(set ? dialect::SetElementOp::create(builder, l, setValue,
+                                                      loop.getInductionVar())
+                            .getResult()
+                      : loop.getInductionVar());
   }
   SmallVector<Value> indices;
   for (const ExprPtr &index : target.indices) {

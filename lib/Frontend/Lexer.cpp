@@ -7,6 +7,7 @@
 
 #include <cctype>
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 
 using namespace simit::frontend;
@@ -350,7 +351,13 @@ void Lexer::lexNumber() {
   std::string spelling = buffer.slice(start, pos).str();
   if (isFloat) {
     push(TokenKind::FloatLit, start);
-    tokens.back().floatValue = std::strtod(spelling.c_str(), nullptr);
+    double value = std::strtod(spelling.c_str(), nullptr);
+    if (std::isinf(value)) {
+      diags.error(locAt(start), "float literal '" + spelling +
+                                    "' is too large for a 64-bit float");
+      value = 0;
+    }
+    tokens.back().floatValue = value;
     return;
   }
   push(TokenKind::IntLit, start);
@@ -384,6 +391,12 @@ void Lexer::lexString() {
     if (c == '"') {
       ++pos;
       break;
+    }
+    // CR LF is one line break (language.md §2), in strings too.
+    if (c == '\r' && peek(1) == '\n') {
+      value += '\n';
+      pos += 2;
+      continue;
     }
     if (c != '\\') {
       value += c;

@@ -238,17 +238,27 @@ TypePtr Sema::checkCall(CallExpr &call) {
     }
     bound.push_back(*binding[g]);
   }
+  // A set parameter stands for the set passed: tensors over it are tensors
+  // over that set, in the other arguments and in the results.
+  std::vector<std::pair<const VarDecl *, const VarDecl *>> sets;
+  for (size_t i = 0; i < call.args.size(); ++i)
+    if (callee.params[i]->type && callee.params[i]->type->isSet())
+      if (const VarDecl *set = varOf(*call.args[i]))
+        sets.push_back({callee.params[i].get(), set});
   auto params = genericsOf(callee);
   for (size_t i = 0; i < call.args.size(); ++i)
-    ok &= checkArgument(callee, i, call.args[i],
-                        substitute(callee.params[i]->type, params, bound),
-                        "call of '" + callee.name + "'");
+    ok &= checkArgument(
+        callee, i, call.args[i],
+        substituteSets(substitute(callee.params[i]->type, params, bound), sets),
+        "call of '" + callee.name + "'");
   if (!ok)
     return Type::error();
   call.binding = bound;
   if (callee.isGeneric() && callee.body && !ctx.genericMode)
     call.func = instantiate(callee, bound);
-  return resultTypeOf(callee, bound);
+  if (ctx.func)
+    ctx.func->callees.push_back(call.func);
+  return substituteSets(resultTypeOf(callee, bound), sets);
 }
 
 const FuncDecl *Sema::instantiate(FuncDecl &generic,
@@ -502,5 +512,7 @@ TypePtr Sema::checkMap(MapExpr &map, bool isApply) {
   map.binding = bound;
   if (callee.isGeneric() && callee.body && !ctx.genericMode)
     map.func = instantiate(callee, bound);
+  if (ctx.func)
+    ctx.func->callees.push_back(map.func);
   return result;
 }

@@ -696,6 +696,12 @@ TypePtr Sema::checkBinary(BinaryExpr &binary) {
                                   "'");
       return Type::error();
     }
+    if (a->component == ScalarKind::Int) {
+      diags.error(binary.loc, "'\\' solves systems of float or complex "
+                              "components; found '" +
+                                  a->str() + "'");
+      return Type::error();
+    }
     if (a->hierarchy(0) != b->hierarchy(0)) {
       diags.error(binary.loc, "dimension mismatch in '\\': '" + a->str() +
                                   "' and '" + b->str() + "'");

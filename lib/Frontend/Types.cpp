@@ -228,3 +228,25 @@ TypePtr simit::frontend::substitute(
   TypePtr block = t->block ? substitute(t->block, params, binding) : nullptr;
   return Type::tensor(t->component, dims, block, t->row);
 }
+
+TypePtr simit::frontend::substituteSets(
+    const TypePtr &t,
+    const std::vector<std::pair<const VarDecl *, const VarDecl *>> &sets) {
+  if (!t || sets.empty())
+    return t;
+  if (t->isResults()) {
+    std::vector<TypePtr> results;
+    for (const TypePtr &r : t->results)
+      results.push_back(substituteSets(r, sets));
+    return Type::resultsOf(results);
+  }
+  if (!t->isTensor())
+    return t;
+  std::vector<Dim> dims = t->dims;
+  for (Dim &d : dims)
+    for (const auto &[param, arg] : sets)
+      if (d.kind == Dim::Kind::Set && d.set == param)
+        d = Dim::ofSet(arg);
+  TypePtr block = t->block ? substituteSets(t->block, sets) : nullptr;
+  return Type::tensor(t->component, dims, block, t->row);
+}

@@ -258,6 +258,8 @@ bool SparseFactorisation::holds(const SquareBCSRView<T> &a) const {
 
 llvm::Error SparseFactorisation::solve(const double *b, double *x) const {
   int64_t n = size();
+  if (n == 0)
+    return llvm::Error::success();
   if (umfpackNumeric) {
     double info[UMFPACK_INFO];
     SuiteSparse_long status = umfpack_dl_solve(
@@ -372,7 +374,10 @@ FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
     analysis->colidx.assign(a.colidx, a.colidx + a.rowptr[a.rows]);
     if (kind != FactorKind::Cholesky)
       buildColumns(a, *analysis);
-    if (kind == FactorKind::LU) {
+    // UMFPACK refuses a 0 x 0 matrix (an empty set): there is nothing to
+    // factorise or solve.
+    if (kind == FactorKind::LU && a.size() == 0) {
+    } else if (kind == FactorKind::LU) {
       double info[UMFPACK_INFO];
       SuiteSparse_long status = umfpack_dl_symbolic(
           a.size(), a.size(), analysis->columnPointers.data(),
@@ -436,7 +441,8 @@ FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
     factor->columnValues.clear();
   else
     factor->columnValues = columnValuesOf(a, analysis);
-  if (kind == FactorKind::LU) {
+  if (kind == FactorKind::LU && a.size() == 0) {
+  } else if (kind == FactorKind::LU) {
     if (factor->umfpackNumeric)
       umfpack_dl_free_numeric(&factor->umfpackNumeric);
     double info[UMFPACK_INFO];

@@ -456,6 +456,35 @@ static std::string stringOf(const HostValue &value) {
   return text ? text : "";
 }
 
+/// `text` in double quotes, its line breaks, tabs, quotes and backslashes
+/// escaped as in Simit source, so that a failed comparison shows where two
+/// strings differ.
+static std::string quoted(llvm::StringRef text) {
+  std::string out = "\"";
+  for (char c : text) {
+    switch (c) {
+    case '\n':
+      out += "\\n";
+      break;
+    case '\r':
+      out += "\\r";
+      break;
+    case '\t':
+      out += "\\t";
+      break;
+    case '"':
+      out += "\\\"";
+      break;
+    case '\\':
+      out += "\\\\";
+      break;
+    default:
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
 std::string simit::compareResult(const HostValue &actual,
                                  const Literal &expected) {
   if (!kindMatches(expected.kind, actual.scalar, actual.isComplex))
@@ -468,7 +497,7 @@ std::string simit::compareResult(const HostValue &actual,
     std::string text = stringOf(actual);
     if (text == expected.text)
       return "";
-    return "\"" + text + "\" != \"" + expected.text + "\"";
+    return quoted(text) + " != " + quoted(expected.text);
   }
   if (actual.numComponents() != expected.numComponents())
     return "the result has shape [" + llvm::join(llvm::map_range(actual.shape, [](int64_t d) { return std::to_string(d); }), ", ") +
@@ -569,7 +598,7 @@ std::string simit::formatValue(const HostValue &value) {
     case ScalarKind::Index:
       return std::to_string(static_cast<int64_t>(v));
     case ScalarKind::String:
-      return "\"" + stringOf(value) + "\"";
+      return quoted(stringOf(value));
     }
     llvm_unreachable("unknown scalar kind");
   };
@@ -597,7 +626,7 @@ std::string simit::formatLiteral(const Literal &literal) {
       return "<" + formatFloat(literal.values[2 * i], 17) + ", " +
              formatFloat(literal.values[2 * i + 1], 17) + ">";
     case Literal::Kind::String:
-      return "\"" + literal.text + "\"";
+      return quoted(literal.text);
     }
     llvm_unreachable("unknown literal kind");
   };

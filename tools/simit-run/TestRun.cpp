@@ -200,10 +200,76 @@ int simit::runTests(const TestRunOptions &options, llvm::raw_ostream &os) {
   return runner.failed ? 1 : 0;
 }
 
+namespace {
+/// Why `literal` is no value of the Simit type `type` although its
+/// components may fit the compiled parameter: a row for a column vector or
+/// the reverse, a matrix for a vector or the reverse (language.md section
+/// 11: arguments have the parameter types, orientation included).
+std::optional<std::string> orientationMismatch(const Literal &literal,
+                                               const frontend::Type &type) {
+  if (!type.isTensor() || type.block || type.order() == 0 || type.order() > 2 ||
+      literal.kind == Literal::Kind::String)
+    return std::nullopt;
+  auto shapeOf = [](const Literal &l) -> std::string {
+    if (l.shape.size() == 2)
+      return "a matrix";
+    if (l.shape.size() == 1)
+      return l.column ? "a column vector" : "a row vector";
+    return l.shape.empty() ? "a scalar" : "a tensor";
+  };
+  bool fits = type.isMatrix() ? literal.shape.size() == 2
+                              : literal.shape.size() == 1 &&
+                                    literal.column == type.isColumnVector();
+  if (fits)
+    return std::nullopt;
+  return shapeOf(literal) + " for a parameter of type '" + type.str() + "'" +
+         (type.isColumnVector() && literal.shape.size() == 1
+              ? " (write a column as [a, b, ...]')"
+              : "");
+}
+
+/// The orientation check of `args` against the parameters of the Simit
+/// function `name` in the file `path` (.mlir files have no orientation).
+llvm::Error checkOrientations(llvm::StringRef path, llvm::StringRef name,
+                              llvm::ArrayRef<Literal> args) {
+  if (!path.ends_with(".sim"))
+    return llvm::Error::success();
+  auto file = llvm::MemoryBuffer::getFile(path, /*IsText=*/true);
+  if (!file)
+    return llvm::Error::success(); // loading the program reports it
+  llvm::SourceMgr sourceMgr;
+  unsigned buffer =
+      sourceMgr.AddNewSourceBuffer(std::move(*file), llvm::SMLoc());
+  frontend::DiagnosticEngine diags(sourceMgr);
+  std::unique_ptr<frontend::Program> ast =
+      frontend::parseProgram(sourceMgr, buffer, diags);
+  if (!diags.hasErrors())
+    frontend::checkProgram(*ast, diags);
+  if (diags.hasErrors())
+    return llvm::Error::success(); // so does compiling it
+  for (const auto &func : ast->funcs) {
+    if (func->name != name || func->params.size() != args.size())
+      continue;
+    for (size_t i = 0; i < args.size(); ++i)
+      if (func->params[i]->type)
+        if (std::optional<std::string> why =
+                orientationMismatch(args[i], *func->params[i]->type))
+          return llvm::createStringError("argument " + llvm::Twine(i + 1) +
+                                         ": " + *why);
+  }
+  return llvm::Error::success();
+}
+} // namespace
+
 int simit::runEval(const EvalOptions &options, llvm::raw_ostream &os) {
   llvm::Expected<CallText> call = parseCall(options.call);
   if (!call) {
     llvm::errs() << llvm::toString(call.takeError()) << "\n";
+    return 1;
+  }
+  if (llvm::Error err =
+          checkOrientations(options.path, call->function, call->args)) {
+    llvm::errs() << "--eval: " << llvm::toString(std::move(err)) << "\n";
     return 1;
   }
   ProgramOptions programOptions = options.program;

@@ -298,6 +298,6 @@ end
   k.set(springs.add(1, 2), 1.0);
   // The run ends with the message; the process goes on.
   EXPECT_EQ(bindAndRun(*compiled, {{"points", &points}, {"springs", &springs}}),
-            "writing a block that is not in the sparsity of pattern of "
+            "writing a block outside the storage of the matrix, pattern of "
             "'springs' over ('points', 'points') (outside.sim:17:7)");
 }

@@ -183,6 +183,8 @@ public:
   /// Instances of a generic function, one per binding (checked).
   std::vector<std::unique_ptr<FuncDecl>> instances;
   const FuncDecl *genericOrigin = nullptr; // instance: its generic function
+  /// The functions its calls and maps use (their instances for generics).
+  std::vector<const FuncDecl *> callees;
   std::vector<Dim> binding;                // instance: one Dim per generic
   std::string mangledName;                 // instance: unique symbol name
 };

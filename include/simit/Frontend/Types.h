@@ -162,6 +162,12 @@ TypePtr substitute(const TypePtr &t,
                    const std::vector<const GenericParamDecl *> &params,
                    const std::vector<Dim> &binding);
 
+/// The same type with every dimension over a set in `sets` (set-typed
+/// parameters) over the set it maps to (the argument of a call).
+TypePtr substituteSets(
+    const TypePtr &t,
+    const std::vector<std::pair<const VarDecl *, const VarDecl *>> &sets);
+
 } // namespace simit::frontend
 
 #endif // SIMIT_FRONTEND_TYPES_H

@@ -581,6 +581,13 @@ private:
   /// runtime's BCSR functions: arrays of scalars gain unit block
   /// dimensions (memref<?xf64> as memref<?x1x1xf64>).
   Value asRuntimeBlocks(Location loc, Value array, MemRefType target);
+  /// A new array of `array`'s shape with components of type `element`:
+  /// the runtime's factorisations are in double precision, so a float32
+  /// program's matrices and vectors are widened for them.
+  Value allocLike(Location loc, Value array, Type element);
+  /// Copies `from` into `to` (same shape), converting each component to
+  /// `to`'s float type.
+  void copyConverted(Location loc, Value from, Value to);
   /// Factorisations of square system matrices assembled from a set, their
   /// solves of system vectors, and triangular solves: the runtime's sparse
   /// solvers.

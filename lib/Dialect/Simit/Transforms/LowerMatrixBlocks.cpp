@@ -222,7 +222,7 @@ LogicalResult FunctionLowering::lowerMatrixBlockAccess(Operation *op) {
   Value found = arith::CmpIOp::create(b, loc, arith::CmpIPredicate::sge,
                                       position, indexConstant(0));
   cf::AssertOp::create(b, loc, found,
-                       "writing a block that is not in the sparsity of " +
+                       "writing a block outside the storage of the matrix, " +
                            storage.describe() + sourcePositionSuffix(loc));
   // `A(r, c) = v` on a variable (load, insert, store back) writes the
   // variable's array in place; otherwise the matrix is copied first.

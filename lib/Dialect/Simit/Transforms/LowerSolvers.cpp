@@ -9,6 +9,8 @@
 #include "LoopsLowering.h"
 #include "simit/Dialect/Simit/IR/SourcePosition.h"
 
+#include <functional>
+
 using namespace mlir;
 using namespace mlir::simit;
 using namespace mlir::simit::loops;
@@ -43,6 +45,41 @@ Value FunctionLowering::asRuntimeBlocks(Location loc, Value array,
         ArrayRef<ReassociationIndices>{all}, sizes);
   }
   return memref::CastOp::create(b, loc, target, array);
+}
+
+Value FunctionLowering::allocLike(Location loc, Value array, Type element) {
+  auto type = cast<MemRefType>(array.getType());
+  SmallVector<Value> sizes;
+  for (int64_t d = 0; d < type.getRank(); ++d)
+    if (type.isDynamicDim(d))
+      sizes.push_back(memref::DimOp::create(b, loc, array, d));
+  return memref::AllocOp::create(
+      b, loc, MemRefType::get(type.getShape(), element), sizes);
+}
+
+void FunctionLowering::copyConverted(Location loc, Value from, Value to) {
+  int64_t rank = cast<MemRefType>(from.getType()).getRank();
+  auto target =
+      cast<FloatType>(cast<MemRefType>(to.getType()).getElementType());
+  SmallVector<Value> at;
+  std::function<void(int64_t)> nest = [&](int64_t d) {
+    if (d == rank) {
+      Value v = memref::LoadOp::create(b, loc, from, at);
+      unsigned width = cast<FloatType>(v.getType()).getWidth();
+      if (target.getWidth() > width)
+        v = arith::ExtFOp::create(b, loc, target, v);
+      else if (target.getWidth() < width)
+        v = arith::TruncFOp::create(b, loc, target, v);
+      memref::StoreOp::create(b, loc, v, to, at);
+      return;
+    }
+    forLoop(loc, memref::DimOp::create(b, loc, from, d), [&](Value i) {
+      at.push_back(i);
+      nest(d + 1);
+      at.pop_back();
+    });
+  };
+  nest(0);
 }
 
 // A diagonal or dense matrix seen as BCSR: row r holds the block at column
@@ -261,10 +298,12 @@ LogicalResult FunctionLowering::lowerSystemFactorisation(Operation *op) {
   auto solve = dyn_cast<FactorSolveOp>(op);
   Value matrix = factorize ? factorize.getMatrix() : Value();
   Storage storage = matrix ? storageOf(matrix) : Storage();
+  // f32 arrays (a float32 program) are widened for the runtime and its
+  // solutions narrowed back.
   auto f64Blocks = [](Type t, unsigned order) {
     auto type = dyn_cast<SystemTensorType>(t);
     if (!type || !type.isSystem() || type.getOrder() != order ||
-        !type.getComponentType().isF64())
+        !(type.getComponentType().isF64() || type.getComponentType().isF32()))
       return false;
     SmallVector<int64_t> block = type.getBlockShape();
     return block.empty() || (order == 2 && block.size() == 2 &&
@@ -272,17 +311,10 @@ LogicalResult FunctionLowering::lowerSystemFactorisation(Operation *op) {
            (order == 1 && block.size() == 1);
   };
   if (factorize &&
-      !cast<SystemTensorType>(matrix.getType()).getComponentType().isF64())
-    return op->emitError("'")
-           << name
-           << "' on a system matrix needs f64 components (the runtime's "
-              "factorisations are in double precision); this one has "
-           << cast<SystemTensorType>(matrix.getType()).getComponentType();
-  if (factorize &&
       !(f64Blocks(matrix.getType(), 2) && isSparseSquare(storage)))
     return op->emitError("'")
            << name
-           << "' on a system matrix needs a square f64 matrix of scalars or "
+           << "' on a system matrix needs a square float matrix of scalars or "
               "square blocks assembled from a set; this one is stored as "
            << storage.describe();
   auto scalarMatrix = [&](Type t) {
@@ -295,9 +327,9 @@ LogicalResult FunctionLowering::lowerSystemFactorisation(Operation *op) {
       !(f64Blocks(solve.getRhs().getType(), 1) &&
         solve.getType() == solve.getRhs().getType()))
     return op->emitError("'") << name
-                              << "' on system tensors needs an f64 vector "
+                              << "' on system tensors needs a float vector "
                                  "right-hand side, solved to its own type, "
-                                 "or an f64 matrix of scalars";
+                                 "or a float matrix of scalars";
   if (!factorize && !solve)
     return op->emitError("'") << name
                               << "' is not supported on system tensors by "
@@ -321,6 +353,11 @@ LogicalResult FunctionLowering::lowerSystemFactorisation(Operation *op) {
       return op->emitError("@") << runtimeName
                                 << " is declared with another type";
     auto [rowPtr, colIdx, blocks] = bcsrArrays(loc, storage, matrix);
+    if (!cast<MemRefType>(blocks.getType()).getElementType().isF64()) {
+      Value wide = allocLike(loc, blocks, b.getF64Type());
+      copyConverted(loc, blocks, wide);
+      blocks = wide;
+    }
     auto lowered = func::CallOp::create(
         b, loc, callee,
         ValueRange{rowPtr, colIdx, asRuntimeBlocks(loc, blocks, values),
@@ -337,11 +374,20 @@ LogicalResult FunctionLowering::lowerSystemFactorisation(Operation *op) {
     return lowerFactorMatrixSolve(solve, callee, where);
   Value x = allocSystem(loc, solve.getType(), Storage::dense(),
                         /*zeroFill=*/false);
-  func::CallOp::create(
-      b, loc, callee,
-      ValueRange{lookup(solve.getFactorization()),
-                 asRuntimeBlocks(loc, lookup(solve.getRhs()), vector),
-                 asRuntimeBlocks(loc, x, vector), where});
+  Value rhs = lookup(solve.getRhs()), solution = x;
+  if (!cast<MemRefType>(x.getType()).getElementType().isF64()) {
+    Value wide = allocLike(loc, rhs, b.getF64Type());
+    copyConverted(loc, rhs, wide);
+    rhs = wide;
+    solution = allocLike(loc, x, b.getF64Type());
+  }
+  func::CallOp::create(b, loc, callee,
+                       ValueRange{lookup(solve.getFactorization()),
+                                  asRuntimeBlocks(loc, rhs, vector),
+                                  asRuntimeBlocks(loc, solution, vector),
+                                  where});
+  if (solution != x)
+    copyConverted(loc, solution, x);
   map(solve.getResult(), x);
   return success();
 }
@@ -380,6 +426,8 @@ LogicalResult FunctionLowering::lowerFactorMatrixSolve(FactorSolveOp solve,
       Value at =
           arith::SelectOp::create(b, loc, present, position, indexConstant(0));
       Value stored = memref::LoadOp::create(b, loc, bValues, at);
+      if (!stored.getType().isF64())
+        stored = arith::ExtFOp::create(b, loc, b.getF64Type(), stored);
       memref::StoreOp::create(
           b, loc, arith::SelectOp::create(b, loc, present, stored, zero),
           column, r);
@@ -391,9 +439,12 @@ LogicalResult FunctionLowering::lowerFactorMatrixSolve(FactorSolveOp solve,
                                                     runtimeVector),
                                     where});
     forLoop(loc, resultRows, [&](Value r) {
-      memref::StoreOp::create(b, loc,
-                              memref::LoadOp::create(b, loc, solution, r), x,
-                              findBlock(loc, result, r, j));
+      Value at = findBlock(loc, result, r, j);
+      Value component = memref::LoadOp::create(b, loc, solution, r);
+      if (resultType.getComponentType() != component.getType())
+        component = arith::TruncFOp::create(
+            b, loc, resultType.getComponentType(), component);
+      memref::StoreOp::create(b, loc, component, x, at);
     });
   });
   // The buffer deallocation passes free the two vectors.

@@ -45,7 +45,7 @@ func.func @link(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> !A {
 // CHECK:   %[[NEW:.*]] = arith.addf %[[OLD]], %{{.*}}
 // The write reuses the read's scan.
 // CHECK-NOT: scf.for
-// CHECK:   cf.assert %[[HAS]], "writing a block that is not in the sparsity of pattern of 'springs' over ('points', 'points')
+// CHECK:   cf.assert %[[HAS]], "writing a block outside the storage of the matrix, pattern of 'springs' over ('points', 'points')
 // CHECK:   memref.store %[[NEW]], %[[AV]][%[[POS]]]
 // The matrix product reads the variable's array.
 // CHECK: memref.load %[[AV]]

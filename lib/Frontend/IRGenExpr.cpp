@@ -539,13 +539,22 @@ Value IRGenerator::genSetRead(const SetReadExpr &e) {
     SmallVector<int64_t> values;
     for (const ExprPtr &expr : exprs) {
       std::optional<FoldedLiteral> literal = foldLiteral(*expr);
-      if (!literal || literal->kind != ScalarKind::Int ||
-          !literal->shape.empty()) {
-        unsupported(expr->loc, "a grid offset that is not an int literal");
-        values.push_back(0);
+      if (literal && literal->kind == ScalarKind::Int &&
+          literal->shape.empty()) {
+        values.push_back(literal->ints.front());
         continue;
       }
-      values.push_back(literal->ints.front());
+      // A variable of an unrolled loop (`for d in -1:2 ... P[d]`), or an
+      // expression that folds to a constant.
+      std::optional<int64_t> folded =
+          isa<IntegerType>(convertType(expr->type, expr->loc))
+              ? constantInt(genExpr(*expr))
+              : std::nullopt;
+      if (!folded)
+        unsupported(expr->loc, "a grid offset that is not a constant (an int "
+                               "literal, or the variable of a loop over "
+                               "constant bounds)");
+      values.push_back(folded.value_or(0));
     }
     return values;
   };

@@ -130,16 +130,27 @@ static void walkBlock(const frontend::Block *block, const ExprVisitor &visit) {
 }
 
 /// Whether `var` occurs in the position of a tuple read inside `body`.
-static bool picksEndpoints(const frontend::Block &body, const VarDecl *var) {
+/// Whether `var` picks an endpoint of a tuple (`v(i)`) or a grid offset
+/// (`P[i]`) in `body`: these must be constants, so a loop over `var` with
+/// constant bounds is unrolled.
+static bool picksStatically(const frontend::Block &body, const VarDecl *var) {
   bool found = false;
+  auto uses = [&](const Expr *expr) {
+    if (expr)
+      walkExpr(expr, [&](const Expr &inner) {
+        if (auto *name = dyn_cast<NameExpr>(&inner))
+          found |= name->decl == var;
+      });
+  };
   walkBlock(&body, [&](const Expr &e) {
-    auto *read = dyn_cast<TupleReadExpr>(&e);
-    if (!read || !read->index)
-      return;
-    walkExpr(read->index.get(), [&](const Expr &inner) {
-      if (auto *name = dyn_cast<NameExpr>(&inner))
-        found |= name->decl == var;
-    });
+    if (auto *read = dyn_cast<TupleReadExpr>(&e))
+      uses(read->index.get());
+    if (auto *read = dyn_cast<SetReadExpr>(&e)) {
+      for (const ExprPtr &offset : read->offsets)
+        uses(offset.get());
+      for (const ExprPtr &direction : read->directions)
+        uses(direction.get());
+    }
   });
   return found;
 }
@@ -403,7 +414,7 @@ void IRGenerator::genFor(const ForStmt &stmt) {
 
 void IRGenerator::genRangeFor(const ForStmt &stmt, Value lower, Value upper) {
   std::optional<int64_t> lo = constantInt(lower), hi = constantInt(upper);
-  if (lo && hi && picksEndpoints(*stmt.body, stmt.var.get())) {
+  if (lo && hi && picksStatically(*stmt.body, stmt.var.get())) {
     for (int64_t i = *lo; i < *hi; ++i) {
       bindings[stmt.var.get()] = {intConstant(i, stmt.var->loc), false};
       genBlock(*stmt.body);

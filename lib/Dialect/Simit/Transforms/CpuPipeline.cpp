@@ -42,6 +42,7 @@ void mlir::simit::buildSimitCpuPipeline(
     pm.addPass(createSimitTimePhases());
   if (options.checkNumerics)
     pm.addPass(createSimitCheckNumerics());
+  pm.addPass(createSimitIndexProductsToMatMul());
   pm.addPass(createSimitLinalgToIndexExpr());
   pm.addPass(createSimitFuseIndexExpr());
   pm.addPass(createSimitAssignStorage());

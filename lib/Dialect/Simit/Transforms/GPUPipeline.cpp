@@ -39,6 +39,7 @@ struct GpuPipeline : public simit::impl::SimitGpuPipelineBase<GpuPipeline> {
       // The CPU pipeline's first half, without its hoisting of allocas out
       // of parallel loops: on the GPU those stay private to each thread.
       pm.addPass(simit::createSimitInlineFunctions());
+      pm.addPass(simit::createSimitIndexProductsToMatMul());
       pm.addPass(simit::createSimitLinalgToIndexExpr());
       pm.addPass(simit::createSimitFuseIndexExpr());
       pm.addPass(simit::createSimitAssignStorage());

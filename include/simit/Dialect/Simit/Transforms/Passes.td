@@ -150,6 +150,21 @@ def SimitLinalgToIndexExpr : Pass<"simit-linalg-to-index-expr", "::mlir::ModuleO
                            "::mlir::math::MathDialect"];
 }
 
+def SimitIndexProductsToMatMul : Pass<"simit-index-products-to-matmul", "::mlir::ModuleOp"> {
+  let summary = "Matrix products written in index notation become simit.matmul";
+  let description = [{
+    In `C(i,j) = A(i,k) * B(k,j) + D(j,i)` on system matrices of scalars,
+    the sum over `k` of the product of two matrices each indexed by `k`
+    once (a `simit.index_sum` over `k` alone, or the whole body when `k` is
+    the expression's one summed variable) becomes an input `P(i,j)` with
+    `P = simit.matmul` of the two (each transposed when its index list puts
+    `k` on the other side), and `k` leaves the expression. The lowering
+    builds the product's pattern from the operands' patterns, which a loop
+    over the index variables cannot enumerate.
+  }];
+  let dependentDialects = ["::mlir::simit::SimitDialect"];
+}
+
 def SimitFuseIndexExpr : Pass<"simit-fuse-index-expr", "::mlir::ModuleOp"> {
   let summary = "Fuses chains of index expressions into one loop nest";
   let description = [{

@@ -252,8 +252,11 @@ llvm::Error bindFromScene(const SceneDescription &scene, SetRegistry &registry,
   for (const ArgumentBinding &arg : function.signature().arguments) {
     if (arg.kind == ArgumentBinding::Kind::Parameter)
       return llvm::createStringError(
-          "function '" + name + "' takes parameters; a scene can only "
-          "run functions without parameters");
+          scene.path + ": " +
+          (llvm::is_contained(scene.init, name) ? "init" : "step") +
+          ": function '" + name +
+          "' takes parameters; a scene can only run functions without "
+          "parameters");
     if (arg.kind != ArgumentBinding::Kind::Extern)
       continue;
     ExternTensor *tensor = registry.findExtern(arg.name);

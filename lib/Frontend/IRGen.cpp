@@ -65,8 +65,8 @@ IRGenerator::IRGenerator(const Program &program, frontend::DiagnosticEngine &dia
 }
 
 /// The functions `names` name and those they use, or null when a name is
-/// no function of `program` (everything is generated then, and compiling
-/// reports the unknown name).
+/// no exported function of `program` (everything is generated then, and
+/// compiling reports the unknown name with the exported ones).
 static std::optional<llvm::SmallPtrSet<const FuncDecl *, 16>>
 reachableFunctions(const Program &program, ArrayRef<std::string> names) {
   if (names.empty())
@@ -74,7 +74,7 @@ reachableFunctions(const Program &program, ArrayRef<std::string> names) {
   SmallVector<const FuncDecl *> work;
   for (const std::string &name : names) {
     auto found = llvm::find_if(program.funcs, [&](const auto &func) {
-      return func->name == name && !func->isGeneric();
+      return func->name == name && !func->isGeneric() && func->isExport;
     });
     if (found == program.funcs.end())
       return std::nullopt;

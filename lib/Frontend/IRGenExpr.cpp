@@ -17,6 +17,7 @@
 #include "mlir/Dialect/Arith/IR/Arith.h"
 #include "mlir/Dialect/Complex/IR/Complex.h"
 #include "mlir/Dialect/ControlFlow/IR/ControlFlowOps.h"
+#include "mlir/Dialect/UB/IR/UBOps.h"
 #include "mlir/IR/Matchers.h"
 
 using namespace simit::frontend;
@@ -561,10 +562,23 @@ Value IRGenerator::genSetRead(const SetReadExpr &e) {
   Value grid = genVarValue(*e.grid, e.loc);
   Value pointValue = genVarValue(*point, e.loc);
   SmallVector<int64_t> offsets = constants(e.offsets);
-  if (e.hasDirections)
+  if (e.hasDirections) {
+    SmallVector<int64_t> direction = constants(e.directions);
+    // language.md 7.9: a direction has exactly one component, +1 or -1.
+    if (llvm::count_if(direction, [](int64_t d) { return d != 0; }) != 1 ||
+        llvm::any_of(direction, [](int64_t d) { return d < -1 || d > 1; })) {
+      std::string text;
+      for (int64_t d : direction)
+        text += (text.empty() ? "" : ",") + std::to_string(d);
+      diags.error(e.loc, "the direction of a grid edge read has exactly one "
+                         "nonzero component, +1 or -1; found (" +
+                             text + ")");
+      failed = true;
+      return mlir::ub::PoisonOp::create(builder, loc(e.loc), resultType);
+    }
     return dialect::GridEdgeOp::create(builder, loc(e.loc), resultType, grid,
-                                     pointValue, offsets,
-                                     constants(e.directions));
+                                       pointValue, offsets, direction);
+  }
   return dialect::GridPointOp::create(builder, loc(e.loc), resultType, grid,
                                     pointValue, offsets);
 }

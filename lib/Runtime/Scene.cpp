@@ -798,6 +798,16 @@ llvm::Error SceneParser::checkEndpointSets(const SceneDescription &scene) {
   return llvm::Error::success();
 }
 
+/// Whether `value` is a boolean or a nested array starting with one: a
+/// bool extern without a "type" (readConstant then wants them all
+/// booleans).
+static bool holdsBooleans(const Json &value) {
+  const Json *first = &value;
+  while (first->is_array() && !first->empty())
+    first = &(*first)[0];
+  return first->is_boolean();
+}
+
 llvm::Error SceneParser::parseExterns(const Json &value,
                                       SceneDescription &scene) {
   if (auto err = expectObject(value, "externs"))
@@ -829,12 +839,12 @@ llvm::Error SceneParser::parseExterns(const Json &value,
                                             "int32 or bool, found \"" +
                                                 *text + "\"");
         tensor.type = *type;
-      } else if (it.value()["value"].is_boolean()) {
+      } else if (holdsBooleans(it.value()["value"])) {
         tensor.type = ComponentType::Bool;
       }
       constant = &it.value()["value"];
       path = child(path, "value");
-    } else if (it.value().is_boolean()) {
+    } else if (holdsBooleans(it.value())) {
       tensor.type = ComponentType::Bool;
     }
     if (auto err = readConstant(*constant, path, tensor.type, tensor.shape,
@@ -939,6 +949,11 @@ llvm::Error SceneParser::parseOutput(const Json &value,
       return error(child(path, "last"), "expected true or false");
     output.lastOnly = value["last"].get<bool>();
   }
+  size_t frameAt = output.path.find("{frame}");
+  if (frameAt != std::string::npos &&
+      output.path.find("{frame}", frameAt + 1) != std::string::npos)
+    return error(child(path, "path"),
+                 "expected \"{frame}\" at most once in the path");
   bool manyFiles = !output.lastOnly && (vtk || output.path.find("{frame}") !=
                                                    std::string::npos);
   if (manyFiles && output.path.find("{frame}") == std::string::npos)

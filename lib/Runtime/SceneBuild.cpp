@@ -39,6 +39,9 @@ void ExternTensor::store() {
 
 /// Why `value` cannot be a component of `type`, or "" when it can.
 static std::string componentProblem(ComponentType type, double value) {
+  // An expression may divide by zero or take the root of a negative number.
+  if (!std::isfinite(value))
+    return llvm::formatv("expected a finite number, found {0}", value).str();
   if (type == ComponentType::Int32 &&
       (std::floor(value) != value || value < INT32_MIN || value > INT32_MAX))
     return llvm::formatv("expected an int32 value, found {0}", value).str();

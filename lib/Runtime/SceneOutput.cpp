@@ -200,6 +200,12 @@ llvm::Error SceneOutputWriter::writeOutput(size_t index, int frame) {
     return file->flush();
   }
   std::string path = pathFor(output, frame);
+  // "{frame}" may name a folder of its own per frame.
+  llvm::StringRef parent = llvm::sys::path::parent_path(path);
+  if (!parent.empty())
+    if (std::error_code ec = llvm::sys::fs::create_directories(parent))
+      return llvm::createStringError(parent +
+                                     ": cannot create: " + ec.message());
   if (llvm::Error err = output.kind == OutputSpec::VTK
                             ? writeVTU(path, set, vtkOptions(output, registry))
                             : writeCSV(path, set, output.fields))

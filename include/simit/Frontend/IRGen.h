@@ -22,7 +22,7 @@ namespace simit::frontend {
 struct IRGenOptions {
   /// `float` is f32 (and `complex` complex<f32>) instead of f64.
   bool singlePrecision = false;
-  /// When every name is a function of the program: only these functions
+  /// When every name is an exported function: only these functions
   /// and those they use are generated, so that a construct the generator
   /// does not support elsewhere in the file stops nothing. Empty: all.
   std::vector<std::string> onlyFunctions;

@@ -182,6 +182,31 @@ Value FunctionLowering::indexConstant(int64_t value) {
   return arith::ConstantIndexOp::create(b, function.getLoc(), value);
 }
 
+Value FunctionLowering::loadWhole(Location loc, VectorType type, Value memref) {
+  int64_t rank = cast<MemRefType>(memref.getType()).getRank();
+  SmallVector<Value> origin(rank, indexConstant(0));
+  if (!type.getElementType().isInteger(1))
+    return vector::LoadOp::create(b, loc, type, memref, origin);
+  SmallVector<Value> components;
+  for (int64_t i = 0, n = type.getNumElements(); i < n; ++i)
+    components.push_back(
+        memref::LoadOp::create(b, loc, memref, indexConstant(i)));
+  return vector::FromElementsOp::create(b, loc, type, components);
+}
+
+void FunctionLowering::storeWhole(Location loc, Value value, Value memref) {
+  auto type = cast<VectorType>(value.getType());
+  int64_t rank = cast<MemRefType>(memref.getType()).getRank();
+  SmallVector<Value> origin(rank, indexConstant(0));
+  if (!type.getElementType().isInteger(1)) {
+    vector::StoreOp::create(b, loc, value, memref, origin);
+    return;
+  }
+  for (int64_t i = 0, n = type.getNumElements(); i < n; ++i)
+    memref::StoreOp::create(b, loc, vector::ExtractOp::create(b, loc, value, i),
+                            memref, indexConstant(i));
+}
+
 Value FunctionLowering::zeroOf(Type scalarType) {
   // A string variable starts empty.
   if (isa<LLVM::LLVMPointerType>(scalarType))

@@ -352,6 +352,12 @@ public:
   //===--- Helpers shared by the parts ----------------------------------===//
 
   Value indexConstant(int64_t value);
+  /// The whole rank-1 `memref` as a vector, and the reverse: a vector.load
+  /// or vector.store, except for bools, component by component: a
+  /// vector<N x i1> in memory is N packed bits, while bool arrays (the
+  /// host's, and scalar i1 loads) hold a byte per component.
+  Value loadWhole(Location loc, VectorType type, Value memref);
+  void storeWhole(Location loc, Value value, Value memref);
   /// Emits `body(i)` in a sequential scf.for over [0, upper).
   void forLoop(Location loc, Value upper, function_ref<void(Value)> body);
   Value zeroOf(Type scalarType);

@@ -198,8 +198,7 @@ LogicalResult FunctionLowering::lowerHostCall(func::CallOp call,
       auto slotType = MemRefType::get(vector.getShape(),
                                       vector.getElementType());
       Value slot = allocaSlot(loc, slotType);
-      vector::StoreOp::create(b, loc, lowered, slot,
-                              ValueRange{indexConstant(0)});
+      storeWhole(loc, lowered, slot);
       args.append({i32Constant(vector.getNumElements()),
                    flatten(b, loc, slot)});
       continue;
@@ -251,8 +250,7 @@ LogicalResult FunctionLowering::lowerHostCall(func::CallOp call,
       args.append({i32Constant(vector.getNumElements()),
                    flatten(b, loc, slot)});
       readResults.push_back([&, slot, vector]() -> Value {
-        return vector::LoadOp::create(b, loc, vector, slot,
-                                      ValueRange{indexConstant(0)});
+        return loadWhole(loc, vector, slot);
       });
       continue;
     }

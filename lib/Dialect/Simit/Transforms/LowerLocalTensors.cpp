@@ -475,8 +475,7 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
     if (type.getRank() == 0)
       map(load, memref::LoadOp::create(b, loc, slot, ValueRange{}));
     else
-      map(load, vector::LoadOp::create(b, loc, cast<VectorType>(resultType()),
-                                       slot, ValueRange{indexConstant(0)}));
+      map(load, loadWhole(loc, cast<VectorType>(resultType()), slot));
     return success();
   }
   if (auto store = dyn_cast<StoreOp>(op)) {
@@ -485,8 +484,7 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
     if (cast<MemRefType>(slot.getType()).getRank() == 0)
       memref::StoreOp::create(b, loc, value, slot, ValueRange{});
     else
-      vector::StoreOp::create(b, loc, value, slot,
-                              ValueRange{indexConstant(0)});
+      storeWhole(loc, value, slot);
     return success();
   }
 

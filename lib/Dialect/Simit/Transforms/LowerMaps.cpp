@@ -459,8 +459,7 @@ LogicalResult FunctionLowering::lowerElementAccess(Operation *op,
       return success();
     }
     if (!element->accumulate) {
-      vector::StoreOp::create(b, loc, value, output,
-                              ValueRange{indexConstant(0)});
+      storeWhole(loc, value, output);
       return success();
     }
     // One scalar update per component, as for a scalar result, so that
@@ -617,8 +616,7 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
       else if (slotType.getRank() == 0)
         memref::StoreOp::create(b, loc, init, slot, ValueRange{});
       else
-        vector::StoreOp::create(b, loc, init, slot,
-                                ValueRange{indexConstant(0)});
+        storeWhole(loc, init, slot);
       ctx.outputs.push_back(slot);
       ctx.outputStorages.push_back(Storage::dense());
       scalarResults.push_back({result, slot});
@@ -702,9 +700,9 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
     if (cast<MemRefType>(slot.getType()).getRank() == 0)
       map(result, memref::LoadOp::create(b, loc, slot, ValueRange{}));
     else
-      map(result, vector::LoadOp::create(
-                      b, loc, cast<VectorType>(convertType(result.getType())),
-                      slot, ValueRange{indexConstant(0)}));
+      map(result,
+          loadWhole(loc, cast<VectorType>(convertType(result.getType())),
+                    slot));
   }
   return success();
 }

@@ -497,22 +497,31 @@ LogicalResult IndexExprLowering::lower(ExtractOp at) {
   }
   // A loop over a stencil on a grid narrower than its offsets visits an
   // entry once per offset naming its column: block by block is right only
-  // when every matrix is that stencil and the body adds and scales them.
+  // when every matrix is that stencil, read as the result is written (not
+  // transposed: the transposed entry lands at another offset, which may
+  // name the same column as one the loop also writes), and the body adds
+  // and scales them.
   SmallVector<Storage> matrixStorages;
-  for (Value in : op.getInputs())
-    if (l.storageOf(in).isMatrix())
-      matrixStorages.push_back(l.storageOf(in));
+  bool transposesMatrix = false;
+  for (auto [i, in] : llvm::enumerate(op.getInputs())) {
+    if (!l.storageOf(in).isMatrix())
+      continue;
+    matrixStorages.push_back(l.storageOf(in));
+    ArrayRef<int64_t> list = op.getInputIndexList(i);
+    transposesMatrix |= resultStorage.isMatrix() && list.size() == 2 &&
+                        resultVars.size() == 2 && list[0] == resultVars[1] &&
+                        list[1] == resultVars[0];
+  }
   if (resultStorage.isMatrix())
     matrixStorages.push_back(resultStorage);
-  entrywiseStencils =
-      llvm::any_of(matrixStorages,
-                   [](const Storage &s) {
-                     return s.kind == Storage::Kind::Stencil;
-                   }) &&
-      (multipliesMatrices(op) ||
-       llvm::any_of(matrixStorages, [&](const Storage &s) {
-         return s != matrixStorages.front();
-       }));
+  entrywiseStencils = llvm::any_of(matrixStorages,
+                                   [](const Storage &s) {
+                                     return s.kind == Storage::Kind::Stencil;
+                                   }) &&
+                      (multipliesMatrices(op) || transposesMatrix ||
+                       llvm::any_of(matrixStorages, [&](const Storage &s) {
+                         return s != matrixStorages.front();
+                       }));
   ArrayRef<int64_t> resultOrder = indexList(op.getInputs().size());
   SmallVector<unsigned> free(resultOrder.begin(), resultOrder.end());
   bool sparseSum =

@@ -494,6 +494,14 @@ llvm::Error Function::Impl::prepareArgument(const ArgumentBinding &arg,
                 });
     bool shapeFits =
         flat ? bufferNumbers == hostNumbers : bufferShape == hostShape;
+    // A declared shape: the value has it, or is flat (a matrix given as its
+    // rows one after another); a scalar is one number, not an array.
+    if (arg.declaredShape && shapeFits && bufferShape != *arg.declaredShape &&
+        !(arg.declaredShape->size() > 1 && bufferShape.size() == 1))
+      return error(arg.describe() + " is bound to " +
+                   componentTypeName(buffer.type).str() + " of shape " +
+                   shapeString(buffer.shape) + ", but the program declares " +
+                   "shape " + shapeString(*arg.declaredShape));
     if (buffer.type != expected || !shapeFits)
       return error(arg.describe() + " is bound to " +
                    componentTypeName(buffer.type).str() + " of shape " +

@@ -389,6 +389,13 @@ public:
       if (dict.get("set"))
         if (llvm::Error err = get("set", binding.set))
           return err;
+      if (mlir::Attribute shape = dict.get("shape")) {
+        auto dims = llvm::dyn_cast<mlir::DenseI64ArrayAttr>(shape);
+        if (!dims)
+          return error("expected 'shape' to be an array of integers");
+        binding.declaredShape = std::vector<int64_t>(dims.asArrayRef().begin(),
+                                                     dims.asArrayRef().end());
+      }
       return get("name", binding.name);
     case Kind::Parameter: {
       auto index = dict.getAs<mlir::IntegerAttr>("index");

@@ -136,6 +136,12 @@ std::string simit::serializeObjectCode(const ObjectCode &code) {
       out.integer(arg.partTransposed);
       out.integer(arg.index);
       out.integer(arg.chunk);
+      out.integer(arg.declaredShape.has_value());
+      if (arg.declaredShape) {
+        out.integer<uint64_t>(arg.declaredShape->size());
+        for (int64_t dim : *arg.declaredShape)
+          out.integer(dim);
+      }
       out.type(arg.type);
     }
     out.integer<uint64_t>(function.signature.results.size());
@@ -198,6 +204,11 @@ llvm::Expected<ObjectCode> simit::deserializeObjectCode(llvm::StringRef bytes) {
       arg.partTransposed = in.integer<bool>();
       arg.index = in.integer<int64_t>();
       arg.chunk = in.integer<int64_t>();
+      if (in.integer<bool>()) {
+        arg.declaredShape.emplace(in.count(sizeof(int64_t)));
+        for (int64_t &dim : *arg.declaredShape)
+          dim = in.integer<int64_t>();
+      }
       arg.type = in.type();
     }
     function.signature.results.resize(in.count(sizeof(uint64_t)));

@@ -3,6 +3,7 @@
 #include "Common.h"
 
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <utility>
 
@@ -169,6 +170,21 @@ py::array simit::python::convertExactly(const py::object &value,
           std::string(py::str(low < INT32_MIN ? numpy.attr("min")(source)
                                               : numpy.attr("max")(source))));
   }
+  bool numeric = kind == 'f' || kind == 'i' || kind == 'u';
+  if (type == ComponentType::Bool && numeric && source.size() > 0 &&
+      !numpy.attr("all")(numpy.attr("isin")(source, py::make_tuple(0, 1)))
+           .cast<bool>())
+    throw py::value_error(what + ": expected bool values (0 or 1), found " +
+                          "another number");
+  // A finite float64 beyond float32's range would become infinity.
+  if (type == ComponentType::Float32 && kind == 'f' && source.size() > 0 &&
+      numpy
+          .attr("any")(numpy.attr("greater")(
+              numpy.attr("abs")(numpy.attr("where")(
+                  numpy.attr("isfinite")(source), source, 0.0)),
+              std::numeric_limits<float>::max()))
+          .cast<bool>())
+    throw py::value_error(what + ": a value is too large for float32");
   return py::array(
       numpy.attr("asarray")(source, dtype, py::arg("order") = "C"));
 }

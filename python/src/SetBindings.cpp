@@ -38,8 +38,23 @@ int addEdges(Set &set, const py::handle &endpointArray) {
   if (!set.isEdgeSet())
     throw py::type_error("set '" + set.name().str() +
                          "' is a vertex set: add vertices with add(count)");
-  auto array = py::array_t<int64_t, py::array::c_style | py::array::forcecast>::
-      ensure(endpointArray);
+  // Indices are integers: a float array must hold whole numbers (forcecast
+  // alone would truncate 0.5 to 0).
+  py::module_ numpy = py::module_::import("numpy");
+  py::array source(numpy.attr("asarray")(endpointArray));
+  char kind = source.dtype().kind();
+  if (kind == 'f' && source.size() > 0 &&
+      !numpy
+           .attr("all")(
+               numpy.attr("equal")(numpy.attr("floor")(source), source))
+           .cast<bool>())
+    throw py::value_error("endpoints: expected integer indices, found a "
+                          "fraction or a non-finite value");
+  if (kind != 'f' && kind != 'i' && kind != 'u' && source.size() > 0)
+    throw py::type_error("endpoints: expected an integer array");
+  auto array =
+      py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(
+          source);
   if (!array)
     throw py::type_error("endpoints: expected an integer array");
   int card = set.cardinality();
@@ -52,8 +67,12 @@ int addEdges(Set &set, const py::handle &endpointArray) {
   for (py::ssize_t r = 0; r < rows; ++r) {
     for (int i = 0; i < card; ++i) {
       int64_t index = data(r, i);
-      row[i] = index < INT32_MIN || index > INT32_MAX ? -1
-                                                       : static_cast<int>(index);
+      if (index < INT32_MIN || index > INT32_MAX)
+        throw py::value_error("endpoints row " + std::to_string(r) +
+                              ": endpoint " + std::to_string(i) + " is " +
+                              std::to_string(index) +
+                              ", beyond 32-bit indices");
+      row[i] = static_cast<int>(index);
     }
     if (llvm::Error err = set.checkEndpoints(row))
       throw py::value_error("endpoints row " + std::to_string(r) + ": " +

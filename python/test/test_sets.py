@@ -81,6 +81,14 @@ def test_edge_sets_from_index_arrays():
     assert len(springs) == 4  # all or none
     with pytest.raises(ValueError, match=r"shape \(n, 2\)"):
         springs.add_edges([[0, 1, 2]])
+    # Indices are whole numbers: 0.5 is not truncated to 0.
+    with pytest.raises(ValueError, match="expected integer indices"):
+        springs.add_edges([[0.5, 1.0]])
+    with pytest.raises(ValueError, match="endpoint 1 is 10000000000, beyond "
+                                         "32-bit indices"):
+        springs.add_edges([[0, 10**10]])
+    assert springs.add_edges([[1.0, 2.0]]) == 4
+    np.testing.assert_array_equal(springs.endpoints[-1], [1, 2])
     with pytest.raises(ValueError):
         springs.endpoints[0, 0] = 1  # read-only
 
@@ -141,3 +149,19 @@ def test_an_int_extern_takes_integers_only():
         program.bind(k=3e9)
     program.bind(k=7.0)
     assert program.f() == 7
+
+
+def test_bool_and_float32_values_must_fit():
+    program = simit.compile("extern b : bool;\n"
+                            "export func f() -> (r : bool)\n  r = b;\nend\n")
+    with pytest.raises(ValueError, match="expected bool values \\(0 or 1\\)"):
+        program.bind(b=0.5)
+    with pytest.raises(ValueError, match="expected bool values"):
+        program.bind(b=2)
+    program.bind(b=1)
+    assert program.f() is True or program.f() == 1
+    single = simit.compile("extern x : float;\n"
+                           "export func f() -> (r : float)\n  r = x;\nend\n",
+                           float32=True)
+    with pytest.raises(ValueError, match="too large for float32"):
+        single.bind(x=1e39)

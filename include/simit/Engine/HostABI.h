@@ -19,6 +19,7 @@
 #include "llvm/Support/Error.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -114,6 +115,9 @@ struct ArgumentBinding {
   int64_t index = -1;
   /// ElementColours: elements per chunk.
   int64_t chunk = 0;
+  /// Extern scalars and local tensors: the shape the program declares ([]
+  /// for a scalar); a bound value must have it, or be flat.
+  std::optional<std::vector<int64_t>> declaredShape;
   ValueType type;
 
   /// The key Function binds it under: the extern's name, or "#<index>" for

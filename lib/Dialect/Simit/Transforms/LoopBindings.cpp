@@ -17,8 +17,9 @@ static StringRef bindingKindName(BindingKind kind) {
   return StringRef(name.data(), name.size());
 }
 
-Value FunctionLowering::getBinding(BindingKind kind, ArrayRef<StringRef> names,
-                                   Type type) {
+Value FunctionLowering::getBinding(
+    BindingKind kind, ArrayRef<StringRef> names, Type type,
+    std::optional<ArrayRef<int64_t>> declaredShape) {
   std::string key = bindingKindName(kind).str();
   for (StringRef name : names)
     key += ":" + name.str();
@@ -42,6 +43,9 @@ Value FunctionLowering::getBinding(BindingKind kind, ArrayRef<StringRef> names,
     if (names.size() > 1)
       entries.emplace_back(StringAttr::get(ctx, "set"),
                            StringAttr::get(ctx, names[1]));
+    if (declaredShape)
+      entries.emplace_back(StringAttr::get(ctx, "shape"),
+                           DenseI64ArrayAttr::get(ctx, *declaredShape));
     break;
   case BindingKind::Field:
   case BindingKind::StencilRowPtr:
@@ -310,5 +314,13 @@ Value FunctionLowering::getExtern(ExternOp global) {
                     ? MemRefType::get({}, type)
                     : MemRefType::get({numComponents(type)},
                                       getComponentType(type));
-  return getBinding(BindingKind::Extern, {global.getSymName()}, memref);
+  // Scalars and unblocked local tensors: the host checks the shape it binds
+  // (a 3x2 array is no matrix[2,3], though it has as many numbers).
+  std::optional<ArrayRef<int64_t>> declared;
+  if (isa<FloatType, IntegerType>(type))
+    declared = ArrayRef<int64_t>{};
+  else if (auto tensor = dyn_cast<RankedTensorType>(type))
+    declared = tensor.getShape();
+  return getBinding(BindingKind::Extern, {global.getSymName()}, memref,
+                    declared);
 }

@@ -501,7 +501,11 @@ private:
   /// The function argument of binding `kind` of the named sets (for union
   /// bindings, the member sets joined by '+'; a union gather map names
   /// its part as a fourth, "part").
-  Value getBinding(BindingKind kind, ArrayRef<StringRef> names, Type type);
+  /// `declaredShape`: an extern scalar's or local tensor's shape as the
+  /// program declares it (the host checks the bound value against it; the
+  /// memref holds the components flat).
+  Value getBinding(BindingKind kind, ArrayRef<StringRef> names, Type type,
+                   std::optional<ArrayRef<int64_t>> declaredShape = {});
   LogicalResult lowerFunctionReturn(func::ReturnOp op);
   /// Solves call the runtime's SolveSession (docs/solvers.md).
   LogicalResult lowerSolve(SolveOp op);

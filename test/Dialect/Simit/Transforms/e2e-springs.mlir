@@ -15,7 +15,7 @@
 
 // The driver passes the data in this order.
 // ABI-LABEL: func.func @step(
-// ABI-SAME: simit.bindings = [{kind = "set_size", set = "points"}, {kind = "set_size", set = "springs"}, {kind = "endpoints", set = "springs"}, {field = "m", kind = "field", set = "points"}, {field = "v", kind = "field", set = "points"}, {field = "x", kind = "field", set = "points"}, {field = "k", kind = "field", set = "springs"}, {cols = "points", kind = "pattern_rowptr", rows = "points", set = "springs"}, {cols = "points", kind = "pattern_colidx", rows = "points", set = "springs"}, {cols = "points", kind = "pattern_locations", rows = "points", set = "springs"}, {kind = "extern", name = "h"}, {kind = "extern", name = "out"}]
+// ABI-SAME: simit.bindings = [{kind = "set_size", set = "points"}, {kind = "set_size", set = "springs"}, {kind = "endpoints", set = "springs"}, {field = "m", kind = "field", set = "points"}, {field = "v", kind = "field", set = "points"}, {field = "x", kind = "field", set = "points"}, {field = "k", kind = "field", set = "springs"}, {cols = "points", kind = "pattern_rowptr", rows = "points", set = "springs"}, {cols = "points", kind = "pattern_colidx", rows = "points", set = "springs"}, {cols = "points", kind = "pattern_locations", rows = "points", set = "springs"}, {kind = "extern", name = "h", shape = array<i64>}, {kind = "extern", name = "out", shape = array<i64>}]
 
 // Points x = (0,0,0), (1,0,0), (1,2,0); m = 1, 2, 3; v = e0, e1, e2.
 // Springs (0,1) k = 10 and (1,2) k = 20; h = 0.5.

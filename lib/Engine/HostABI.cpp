@@ -288,6 +288,19 @@ public:
     return llvm::Error::success();
   }
 
+  /// The optional declared `shape` of an extern or parameter.
+  llvm::Error getShape(ArgumentBinding &binding) const {
+    mlir::Attribute shape = dict.get("shape");
+    if (!shape)
+      return llvm::Error::success();
+    auto dims = llvm::dyn_cast<mlir::DenseI64ArrayAttr>(shape);
+    if (!dims)
+      return error("expected 'shape' to be an array of integers");
+    binding.declaredShape = std::vector<int64_t>(dims.asArrayRef().begin(),
+                                                 dims.asArrayRef().end());
+    return llvm::Error::success();
+  }
+
   llvm::Error read(ArgumentBinding &binding) const {
     std::string kind;
     if (llvm::Error err = get("kind", kind))
@@ -389,20 +402,15 @@ public:
       if (dict.get("set"))
         if (llvm::Error err = get("set", binding.set))
           return err;
-      if (mlir::Attribute shape = dict.get("shape")) {
-        auto dims = llvm::dyn_cast<mlir::DenseI64ArrayAttr>(shape);
-        if (!dims)
-          return error("expected 'shape' to be an array of integers");
-        binding.declaredShape = std::vector<int64_t>(dims.asArrayRef().begin(),
-                                                     dims.asArrayRef().end());
-      }
+      if (llvm::Error err = getShape(binding))
+        return err;
       return get("name", binding.name);
     case Kind::Parameter: {
       auto index = dict.getAs<mlir::IntegerAttr>("index");
       if (!index || index.getInt() < 0)
         return error("expected a non-negative integer 'index'");
       binding.index = index.getInt();
-      return llvm::Error::success();
+      return getShape(binding);
     }
     }
     llvm_unreachable("unknown binding kind");

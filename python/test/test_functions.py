@@ -48,3 +48,16 @@ def test_an_extern_vector_over_a_set_is_bound_in_place():
     program.step.bind(u=np.zeros((2, 2)))
     with pytest.raises(simit.Error, match=r"expects float64 of shape \[3, 2\]"):
         program.step()
+
+
+def test_a_matrix_parameter_takes_its_declared_shape_or_flat():
+    program = simit.compile(
+        "export func m(a : matrix[2,3](float)) -> (r : float)\n"
+        "  r = a(1,0);\nend\n")
+    assert program.m(np.arange(6.0).reshape(2, 3)) == 3.0
+    assert program.m(np.arange(6.0)) == 3.0  # flat, row-major
+    # As many numbers, the other shape: refused, not read as 2x3.
+    with pytest.raises(simit.Error, match=r"parameter 0 is bound to float64 "
+                       r"of shape \[3, 2\], but the program declares shape "
+                       r"\[2, 3\]"):
+        program.m(np.arange(6.0).reshape(3, 2))

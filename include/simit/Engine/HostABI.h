@@ -115,8 +115,9 @@ struct ArgumentBinding {
   int64_t index = -1;
   /// ElementColours: elements per chunk.
   int64_t chunk = 0;
-  /// Extern scalars and local tensors: the shape the program declares ([]
-  /// for a scalar); a bound value must have it, or be flat.
+  /// Extern scalars and local tensors, and local tensor parameters: the
+  /// shape the program declares ([] for a scalar); a bound value must have
+  /// it, or be flat.
   std::optional<std::vector<int64_t>> declaredShape;
   ValueType type;
 

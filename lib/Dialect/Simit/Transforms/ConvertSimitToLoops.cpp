@@ -582,13 +582,19 @@ LogicalResult FunctionLowering::run(func::FuncOp original) {
                  ? param
                  : vector::ShapeCastOp::create(b, arg.getLoc(), type, param)
                        .getResult());
-    bindingAttrs.push_back(DictionaryAttr::get(
-        ctx, {NamedAttribute(
-                  StringAttr::get(ctx, "kind"),
-                  StringAttr::get(ctx, ::simit::abi::spelling(
-                                           BindingKind::Parameter))),
-              NamedAttribute(StringAttr::get(ctx, "index"),
-                             b.getI64IntegerAttr(i))}));
+    SmallVector<NamedAttribute> entries = {
+        NamedAttribute(StringAttr::get(ctx, "kind"),
+                       StringAttr::get(ctx, ::simit::abi::spelling(
+                                                BindingKind::Parameter))),
+        NamedAttribute(StringAttr::get(ctx, "index"), b.getI64IntegerAttr(i))};
+    // A local tensor of real components: the host checks the shape of what
+    // it binds (a 3x2 array is no matrix[2,3], though it has as many
+    // numbers), as for externs.
+    if (auto tensor = dyn_cast<RankedTensorType>(arg.getType());
+        tensor && !isa<ComplexType>(tensor.getElementType()))
+      entries.emplace_back(StringAttr::get(ctx, "shape"),
+                           DenseI64ArrayAttr::get(ctx, tensor.getShape()));
+    bindingAttrs.push_back(DictionaryAttr::get(ctx, entries));
   }
   for (Type type : original.getResultTypes()) {
     Type lowered = convertType(type);

@@ -374,20 +374,21 @@ FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
     analysis->colidx.assign(a.colidx, a.colidx + a.rowptr[a.rows]);
     if (kind != FactorKind::Cholesky)
       buildColumns(a, *analysis);
-    // UMFPACK refuses a 0 x 0 matrix (an empty set): there is nothing to
-    // factorise or solve.
-    if (kind == FactorKind::LU && a.size() == 0) {
-    } else if (kind == FactorKind::LU) {
-      double info[UMFPACK_INFO];
-      SuiteSparse_long status = umfpack_dl_symbolic(
-          a.size(), a.size(), analysis->columnPointers.data(),
-          analysis->rowIndices.data(), nullptr, &analysis->umfpackSymbolic,
-          nullptr, info);
-      if (status != UMFPACK_OK)
-        return llvm::createStringError(
-            llvm::formatv("UMFPACK symbolic analysis failed (status {0})",
-                          status)
-                .str());
+    if (kind == FactorKind::LU) {
+      // UMFPACK refuses a 0 x 0 matrix (an empty set): there is nothing to
+      // factorise or solve (solve() returns at once).
+      if (a.size() > 0) {
+        double info[UMFPACK_INFO];
+        SuiteSparse_long status = umfpack_dl_symbolic(
+            a.size(), a.size(), analysis->columnPointers.data(),
+            analysis->rowIndices.data(), nullptr, &analysis->umfpackSymbolic,
+            nullptr, info);
+        if (status != UMFPACK_OK)
+          return llvm::createStringError(
+              llvm::formatv("UMFPACK symbolic analysis failed (status {0})",
+                            status)
+                  .str());
+      }
     } else if (kind == FactorKind::Cholesky) {
       analysis->supernodal =
           direct::analyse(a.rows, a.blockSize, a.rowptr, a.colidx);
@@ -441,24 +442,25 @@ FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
     factor->columnValues.clear();
   else
     factor->columnValues = columnValuesOf(a, analysis);
-  if (kind == FactorKind::LU && a.size() == 0) {
-  } else if (kind == FactorKind::LU) {
-    if (factor->umfpackNumeric)
-      umfpack_dl_free_numeric(&factor->umfpackNumeric);
-    double info[UMFPACK_INFO];
-    SuiteSparse_long status = umfpack_dl_numeric(
-        analysis.columnPointers.data(), analysis.rowIndices.data(),
-        factor->columnValues.data(), analysis.umfpackSymbolic,
-        &factor->umfpackNumeric, nullptr, info);
-    if (status != UMFPACK_OK)
-      return llvm::createStringError(
-          status == UMFPACK_WARNING_singular_matrix
-              ? std::string("the matrix is singular (its LU factorisation "
-                            "has a zero pivot)")
-              : llvm::formatv("UMFPACK numeric factorisation failed "
-                              "(status {0})",
-                              status)
-                    .str());
+  if (kind == FactorKind::LU) {
+    if (a.size() > 0) {
+      if (factor->umfpackNumeric)
+        umfpack_dl_free_numeric(&factor->umfpackNumeric);
+      double info[UMFPACK_INFO];
+      SuiteSparse_long status = umfpack_dl_numeric(
+          analysis.columnPointers.data(), analysis.rowIndices.data(),
+          factor->columnValues.data(), analysis.umfpackSymbolic,
+          &factor->umfpackNumeric, nullptr, info);
+      if (status != UMFPACK_OK)
+        return llvm::createStringError(
+            status == UMFPACK_WARNING_singular_matrix
+                ? std::string("the matrix is singular (its LU factorisation "
+                              "has a zero pivot)")
+                : llvm::formatv("UMFPACK numeric factorisation failed "
+                                "(status {0})",
+                                status)
+                      .str());
+    }
   } else if (kind == FactorKind::Cholesky) {
     // The values of A(p, p)'s lower triangle at their places in L, zeros
     // elsewhere, factorised in place: the blocks on and below the diagonal

@@ -28,8 +28,8 @@ namespace {
 constexpr llvm::StringLiteral kMagic = "SIMITOBJ";
 /// Changes whenever the header or the payload's layout does (6: a list of
 /// objects, one per partition of the module; 7: the declared shapes of
-/// extern bindings).
-constexpr uint32_t kFormatVersion = 7;
+/// extern bindings; 8: the extern tensors' names).
+constexpr uint32_t kFormatVersion = 8;
 using Hash = llvm::BLAKE3Result<32>;
 
 llvm::StringRef asText(const Hash &hash) {

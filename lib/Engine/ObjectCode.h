@@ -45,6 +45,9 @@ struct ObjectCode {
   /// The endpoint sets of each extern set, one per endpoint position
   /// (Program::externSetEndpoints()).
   SetNames externSetEndpoints;
+  /// The names of the program's extern tensors, sorted
+  /// (Program::externTensorNames()).
+  std::vector<std::string> externTensors;
 };
 
 /// The host CPU with all its features, at -O3, with the small code model and

@@ -8,7 +8,8 @@
 //   union, gather and product bindings, index, chunk, type), results
 //   (type); a type is scalar, isMemRef, isVector, isComplex, shape; then
 //   extern sets, each a name and its fields (name, type), then extern
-//   sets, each a name and its endpoint sets.
+//   sets, each a name and its endpoint sets, then the extern tensors'
+//   names.
 //
 //===----------------------------------------------------------------------===//
 
@@ -164,6 +165,9 @@ std::string simit::serializeObjectCode(const ObjectCode &code) {
     for (const std::string &name : names)
       out.string(name);
   }
+  out.integer<uint64_t>(code.externTensors.size());
+  for (const std::string &name : code.externTensors)
+    out.string(name);
   return std::move(out.bytes);
 }
 
@@ -232,6 +236,9 @@ llvm::Expected<ObjectCode> simit::deserializeObjectCode(llvm::StringRef bytes) {
     for (std::string &name : names)
       name = in.string();
   }
+  code.externTensors.resize(in.count(sizeof(uint64_t)));
+  for (std::string &name : code.externTensors)
+    name = in.string();
   if (in.failed || !in.rest.empty())
     return llvm::createStringError("malformed compiled code");
   return code;

@@ -279,6 +279,15 @@ struct Program::Impl {
     return sets;
   }
 
+  std::vector<std::string> externTensorsOfModule() {
+    std::vector<std::string> names;
+    for (auto global : module->getOps<mlir::simit::ExternOp>())
+      if (!llvm::isa<mlir::simit::SetType>(global.getType()))
+        names.push_back(global.getSymName().str());
+    llvm::sort(names);
+    return names;
+  }
+
   /// What a program declares for each extern set: kept with the compiled
   /// code, so that a program loaded from the cache need not be imported.
   template <typename PerSet>
@@ -342,6 +351,7 @@ struct Program::Impl {
         externSetsOfModule<std::vector<DeclaredField>>(fieldDeclarations);
     code->externSetEndpoints =
         externSetsOfModule<std::vector<std::string>>(endpointNames);
+    code->externTensors = externTensorsOfModule();
     Stopwatch link;
     auto loaded = loadObjectCode(*code);
     if (!loaded)
@@ -450,6 +460,14 @@ llvm::Expected<DeclaredFields> Program::externSetFields() {
 llvm::Expected<ObjectCode::SetNames> Program::externSetEndpoints() {
   return impl->externSets<std::vector<std::string>>(
       &ObjectCode::externSetEndpoints, endpointNames);
+}
+
+llvm::Expected<std::vector<std::string>> Program::externTensorNames() {
+  if (impl->cachedCode)
+    return impl->cachedCode->externTensors;
+  if (llvm::Error err = impl->requireModule())
+    return std::move(err);
+  return impl->externTensorsOfModule();
 }
 
 SolveSession &Program::solver() { return *impl->solver; }

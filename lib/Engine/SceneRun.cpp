@@ -221,6 +221,34 @@ llvm::Error checkSceneEndpoints(const SceneDescription &scene,
   return llvm::Error::success();
 }
 
+/// A scene extern the program does not declare (a misspelt name) would
+/// silently leave the program's own extern unbound or zero.
+llvm::Error checkSceneExterns(
+    const SceneDescription &scene,
+    llvm::ArrayRef<const std::vector<SceneRunner::NamedFunction> *> groups,
+    Program &program, llvm::StringRef programPath) {
+  auto declared = program.externTensorNames();
+  if (!declared)
+    return declared.takeError();
+  // Lowered IR declares its externs only through its functions' bindings.
+  for (const std::vector<SceneRunner::NamedFunction> *group : groups)
+    for (const SceneRunner::NamedFunction &named : *group)
+      for (const ArgumentBinding &arg : named.function.signature().arguments)
+        if (arg.kind == ArgumentBinding::Kind::Extern &&
+            !llvm::is_contained(*declared, arg.name))
+          declared->push_back(arg.name);
+  llvm::sort(*declared);
+  for (const auto &[name, tensor] : scene.externs)
+    if (!llvm::is_contained(*declared, name))
+      return llvm::createStringError(
+          scene.path + ": externs." + name + ": " + programPath +
+          " declares no extern tensor '" + name + "' (it declares " +
+          (declared->empty() ? std::string("none")
+                             : "'" + llvm::join(*declared, "', '") + "'") +
+          ")");
+  return llvm::Error::success();
+}
+
 /// Where the scene gives the value bound to `arg`.
 std::string jsonPathOf(const SceneDescription &scene,
                        const ArgumentBinding &arg) {
@@ -434,6 +462,10 @@ SceneRunner::create(SceneDescription scene, const SceneRunOptions &options) {
   times.compileMs = millisecondsSince(compileStart);
 
   Clock::time_point bindStart = Clock::now();
+  if (llvm::Error err = checkSceneExterns(
+          desc, {&runner->initFunctions, &runner->stepFunctions}, program,
+          programPath))
+    return std::move(err);
   SetRegistry &registry = runner->registry;
   if (llvm::Error err =
           options.skipUnusedFields

@@ -191,6 +191,10 @@ public:
   llvm::Expected<std::map<std::string, std::vector<std::string>>>
   externSetEndpoints();
 
+  /// The names of the program's extern tensors (`extern h : float;`,
+  /// extern vectors over sets included), sorted.
+  llvm::Expected<std::vector<std::string>> externTensorNames();
+
 private:
   struct Impl;
   std::unique_ptr<Impl> impl;

@@ -555,5 +555,29 @@ simit::readHostSignature(mlir::Operation *function) {
                                      llvm::toString(valueType.takeError()));
     signature.results.push_back(std::move(*valueType));
   }
+  // A local matrix result travels as a flat vector; the host shows it
+  // with its declared shape.
+  if (auto shapes = function->getAttrOfType<mlir::ArrayAttr>(
+          llvm::StringRef(abi::kResultShapesAttr))) {
+    if (shapes.size() != signature.results.size())
+      return llvm::createStringError(
+          "function '" + signature.function +
+          "': " + llvm::StringRef(abi::kResultShapesAttr) + " has " +
+          llvm::Twine(shapes.size()) + " entries for " +
+          llvm::Twine(signature.results.size()) + " results");
+    for (auto [shape, result] : llvm::zip(shapes, signature.results)) {
+      auto dims = llvm::dyn_cast<mlir::DenseI64ArrayAttr>(shape);
+      if (!dims)
+        return llvm::createStringError(
+            "function '" + signature.function +
+            "': " + llvm::StringRef(abi::kResultShapesAttr) +
+            " entries must be arrays of integers");
+      int64_t count = 1;
+      for (int64_t dim : dims.asArrayRef())
+        count *= dim;
+      if (result.isVector && dims.size() > 1 && count == result.numComponents())
+        result.shape.assign(dims.asArrayRef().begin(), dims.asArrayRef().end());
+    }
+  }
   return signature;
 }

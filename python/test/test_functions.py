@@ -61,3 +61,17 @@ def test_a_matrix_parameter_takes_its_declared_shape_or_flat():
                        r"of shape \[3, 2\], but the program declares shape "
                        r"\[2, 3\]"):
         program.m(np.arange(6.0).reshape(3, 2))
+
+
+def test_a_matrix_result_has_its_declared_shape():
+    program = simit.compile(
+        "export func m(a : float) -> (r : matrix[2,3](float), "
+        "c : matrix[2,2](complex), v : vector[3](float))\n"
+        "  r = a * [1.0, 2.0, 3.0; 4.0, 5.0, 6.0];\n"
+        "  c = [<1.0, 2.0>, <0.0, 0.0>; <0.0, -1.0>, <3.0, 0.0>];\n"
+        "  v = [7.0, 8.0, 9.0]';\nend\n")
+    r, c, v = program.m(2.0)
+    np.testing.assert_array_equal(r, 2.0 * np.arange(1.0, 7.0).reshape(2, 3))
+    np.testing.assert_array_equal(
+        c, np.array([[1 + 2j, 0], [-1j, 3]], dtype=np.complex128))
+    np.testing.assert_array_equal(v, [7.0, 8.0, 9.0])

@@ -27,6 +27,10 @@ namespace abi {
 constexpr std::string_view kBindingsAttr = "simit.bindings";
 constexpr std::string_view kHostTypeAttr = "simit.host_type";
 constexpr std::string_view kMemRefConventionAttr = "simit.memref_convention";
+/// The declared shape of each result (empty for a scalar or a system
+/// tensor), when a result is a local tensor of rank 2 or more, which the
+/// lowering flattens to a vector.
+constexpr std::string_view kResultShapesAttr = "simit.result_shapes";
 /// The spellings of kMemRefConventionAttr: a memref passed as its exploded
 /// descriptor (MLIR's default), or as a bare pointer to its data.
 constexpr std::string_view kDescriptorConvention = "descriptor";

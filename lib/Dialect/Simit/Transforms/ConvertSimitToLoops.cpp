@@ -596,13 +596,22 @@ LogicalResult FunctionLowering::run(func::FuncOp original) {
                            DenseI64ArrayAttr::get(ctx, tensor.getShape()));
     bindingAttrs.push_back(DictionaryAttr::get(ctx, entries));
   }
+  SmallVector<Attribute> resultShapes;
+  bool hasMatrixResult = false;
   for (Type type : original.getResultTypes()) {
     Type lowered = convertType(type);
     if (!lowered)
       return original.emitError("exported function result of type ")
              << type << " cannot be lowered";
     resultTypes.push_back(hostType(type, lowered));
+    auto tensor = dyn_cast<RankedTensorType>(type);
+    hasMatrixResult |= tensor && tensor.getRank() > 1;
+    resultShapes.push_back(DenseI64ArrayAttr::get(
+        ctx, tensor ? tensor.getShape() : ArrayRef<int64_t>()));
   }
+  if (hasMatrixResult)
+    function->setAttr(StringRef(::simit::abi::kResultShapesAttr),
+                      ArrayAttr::get(ctx, resultShapes));
   if (failed(lowerOps(original.front())))
     return failure();
 

@@ -104,3 +104,16 @@ extern "C" void _mlir_ciface_simit_rt_matmul_bcsr_f32(
                         colidxC, c, cols, where))
     abandonRun();
 }
+
+extern "C" void _mlir_ciface_simit_rt_matmul_bcsr_i32(
+    int32_t layoutA, IndexArray *rowptrA, IndexArray *colidxA,
+    IndexArray *positionsA, MemRefDescriptor<int32_t, 3> *a, int32_t layoutB,
+    IndexArray *rowptrB, IndexArray *colidxB, IndexArray *positionsB,
+    MemRefDescriptor<int32_t, 3> *b, int32_t layoutC, IndexArray *rowptrC,
+    IndexArray *colidxC, MemRefDescriptor<int32_t, 3> *c, int64_t cols,
+    const char *where) {
+  if (!multiplyMatrices(layoutA, rowptrA, colidxA, positionsA, a, layoutB,
+                        rowptrB, colidxB, positionsB, b, layoutC, rowptrC,
+                        colidxC, c, cols, where))
+    abandonRun();
+}

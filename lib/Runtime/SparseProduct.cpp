@@ -8,9 +8,20 @@
 #include "simit/Runtime/SparseProduct.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <type_traits>
 #include <vector>
 
 using namespace simit;
+
+/// sum + x y; int products wrap at 32 bits, as the language's `+` and `*`.
+template <typename T> static T multiplyAdd(T sum, T x, T y) {
+  if constexpr (std::is_integral_v<T>)
+    return static_cast<T>(static_cast<uint32_t>(sum) +
+                          static_cast<uint32_t>(x) * static_cast<uint32_t>(y));
+  else
+    return sum + x * y;
+}
 
 template <typename T>
 llvm::Error simit::multiplyInto(const BlockMatrixView<T> &a,
@@ -50,7 +61,8 @@ llvm::Error simit::multiplyInto(const BlockMatrixView<T> &a,
           for (int64_t k = 0; k < bm; ++k) {
             T x = left[i * bm + k];
             for (int64_t j = 0; j < bc; ++j)
-              out[i * bc + j] += x * right[k * bc + j];
+              out[i * bc + j] =
+                  multiplyAdd(out[i * bc + j], x, right[k * bc + j]);
           }
       }
     }
@@ -66,3 +78,6 @@ template llvm::Error simit::multiplyInto(const BlockMatrixView<double> &,
 template llvm::Error simit::multiplyInto(const BlockMatrixView<float> &,
                                          const BlockMatrixView<float> &,
                                          const BlockMatrixView<float> &);
+template llvm::Error simit::multiplyInto(const BlockMatrixView<int32_t> &,
+                                         const BlockMatrixView<int32_t> &,
+                                         const BlockMatrixView<int32_t> &);

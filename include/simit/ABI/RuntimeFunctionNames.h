@@ -34,6 +34,7 @@
   X(Woodbury4BCSRF32, simit_rt_woodbury4_bcsr_f32, CInterface)                 \
   X(MatmulBCSR, simit_rt_matmul_bcsr, CInterface)                              \
   X(MatmulBCSRF32, simit_rt_matmul_bcsr_f32, CInterface)                       \
+  X(MatmulBCSRI32, simit_rt_matmul_bcsr_i32, CInterface)                       \
   X(TriangularSolveBCSR, simit_rt_triangular_solve_bcsr, CInterface)           \
   X(TriangularSolveBCSRF32, simit_rt_triangular_solve_bcsr_f32, CInterface)    \
   X(SolveDiag, simit_rt_solve_diag, CInterface)                                \

@@ -256,8 +256,9 @@ LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
     return op.emitError("products are supported of matrices assembled from "
                         "sets and their sums; these are stored as ")
            << a.describe() << " and " << b2.describe();
-  if (!component.isF64() && !component.isF32())
-    return op.emitError("products of system matrices take f64 or f32 "
+  if (!component.isF64() && !component.isF32() &&
+      !component.isSignlessInteger(32))
+    return op.emitError("products of system matrices take f64, f32 or i32 "
                         "components");
 
   MLIRContext *ctx = b.getContext();
@@ -271,9 +272,11 @@ LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
        indexArray, indexArray, values, i32, indexArray, indexArray, values,
        b.getI64Type(), LLVM::LLVMPointerType::get(ctx)},
       {});
-  StringRef name = runtimeName(component.isF32()
-                                   ? ::simit::abi::RuntimeFunction::MatmulBCSRF32
-                                   : ::simit::abi::RuntimeFunction::MatmulBCSR);
+  using ::simit::abi::RuntimeFunction;
+  StringRef name =
+      runtimeName(component.isF32()   ? RuntimeFunction::MatmulBCSRF32
+                  : component.isF64() ? RuntimeFunction::MatmulBCSR
+                                      : RuntimeFunction::MatmulBCSRI32);
   func::FuncOp callee = declareRuntime(loc, name, calleeType);
   if (!callee)
     return op.emitError("@") << name << " is declared with another type";

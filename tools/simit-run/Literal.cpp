@@ -347,7 +347,7 @@ llvm::Expected<CallText> simit::parseCall(llvm::StringRef text) {
 
 //===--- Host buffers and comparison --------------------------------------===//
 
-static llvm::StringRef kindName(Literal::Kind kind) {
+llvm::StringRef simit::kindName(Literal::Kind kind) {
   switch (kind) {
   case Literal::Kind::Int:
     return "an int";
@@ -402,11 +402,16 @@ llvm::Error simit::toHostBuffer(const Literal &literal, const ValueType &type,
     return llvm::createStringError(kindName(literal.kind) +
                                    " literal cannot be passed as " +
                                    type.str());
-  // Vectors are the lowering's flattened form of local tensors: the
-  // components must agree; the Simit types were compared before.
-  bool fits = type.isVector ? static_cast<int64_t>(literal.numComponents()) ==
-                                  type.numComponents()
-                            : literal.shape == type.shape;
+  // Vectors (and the static memrefs of `inout` parameters) are the
+  // lowering's flattened form of local tensors: the components must agree;
+  // the Simit types were compared before.
+  bool flattened = type.isVector ||
+                   (type.isMemRef && llvm::none_of(type.shape, [](int64_t d) {
+                      return d == ValueType::kDynamic;
+                    }));
+  bool fits = flattened ? static_cast<int64_t>(literal.numComponents()) ==
+                              type.numComponents()
+                        : literal.shape == type.shape;
   if (!fits)
     return llvm::createStringError("a literal of " +
                                    llvm::Twine(literal.numComponents()) +

@@ -47,6 +47,9 @@ struct CallText {
 };
 llvm::Expected<CallText> parseCall(llvm::StringRef text);
 
+/// "an int", "a float", ...: the kind of a literal, in errors.
+llvm::StringRef kindName(Literal::Kind kind);
+
 /// Host storage for a literal passed as a parameter of `type`; errors say
 /// what does not match.
 llvm::Error toHostBuffer(const Literal &literal, const ValueType &type,

@@ -16,6 +16,7 @@
 #include "simit/Frontend/Frontend.h"
 #include "simit/Frontend/Types.h"
 
+#include "llvm/ADT/StringExtras.h"
 #include "llvm/Support/MemoryBuffer.h"
 #include "llvm/Support/SourceMgr.h"
 #include "llvm/Support/raw_ostream.h"
@@ -203,10 +204,30 @@ int simit::runTests(const TestRunOptions &options, llvm::raw_ostream &os) {
 namespace {
 /// Why `literal` is no value of the Simit type `type` although its
 /// components may fit the compiled parameter: a row for a column vector or
-/// the reverse, a matrix for a vector or the reverse (language.md section
-/// 11: arguments have the parameter types, orientation included).
+/// the reverse, a matrix for a vector or the reverse, other sizes
+/// (language.md section 11: arguments have the parameter types, orientation
+/// included).
 std::optional<std::string> orientationMismatch(const Literal &literal,
                                                const frontend::Type &type) {
+  using frontend::ScalarKind;
+  auto sameKind = [](Literal::Kind literal, ScalarKind component) {
+    switch (literal) {
+    case Literal::Kind::Int:
+      return component == ScalarKind::Int;
+    case Literal::Kind::Float:
+      return component == ScalarKind::Float;
+    case Literal::Kind::Bool:
+      return component == ScalarKind::Bool;
+    case Literal::Kind::Complex:
+      return component == ScalarKind::Complex;
+    case Literal::Kind::String:
+      return component == ScalarKind::String;
+    }
+    return false;
+  };
+  if (type.isTensor() && !type.block && !sameKind(literal.kind, type.component))
+    return kindName(literal.kind).str() + " literal for a parameter of type '" +
+           type.str() + "'";
   if (!type.isTensor() || type.block || type.order() == 0 || type.order() > 2 ||
       literal.kind == Literal::Kind::String)
     return std::nullopt;
@@ -220,12 +241,21 @@ std::optional<std::string> orientationMismatch(const Literal &literal,
   bool fits = type.isMatrix() ? literal.shape.size() == 2
                               : literal.shape.size() == 1 &&
                                     literal.column == type.isColumnVector();
-  if (fits)
-    return std::nullopt;
-  return shapeOf(literal) + " for a parameter of type '" + type.str() + "'" +
-         (type.isColumnVector() && literal.shape.size() == 1
-              ? " (write a column as [a, b, ...]')"
-              : "");
+  if (!fits)
+    return shapeOf(literal) + " for a parameter of type '" + type.str() + "'" +
+           (type.isColumnVector() && literal.shape.size() == 1
+                ? " (write a column as [a, b, ...]')"
+                : "");
+  for (size_t d = 0; d < type.dims.size(); ++d)
+    if (type.dims[d].kind == frontend::Dim::Kind::Range &&
+        type.dims[d].size != literal.shape[d]) {
+      std::vector<std::string> sizes;
+      for (int64_t size : literal.shape)
+        sizes.push_back(std::to_string(size));
+      return shapeOf(literal) + " of size " + llvm::join(sizes, "x") +
+             " for a parameter of type '" + type.str() + "'";
+    }
+  return std::nullopt;
 }
 
 /// The orientation check of `args` against the parameters of the Simit

@@ -354,10 +354,11 @@ TypePtr Sema::checkMap(MapExpr &map, bool isApply) {
   bool passesEndpoints = set.isEdgeSet() && callee.params.size() > base;
   size_t expected = base + (passesEndpoints ? 1 : 0);
   if (callee.params.size() != expected) {
-    diags.error(map.funcLoc, "function '" + callee.name + "' takes " +
-                                 std::to_string(callee.params.size()) +
-                                 " arguments but the map passes " +
-                                 std::to_string(expected));
+    diags.error(map.funcLoc,
+                "function '" + callee.name + "' takes " +
+                    std::to_string(callee.params.size()) +
+                    (callee.params.size() == 1 ? " argument" : " arguments") +
+                    " but the map passes " + std::to_string(expected));
     return Type::error();
   }
   std::vector<std::optional<Dim>> binding(callee.generics.size());

@@ -24,6 +24,11 @@
 using namespace simit;
 
 namespace {
+/// "1 argument", "2 arguments".
+std::string countOf(size_t n, llvm::StringRef noun) {
+  return std::to_string(n) + " " + noun.str() + (n == 1 ? "" : "s");
+}
+
 /// Host storage of the arguments of one call.
 struct Arguments {
   std::vector<std::vector<uint64_t>> storage;
@@ -35,7 +40,7 @@ llvm::Error bindArguments(Function &function, llvm::ArrayRef<Literal> args,
   if (function.numParameters() != args.size())
     return llvm::createStringError(
         "function '" + function.name() + "' takes " +
-        llvm::Twine(function.numParameters()) + " parameters, " +
+        countOf(function.numParameters(), "parameter") + ", " +
         llvm::Twine(args.size()) + " given");
   holder.storage.resize(args.size());
   for (const ArgumentBinding &param : function.signature().arguments) {
@@ -132,7 +137,7 @@ private:
       return "attempting to test unknown function '" + test.funcName + "'";
     if (func->params.size() != test.args.size())
       return "function '" + test.funcName + "' takes " +
-             std::to_string(func->params.size()) + " arguments, " +
+             countOf(func->params.size(), "argument") + ", " +
              std::to_string(test.args.size()) + " given";
     std::vector<Literal> args;
     for (size_t i = 0; i < test.args.size(); ++i) {

@@ -242,9 +242,7 @@ std::array<Value, 3> FunctionLowering::incidenceRows(const Storage &storage) {
           array(BindingKind::IncidencePositions)};
 }
 
-std::array<Value, 3> FunctionLowering::stencilAsBCSR(Location loc,
-                                                     const Storage &storage,
-                                                     Value array) {
+std::array<Value, 3> FunctionLowering::stencilPattern(const Storage &storage) {
   // "-1,0;0,0;1,0": the offsets as the runtime's StencilPattern reads them.
   std::string offsets;
   for (Attribute offset : storage.offsets) {
@@ -257,9 +255,15 @@ std::array<Value, 3> FunctionLowering::stencilAsBCSR(Location loc,
   auto binding = [&](BindingKind kind) {
     return getBinding(kind, {storage.edges.getValue(), offsets}, indexArray);
   };
-  Value rowPtr = binding(BindingKind::StencilRowPtr);
-  Value colIdx = binding(BindingKind::StencilColIdx);
-  Value positions = binding(BindingKind::StencilPositions);
+  return {binding(BindingKind::StencilRowPtr),
+          binding(BindingKind::StencilColIdx),
+          binding(BindingKind::StencilPositions)};
+}
+
+std::array<Value, 3> FunctionLowering::stencilAsBCSR(Location loc,
+                                                     const Storage &storage,
+                                                     Value array) {
+  auto [rowPtr, colIdx, positions] = stencilPattern(storage);
   // The blocks added at their BCSR positions (offsets naming one point
   // share one).
   auto type = cast<MemRefType>(array.getType());

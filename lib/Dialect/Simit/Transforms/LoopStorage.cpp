@@ -358,7 +358,8 @@ struct EncodingReader {
   }
 
   /// A pattern built at run time: a union of members that are all stored
-  /// BCSR or block diagonal (its pattern comes from theirs), the transpose
+  /// BCSR, block diagonal or as a stencil (its pattern comes from theirs,
+  /// a stencil's through its bind-time BCSR pattern), the transpose
   /// of a BCSR one, or any product (the product's comes from its
   /// operands').
   std::optional<Storage> runtimePattern(StorageAttr e, StringAttr rows,
@@ -366,8 +367,8 @@ struct EncodingReader {
     if (e.getKind() == StorageKind::Union)
       for (unsigned i = 0, n = e.getMembers().size(); i < n; ++i) {
         std::optional<Storage> member = read(e.getMember(i), rows, cols);
-        if (!member ||
-            !(member->isBCSR() || member->kind == Storage::Kind::Diagonal))
+        if (!member || !hasBCSRView(*member) ||
+            member->kind == Storage::Kind::DenseMatrix)
           return std::nullopt;
       }
     if (e.getKind() == StorageKind::Transpose) {
@@ -440,6 +441,12 @@ struct EncodingReader {
       }
       if (std::optional<SmallVector<StringAttr, 2>> members = patternSets(e))
         return Storage::unionOf(*members, rows, cols);
+      // A stencil next to other patterns: their union is built at run
+      // time from the stencil's bind-time pattern and theirs.
+      if (llvm::any_of(e.getMembers(), [](Attribute member) {
+            return cast<StorageAttr>(member).getKind() == StorageKind::Stencil;
+          }))
+        return runtimePattern(e, rows, cols);
       return sumOfProducts(e, rows, cols);
     }
     case StorageKind::Product: {

@@ -325,9 +325,12 @@ public:
   /// simit::StencilPattern) and a fresh array of values on it.
   std::array<Value, 3> stencilAsBCSR(Location loc, const Storage &storage,
                                      Value array);
+  /// The bind-time BCSR pattern of a stencil storage: row pointers, column
+  /// indices, and the BCSR position of each of the stencil's blocks.
+  std::array<Value, 3> stencilPattern(const Storage &storage);
   /// The BCSR row pointers and column indices of a matrix stored as
-  /// `storage` (hasBCSRView, not a stencil): its own, or arrays of the
-  /// pattern of a diagonal or dense layout made here.
+  /// `storage` (hasBCSRView): its own, a stencil's bind-time pattern, or
+  /// arrays of the pattern of a diagonal or dense layout made here.
   std::pair<Value, Value> bcsrIndexArrays(Location loc, const Storage &storage);
   /// The BCSR row pointers, column indices and blocks of `matrix`, stored
   /// as `storage` (hasBCSRView): its own, or for a diagonal or dense

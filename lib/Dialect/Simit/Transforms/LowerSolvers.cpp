@@ -89,6 +89,10 @@ std::pair<Value, Value>
 FunctionLowering::bcsrIndexArrays(Location loc, const Storage &storage) {
   if (storage.isBCSR())
     return {rowPointers(storage), columnIndices(storage)};
+  if (storage.kind == Storage::Kind::Stencil) {
+    std::array<Value, 3> pattern = stencilPattern(storage);
+    return {pattern[0], pattern[1]};
+  }
   FunctionLowering &l = *this;
   bool dense = storage.kind == Storage::Kind::DenseMatrix;
   Value n = l.getSetSize(storage.rows);

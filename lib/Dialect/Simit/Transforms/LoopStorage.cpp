@@ -450,7 +450,12 @@ struct EncodingReader {
       return sumOfProducts(e, rows, cols);
     }
     case StorageKind::Product: {
-      if (storage::findHost(e))
+      // A stencil factor next to others: the product's pattern is built at
+      // run time from the stencil's bind-time BCSR pattern and theirs.
+      if (storage::findHost(e) ||
+          llvm::any_of(e.getMembers(), [](Attribute member) {
+            return cast<StorageAttr>(member).getKind() == StorageKind::Stencil;
+          }))
         return runtimePattern(e, rows, cols);
       std::optional<ProductChain> chain = productChain(e, rows, cols);
       if (!chain)

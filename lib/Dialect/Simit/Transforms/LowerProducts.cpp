@@ -26,7 +26,8 @@ using namespace mlir::simit::loops;
 static bool isProductOperand(const Storage &s) {
   return s.kind == Storage::Kind::Diagonal || s.isBCSR() ||
          s.kind == Storage::Kind::Incidence ||
-         s.kind == Storage::Kind::DenseMatrix;
+         s.kind == Storage::Kind::DenseMatrix ||
+         s.kind == Storage::Kind::Stencil;
 }
 
 /// Whether `h` (over (V, E)) times `g` (over (E, V)) is an incidence's
@@ -291,6 +292,13 @@ LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
                      : s.kind == Storage::Kind::DenseMatrix ? 3
                                                             : 0;
     args.push_back(arith::ConstantIntOp::create(b, loc, i32, layout));
+    if (s.kind == Storage::Kind::Stencil) {
+      // Its blocks on its bind-time BCSR pattern.
+      auto [rowPtr, colIdx, blocks] = stencilAsBCSR(loc, s, array);
+      args.append({rowPtr, colIdx, emptyIndexArray(),
+                   asRuntimeBlocks(loc, blocks, values)});
+      return;
+    }
     if (layout == 2) {
       llvm::append_range(args, incidenceRows(s));
     } else {
@@ -304,9 +312,13 @@ LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
   };
   // A product with a host function's matrix gets its pattern now.
   if (storage.kind == Storage::Kind::Host && !builtRuntimePattern(storage)) {
-    if (!a.isBCSR() || !b2.isBCSR())
-      return op.emitError("a product with a matrix a host function returns "
-                          "needs BCSR factors; these are stored as ")
+    auto hasPattern = [](const Storage &s) {
+      return s.isBCSR() || s.kind == Storage::Kind::Stencil;
+    };
+    if (!hasPattern(a) || !hasPattern(b2))
+      return op.emitError("a product whose pattern is built at run time "
+                          "needs BCSR or stencil factors; these are stored "
+                          "as ")
              << a.describe() << " and " << b2.describe();
     buildProductPattern(loc, storage, a, b2);
   }

@@ -53,10 +53,12 @@ static Value blockCount(FunctionLowering &l, Location loc, StringAttr set) {
 void FunctionLowering::buildProductPattern(Location loc, const Storage &storage,
                                            const Storage &lhs,
                                            const Storage &rhs) {
+  std::pair<Value, Value> lhsPattern = bcsrIndexArrays(loc, lhs);
+  std::pair<Value, Value> rhsPattern = bcsrIndexArrays(loc, rhs);
   runtimePatterns[storage.runtimeEncoding] = runtimePatternOf(
       loc, RuntimeFunction::ProductPattern,
-      {rowPointers(lhs), columnIndices(lhs), rowPointers(rhs),
-       columnIndices(rhs), blockCount(*this, loc, storage.cols)},
+      {lhsPattern.first, lhsPattern.second, rhsPattern.first, rhsPattern.second,
+       blockCount(*this, loc, storage.cols)},
       storage.rows);
 }
 

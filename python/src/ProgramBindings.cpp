@@ -94,6 +94,9 @@ py::array externArray(const ArgumentBinding &arg, const py::object &value) {
 py::object bindValue(PyFunction &self, const std::string &name,
                      const py::object &value) {
   if (py::isinstance<SetHandle>(value)) {
+    if (findArgument(self.function, ArgumentBinding::Kind::Extern, name, -1))
+      throw py::type_error("function '" + self.name + "': '" + name +
+                           "' is an extern tensor; bind an array to it");
     check(self.function.bind(name, *value.cast<SetHandle &>().set));
     self.bound[name] = value;
     return value;

@@ -69,6 +69,9 @@ def test_binding_errors_name_the_function_and_the_item():
         step.init()
     with pytest.raises(TypeError, match="'points' is an extern set"):
         step.bind(points=np.zeros(3))
+    with pytest.raises(TypeError, match="'h' is an extern tensor; bind an "
+                                        "array to it"):
+        step.bind(h=points)
     with pytest.raises(simit.Error, match="uses no extern tensor named 'hh'"):
         step.bind(hh=0.01)
     with pytest.raises(TypeError, match="no exported function of the "

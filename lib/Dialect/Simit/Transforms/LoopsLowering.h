@@ -30,6 +30,7 @@
 #include "simit/Dialect/Simit/Transforms/LoopsTypeConverter.h"
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
+#include "mlir/Dialect/Arith/IR/Arith.h"
 #include "mlir/IR/Builders.h"
 #include "llvm/ADT/MapVector.h"
 #include "llvm/ADT/SetVector.h"
@@ -209,6 +210,19 @@ struct Storage {
 /// (FunctionLowering::bcsrArrays): a BCSR storage, or a square diagonal,
 /// stencil or dense one.
 bool hasBCSRView(const Storage &s);
+
+/// lhs + rhs and lhs * rhs of float or int scalars (ints wrap, as the
+/// language's do).
+inline Value addScalars(OpBuilder &b, Location loc, Value lhs, Value rhs) {
+  if (isa<FloatType>(lhs.getType()))
+    return arith::AddFOp::create(b, loc, lhs, rhs);
+  return arith::AddIOp::create(b, loc, lhs, rhs);
+}
+inline Value multiplyScalars(OpBuilder &b, Location loc, Value lhs, Value rhs) {
+  if (isa<FloatType>(lhs.getType()))
+    return arith::MulFOp::create(b, loc, lhs, rhs);
+  return arith::MulIOp::create(b, loc, lhs, rhs);
+}
 
 /// The storage of the transpose of a matrix stored as `s` (a pattern over
 /// (C, R) for one over (R, C): the same endpoint pairs, swapped; a stencil

@@ -74,9 +74,8 @@ static void emitBlockProduct(FunctionLowering &l, Location loc, bool blocked,
       for (int64_t m = 0; m < mid; ++m) {
         Value xrm = memref::LoadOp::create(b, loc, x, index(xAt, r, m));
         Value ymc = memref::LoadOp::create(b, loc, y, index(yAt, m, c));
-        Value term = arith::MulFOp::create(b, loc, xrm, ymc);
-        sum = sum ? arith::AddFOp::create(b, loc, sum, term).getResult()
-                  : term;
+        Value term = multiplyScalars(b, loc, xrm, ymc);
+        sum = sum ? addScalars(b, loc, sum, term) : term;
       }
       memref::StoreOp::create(b, loc, sum, out, index(at, r, c));
     }
@@ -230,7 +229,7 @@ LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
   Storage a = storageOf(op.getLhs()), b2 = storageOf(op.getRhs());
   Storage storage = storageOf(op);
   Type component = type.getComponentType();
-  if (isa<FloatType>(component)) {
+  if (isa<FloatType, IntegerType>(component)) {
     if (isIncidenceGram(a, b2, storage))
       return lowerIncidenceGram(op, a, b2, storage);
     // A diagonal factor keeps an incidence's storage.
@@ -252,8 +251,11 @@ LogicalResult FunctionLowering::lowerMatMul(MatMulOp op) {
     if (storage.kind == Storage::Kind::Stencil && onGrid(a) && onGrid(b2))
       return lowerStencilProduct(op, storage);
   }
+  // A stencil factor is copied onto its BCSR pattern for the runtime; the
+  // result is written in place, so it cannot be one.
   if (!isProductOperand(a) || !isProductOperand(b2) ||
-      storage.kind == Storage::Kind::Incidence || !isProductOperand(storage))
+      storage.kind == Storage::Kind::Incidence ||
+      storage.kind == Storage::Kind::Stencil || !isProductOperand(storage))
     return op.emitError("products are supported of matrices assembled from "
                         "sets and their sums; these are stored as ")
            << a.describe() << " and " << b2.describe();

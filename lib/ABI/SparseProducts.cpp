@@ -79,41 +79,21 @@ bool multiplyMatrices(int32_t layoutA, IndexArray *rowptrA, IndexArray *colidxA,
 }
 } // namespace
 
-extern "C" void _mlir_ciface_simit_rt_matmul_bcsr(
-    int32_t layoutA, IndexArray *rowptrA, IndexArray *colidxA,
-    IndexArray *positionsA, MemRefDescriptor<double, 3> *a, int32_t layoutB,
-    IndexArray *rowptrB, IndexArray *colidxB, IndexArray *positionsB,
-    MemRefDescriptor<double, 3> *b, int32_t layoutC, IndexArray *rowptrC,
-    IndexArray *colidxC, MemRefDescriptor<double, 3> *c, int64_t cols,
-    const char *where) {
-  if (!multiplyMatrices(layoutA, rowptrA, colidxA, positionsA, a, layoutB,
-                        rowptrB, colidxB, positionsB, b, layoutC, rowptrC,
-                        colidxC, c, cols, where))
-    abandonRun();
-}
+/// The C entry point of the product of `T` matrices (RuntimeFunctions.h).
+#define SIMIT_RT_MATMUL_BCSR(NAME, T)                                          \
+  extern "C" void NAME(                                                        \
+      int32_t layoutA, IndexArray *rowptrA, IndexArray *colidxA,               \
+      IndexArray *positionsA, MemRefDescriptor<T, 3> *a, int32_t layoutB,      \
+      IndexArray *rowptrB, IndexArray *colidxB, IndexArray *positionsB,        \
+      MemRefDescriptor<T, 3> *b, int32_t layoutC, IndexArray *rowptrC,         \
+      IndexArray *colidxC, MemRefDescriptor<T, 3> *c, int64_t cols,            \
+      const char *where) {                                                     \
+    if (!multiplyMatrices(layoutA, rowptrA, colidxA, positionsA, a, layoutB,   \
+                          rowptrB, colidxB, positionsB, b, layoutC, rowptrC,   \
+                          colidxC, c, cols, where))                            \
+      abandonRun();                                                            \
+  }
 
-extern "C" void _mlir_ciface_simit_rt_matmul_bcsr_f32(
-    int32_t layoutA, IndexArray *rowptrA, IndexArray *colidxA,
-    IndexArray *positionsA, MemRefDescriptor<float, 3> *a, int32_t layoutB,
-    IndexArray *rowptrB, IndexArray *colidxB, IndexArray *positionsB,
-    MemRefDescriptor<float, 3> *b, int32_t layoutC, IndexArray *rowptrC,
-    IndexArray *colidxC, MemRefDescriptor<float, 3> *c, int64_t cols,
-    const char *where) {
-  if (!multiplyMatrices(layoutA, rowptrA, colidxA, positionsA, a, layoutB,
-                        rowptrB, colidxB, positionsB, b, layoutC, rowptrC,
-                        colidxC, c, cols, where))
-    abandonRun();
-}
-
-extern "C" void _mlir_ciface_simit_rt_matmul_bcsr_i32(
-    int32_t layoutA, IndexArray *rowptrA, IndexArray *colidxA,
-    IndexArray *positionsA, MemRefDescriptor<int32_t, 3> *a, int32_t layoutB,
-    IndexArray *rowptrB, IndexArray *colidxB, IndexArray *positionsB,
-    MemRefDescriptor<int32_t, 3> *b, int32_t layoutC, IndexArray *rowptrC,
-    IndexArray *colidxC, MemRefDescriptor<int32_t, 3> *c, int64_t cols,
-    const char *where) {
-  if (!multiplyMatrices(layoutA, rowptrA, colidxA, positionsA, a, layoutB,
-                        rowptrB, colidxB, positionsB, b, layoutC, rowptrC,
-                        colidxC, c, cols, where))
-    abandonRun();
-}
+SIMIT_RT_MATMUL_BCSR(_mlir_ciface_simit_rt_matmul_bcsr, double)
+SIMIT_RT_MATMUL_BCSR(_mlir_ciface_simit_rt_matmul_bcsr_f32, float)
+SIMIT_RT_MATMUL_BCSR(_mlir_ciface_simit_rt_matmul_bcsr_i32, int32_t)

@@ -283,7 +283,7 @@ std::array<Value, 3> FunctionLowering::stencilAsBCSR(Location loc,
     for (int64_t c = 0; c < components; ++c) {
       SmallVector<Value> to = blockIndices(type, {at}, c);
       Value sum =
-          addScalars(b, loc, memref::LoadOp::create(b, loc, values, to),
+          addNumbers(b, loc, memref::LoadOp::create(b, loc, values, to),
                      memref::LoadOp::create(b, loc, array,
                                             blockIndices(type, {block}, c)));
       memref::StoreOp::create(b, loc, sum, values, to);

@@ -211,15 +211,15 @@ struct Storage {
 /// stencil or dense one.
 bool hasBCSRView(const Storage &s);
 
-/// lhs + rhs and lhs * rhs of float or int scalars (ints wrap, as the
-/// language's do).
-inline Value addScalars(OpBuilder &b, Location loc, Value lhs, Value rhs) {
-  if (isa<FloatType>(lhs.getType()))
+/// lhs + rhs and lhs * rhs of float or int numbers, scalars or vectors
+/// (ints wrap, as the language's do).
+inline Value addNumbers(OpBuilder &b, Location loc, Value lhs, Value rhs) {
+  if (isa<FloatType>(getElementTypeOrSelf(lhs.getType())))
     return arith::AddFOp::create(b, loc, lhs, rhs);
   return arith::AddIOp::create(b, loc, lhs, rhs);
 }
-inline Value multiplyScalars(OpBuilder &b, Location loc, Value lhs, Value rhs) {
-  if (isa<FloatType>(lhs.getType()))
+inline Value multiplyNumbers(OpBuilder &b, Location loc, Value lhs, Value rhs) {
+  if (isa<FloatType>(getElementTypeOrSelf(lhs.getType())))
     return arith::MulFOp::create(b, loc, lhs, rhs);
   return arith::MulIOp::create(b, loc, lhs, rhs);
 }

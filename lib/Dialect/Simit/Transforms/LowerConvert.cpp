@@ -60,7 +60,6 @@ LogicalResult FunctionLowering::lowerConvert(ConvertOp op) {
                                                  : Value();
   Value target = allocSystem(loc, op.getType(), to);
   auto targetType = cast<MemRefType>(target.getType());
-  Type scalar = targetType.getElementType();
   int64_t components = 1;
   for (int64_t d : targetType.getShape().drop_front())
     components *= d;
@@ -77,9 +76,7 @@ LogicalResult FunctionLowering::lowerConvert(ConvertOp op) {
       Value old = memref::LoadOp::create(b, loc, target, at);
       Value add = memref::LoadOp::create(
           b, loc, source, blockIndices(type, {position}, c));
-      Value sum = isa<FloatType>(scalar)
-                      ? arith::AddFOp::create(b, loc, old, add).getResult()
-                      : arith::AddIOp::create(b, loc, old, add).getResult();
+      Value sum = addNumbers(b, loc, old, add);
       memref::StoreOp::create(b, loc, sum, target, at);
     }
   };

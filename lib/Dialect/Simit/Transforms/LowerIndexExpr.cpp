@@ -142,10 +142,7 @@ LogicalResult IndexExprLowering::lowerLocal() {
       FailureOr<Value> term = evaluate(op.getBody().front());
       if (failed(term))
         return failure();
-      total = !total ? *term
-              : isa<FloatType>(scalarType)
-                  ? arith::AddFOp::create(b, loc, total, *term).getResult()
-                  : arith::AddIOp::create(b, loc, total, *term).getResult();
+      total = total ? add(total, *term) : *term;
       return success();
     });
     if (failed(inner))
@@ -183,9 +180,7 @@ Value IndexExprLowering::inPlaceTarget() {
 }
 
 Value IndexExprLowering::add(Value lhs, Value rhs) {
-  if (isa<FloatType>(scalarType))
-    return arith::AddFOp::create(b, loc, lhs, rhs);
-  return arith::AddIOp::create(b, loc, lhs, rhs);
+  return addNumbers(b, loc, lhs, rhs);
 }
 
 std::optional<unsigned> IndexExprLowering::accumulatedRowVar(

@@ -129,9 +129,7 @@ Value FunctionLowering::sumIncidenceBlocks(Location loc,
                                             at, endpoint);
         Value value = arith::SelectOp::create(b, loc, match, read(position),
                                               zeroOf(scalar));
-        sum = isa<FloatType>(scalar)
-                  ? arith::AddFOp::create(b, loc, sum, value).getResult()
-                  : arith::AddIOp::create(b, loc, sum, value).getResult();
+        sum = addNumbers(b, loc, sum, value);
       });
   return sum;
 }

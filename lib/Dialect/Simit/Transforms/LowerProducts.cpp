@@ -74,8 +74,8 @@ static void emitBlockProduct(FunctionLowering &l, Location loc, bool blocked,
       for (int64_t m = 0; m < mid; ++m) {
         Value xrm = memref::LoadOp::create(b, loc, x, index(xAt, r, m));
         Value ymc = memref::LoadOp::create(b, loc, y, index(yAt, m, c));
-        Value term = multiplyScalars(b, loc, xrm, ymc);
-        sum = sum ? addScalars(b, loc, sum, term) : term;
+        Value term = multiplyNumbers(b, loc, xrm, ymc);
+        sum = sum ? addNumbers(b, loc, sum, term) : term;
       }
       memref::StoreOp::create(b, loc, sum, out, index(at, r, c));
     }

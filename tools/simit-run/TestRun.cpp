@@ -212,8 +212,8 @@ namespace {
 /// the reverse, a matrix for a vector or the reverse, other sizes
 /// (language.md section 11: arguments have the parameter types, orientation
 /// included).
-std::optional<std::string> orientationMismatch(const Literal &literal,
-                                               const frontend::Type &type) {
+std::optional<std::string> typeMismatch(const Literal &literal,
+                                        const frontend::Type &type) {
   using frontend::ScalarKind;
   auto sameKind = [](Literal::Kind literal, ScalarKind component) {
     switch (literal) {
@@ -263,10 +263,11 @@ std::optional<std::string> orientationMismatch(const Literal &literal,
   return std::nullopt;
 }
 
-/// The orientation check of `args` against the parameters of the Simit
-/// function `name` in the file `path` (.mlir files have no orientation).
-llvm::Error checkOrientations(llvm::StringRef path, llvm::StringRef name,
-                              llvm::ArrayRef<Literal> args) {
+/// The type check (orientation, sizes, component kind) of `args` against
+/// the parameters of the Simit function `name` in the file `path` (.mlir
+/// files have no Simit types).
+llvm::Error checkArgumentTypes(llvm::StringRef path, llvm::StringRef name,
+                               llvm::ArrayRef<Literal> args) {
   if (!path.ends_with(".sim"))
     return llvm::Error::success();
   auto file = llvm::MemoryBuffer::getFile(path, /*IsText=*/true);
@@ -288,7 +289,7 @@ llvm::Error checkOrientations(llvm::StringRef path, llvm::StringRef name,
     for (size_t i = 0; i < args.size(); ++i)
       if (func->params[i]->type)
         if (std::optional<std::string> why =
-                orientationMismatch(args[i], *func->params[i]->type))
+                typeMismatch(args[i], *func->params[i]->type))
           return llvm::createStringError("argument " + llvm::Twine(i + 1) +
                                          ": " + *why);
   }
@@ -303,7 +304,7 @@ int simit::runEval(const EvalOptions &options, llvm::raw_ostream &os) {
     return 1;
   }
   if (llvm::Error err =
-          checkOrientations(options.path, call->function, call->args)) {
+          checkArgumentTypes(options.path, call->function, call->args)) {
     llvm::errs() << "--eval: " << llvm::toString(std::move(err)) << "\n";
     return 1;
   }

@@ -150,44 +150,22 @@ void _mlir_ciface_simit_rt_solve_diag_f32(
 ///   memref<?xi32>, memref<?x?x?xf64>, i32, memref<?xi32>, memref<?xi32>,
 ///   memref<?x?x?xf64>, i64, !llvm.ptr), @simit_rt_matmul_bcsr_f32, and
 ///   @simit_rt_matmul_bcsr_i32 (int products wrap at 32 bits).
-void _mlir_ciface_simit_rt_matmul_bcsr(
-    int32_t layoutA, simit::abi::MemRefDescriptor<int32_t, 1> *rowptrA,
-    simit::abi::MemRefDescriptor<int32_t, 1> *colidxA,
-    simit::abi::MemRefDescriptor<int32_t, 1> *positionsA,
-    simit::abi::MemRefDescriptor<double, 3> *a, int32_t layoutB,
-    simit::abi::MemRefDescriptor<int32_t, 1> *rowptrB,
-    simit::abi::MemRefDescriptor<int32_t, 1> *colidxB,
-    simit::abi::MemRefDescriptor<int32_t, 1> *positionsB,
-    simit::abi::MemRefDescriptor<double, 3> *b, int32_t layoutC,
-    simit::abi::MemRefDescriptor<int32_t, 1> *rowptrC,
-    simit::abi::MemRefDescriptor<int32_t, 1> *colidxC,
-    simit::abi::MemRefDescriptor<double, 3> *c, int64_t cols,
-    const char *where);
-void _mlir_ciface_simit_rt_matmul_bcsr_f32(
-    int32_t layoutA, simit::abi::MemRefDescriptor<int32_t, 1> *rowptrA,
-    simit::abi::MemRefDescriptor<int32_t, 1> *colidxA,
-    simit::abi::MemRefDescriptor<int32_t, 1> *positionsA,
-    simit::abi::MemRefDescriptor<float, 3> *a, int32_t layoutB,
-    simit::abi::MemRefDescriptor<int32_t, 1> *rowptrB,
-    simit::abi::MemRefDescriptor<int32_t, 1> *colidxB,
-    simit::abi::MemRefDescriptor<int32_t, 1> *positionsB,
-    simit::abi::MemRefDescriptor<float, 3> *b, int32_t layoutC,
-    simit::abi::MemRefDescriptor<int32_t, 1> *rowptrC,
-    simit::abi::MemRefDescriptor<int32_t, 1> *colidxC,
-    simit::abi::MemRefDescriptor<float, 3> *c, int64_t cols, const char *where);
-void _mlir_ciface_simit_rt_matmul_bcsr_i32(
-    int32_t layoutA, simit::abi::MemRefDescriptor<int32_t, 1> *rowptrA,
-    simit::abi::MemRefDescriptor<int32_t, 1> *colidxA,
-    simit::abi::MemRefDescriptor<int32_t, 1> *positionsA,
-    simit::abi::MemRefDescriptor<int32_t, 3> *a, int32_t layoutB,
-    simit::abi::MemRefDescriptor<int32_t, 1> *rowptrB,
-    simit::abi::MemRefDescriptor<int32_t, 1> *colidxB,
-    simit::abi::MemRefDescriptor<int32_t, 1> *positionsB,
-    simit::abi::MemRefDescriptor<int32_t, 3> *b, int32_t layoutC,
-    simit::abi::MemRefDescriptor<int32_t, 1> *rowptrC,
-    simit::abi::MemRefDescriptor<int32_t, 1> *colidxC,
-    simit::abi::MemRefDescriptor<int32_t, 3> *c, int64_t cols,
-    const char *where);
+#define SIMIT_RT_DECLARE_MATMUL_BCSR(NAME, T)                                  \
+  void NAME(                                                                   \
+      int32_t layoutA, simit::abi::MemRefDescriptor<int32_t, 1> *rowptrA,      \
+      simit::abi::MemRefDescriptor<int32_t, 1> *colidxA,                       \
+      simit::abi::MemRefDescriptor<int32_t, 1> *positionsA,                    \
+      simit::abi::MemRefDescriptor<T, 3> *a, int32_t layoutB,                  \
+      simit::abi::MemRefDescriptor<int32_t, 1> *rowptrB,                       \
+      simit::abi::MemRefDescriptor<int32_t, 1> *colidxB,                       \
+      simit::abi::MemRefDescriptor<int32_t, 1> *positionsB,                    \
+      simit::abi::MemRefDescriptor<T, 3> *b, int32_t layoutC,                  \
+      simit::abi::MemRefDescriptor<int32_t, 1> *rowptrC,                       \
+      simit::abi::MemRefDescriptor<int32_t, 1> *colidxC,                       \
+      simit::abi::MemRefDescriptor<T, 3> *c, int64_t cols, const char *where);
+SIMIT_RT_DECLARE_MATMUL_BCSR(_mlir_ciface_simit_rt_matmul_bcsr, double)
+SIMIT_RT_DECLARE_MATMUL_BCSR(_mlir_ciface_simit_rt_matmul_bcsr_f32, float)
+SIMIT_RT_DECLARE_MATMUL_BCSR(_mlir_ciface_simit_rt_matmul_bcsr_i32, int32_t)
 
 /// Ends the run of the exported function in progress (simit::runGuarded)
 /// with `message` as its error; outside a guarded run, a fatal error.

@@ -383,6 +383,14 @@ struct EncodingReader {
     return Storage::runtimePattern(e, rows, cols);
   }
 
+  /// Whether a union or product has a stencil among its members, whose
+  /// pattern the runtime then combines with the others'.
+  static bool hasStencilMember(StorageAttr e) {
+    return llvm::any_of(e.getMembers(), [](Attribute member) {
+      return cast<StorageAttr>(member).getKind() == StorageKind::Stencil;
+    });
+  }
+
   std::optional<Storage> read(StorageAttr e, StringAttr rows,
                               StringAttr cols) {
     switch (e.getKind()) {
@@ -443,19 +451,14 @@ struct EncodingReader {
         return Storage::unionOf(*members, rows, cols);
       // A stencil next to other patterns: their union is built at run
       // time from the stencil's bind-time pattern and theirs.
-      if (llvm::any_of(e.getMembers(), [](Attribute member) {
-            return cast<StorageAttr>(member).getKind() == StorageKind::Stencil;
-          }))
+      if (hasStencilMember(e))
         return runtimePattern(e, rows, cols);
       return sumOfProducts(e, rows, cols);
     }
     case StorageKind::Product: {
       // A stencil factor next to others: the product's pattern is built at
       // run time from the stencil's bind-time BCSR pattern and theirs.
-      if (storage::findHost(e) ||
-          llvm::any_of(e.getMembers(), [](Attribute member) {
-            return cast<StorageAttr>(member).getKind() == StorageKind::Stencil;
-          }))
+      if (storage::findHost(e) || hasStencilMember(e))
         return runtimePattern(e, rows, cols);
       std::optional<ProductChain> chain = productChain(e, rows, cols);
       if (!chain)

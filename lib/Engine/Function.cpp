@@ -249,7 +249,9 @@ llvm::Error Function::Impl::prepareArgument(const ArgumentBinding &arg,
       return set.takeError();
     ComponentType expected;
     componentTypeFor(type.scalar, expected);
-    std::vector<int64_t> blockShape(type.shape.begin() + 1, type.shape.end());
+    // A complex field is a field of its parts with a last dimension of 2.
+    std::vector<int64_t> hostShape = type.hostShape();
+    std::vector<int64_t> blockShape(hostShape.begin() + 1, hostShape.end());
     const FieldDescriptor *field = (*set)->fieldDescriptor(arg.field);
     auto expectation = [&] {
       return "the program expects " + componentTypeName(expected).str() +
@@ -268,7 +270,7 @@ llvm::Error Function::Impl::prepareArgument(const ArgumentBinding &arg,
                    " components of shape " + shapeString(field->shape) +
                    ", but " + expectation());
     std::vector<int64_t> sizes{(*set)->size()};
-    for (int d : field->shape)
+    for (int d : llvm::ArrayRef(field->shape).drop_back(type.isComplex))
       sizes.push_back(d);
     pushMemRef(word, (*set)->fieldData(arg.field), sizes);
     return llvm::Error::success();

@@ -141,7 +141,15 @@ llvm::Expected<ValueType> simit::toValueType(mlir::Type type) {
   if (auto memref = llvm::dyn_cast<mlir::MemRefType>(type)) {
     if (!memref.getLayout().isIdentity())
       return typeError(type, "only the identity layout crosses the host boundary");
-    if (!toScalarKind(memref.getElementType(), result.scalar))
+    mlir::Type element = memref.getElementType();
+    // Complex components are (re, im) pairs of their parts at the host.
+    if (auto complex = llvm::dyn_cast<mlir::ComplexType>(element)) {
+      element = complex.getElementType();
+      result.isComplex = true;
+    }
+    if (!toScalarKind(element, result.scalar) ||
+        (result.isComplex && result.scalar != ScalarKind::Float64 &&
+         result.scalar != ScalarKind::Float32))
       return typeError(type, "unsupported element type");
     result.isMemRef = true;
     for (int64_t dim : memref.getShape())

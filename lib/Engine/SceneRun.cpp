@@ -44,7 +44,8 @@ llvm::Error provideFields(const SceneDescription &scene, SetRegistry &registry,
     const FieldDescriptor *field = set->fieldDescriptor(arg.field);
     if (!field) {
       std::vector<int> shape;
-      for (int64_t dim : llvm::drop_begin(arg.type.shape)) {
+      std::vector<int64_t> hostShape = arg.type.hostShape();
+      for (int64_t dim : llvm::drop_begin(hostShape)) {
         if (dim == ValueType::kDynamic)
           return llvm::createStringError(
               scene.path + ": sets." + arg.set + ".fields." + arg.field +
@@ -91,14 +92,15 @@ struct FieldBlock {
 };
 
 /// The block of a declared field (its array's type without the set
-/// dimension); none for components no set field holds (complex).
+/// dimension; a complex field's block ends in its (re, im) pairs); none for
+/// components no set field holds.
 std::optional<FieldBlock> blockOf(const DeclaredField &field) {
   FieldBlock block;
   const ValueType &array = field.type;
-  if (!array.isMemRef || array.isComplex ||
-      !componentTypeFor(array.scalar, block.type))
+  if (!array.isMemRef || !componentTypeFor(array.scalar, block.type))
     return std::nullopt;
-  block.shape.assign(array.shape.begin() + 1, array.shape.end());
+  std::vector<int64_t> shape = array.hostShape();
+  block.shape.assign(shape.begin() + 1, shape.end());
   return block;
 }
 

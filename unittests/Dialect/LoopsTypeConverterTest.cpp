@@ -70,8 +70,12 @@ TEST_F(LoopsTypeConverterTest, SystemTensorsAreArraysOfBlocks) {
   EXPECT_EQ(converted("!simit.tensor<[\"points\", \"points\"] x f64, "
                       "#simit.storage<dense>>"),
             "memref<?xf64>");
-  // No lowering: complex system tensors, three sets.
-  EXPECT_EQ(converted("!simit.tensor<[\"points\"] x complex<f64>>"), "null");
+  // Complex components stay complex numbers in the arrays.
+  EXPECT_EQ(converted("!simit.tensor<[\"points\"] x complex<f64>>"),
+            "memref<?xcomplex<f64>>");
+  EXPECT_EQ(converted("!simit.tensor<[\"points\"] x tensor<2xcomplex<f32>>>"),
+            "memref<?x2xcomplex<f32>>");
+  // No lowering: three sets.
   EXPECT_EQ(converted("!simit.tensor<[\"a\", \"b\", \"c\"] x f64>"), "null");
 }
 

@@ -271,12 +271,8 @@ void FunctionLowering::prefetchBlock(Location loc, Value array, Value block,
   int64_t components = 1;
   for (int64_t d = 1; d < type.getRank(); ++d)
     components *= type.getDimSize(d);
-  Type component = type.getElementType();
-  int64_t bytes =
-      component.isIntOrFloat()
-          ? std::max<int64_t>(1, component.getIntOrFloatBitWidth() / 8)
-          : 16;
-  int64_t perLine = std::max<int64_t>(1, 64 / bytes);
+  int64_t perLine =
+      std::max<int64_t>(1, 64 / componentBytes(type.getElementType()));
   SmallVector<int64_t> touched;
   for (int64_t c = 0; c < components; c += perLine)
     touched.push_back(c);
@@ -388,20 +384,7 @@ LogicalResult FunctionLowering::lowerFunctionReturn(func::ReturnOp op) {
   return success();
 }
 
-/// Whether `type` is a system tensor of complex components, or a variable
-/// of one (set-sized arrays of complex numbers are not lowered yet).
-static bool isComplexSystem(Type type) {
-  if (auto ref = dyn_cast<RefType>(type))
-    type = ref.getValueType();
-  return isSystem(type) && isa<ComplexType>(getComponentType(type));
-}
-
 LogicalResult FunctionLowering::lowerOp(Operation *op) {
-  auto complexSystem = [](Value v) { return isComplexSystem(v.getType()); };
-  if (llvm::any_of(op->getResults(), complexSystem) ||
-      llvm::any_of(op->getOperands(), complexSystem))
-    return op->emitError("complex system tensors are not supported by the "
-                         "loop lowering yet");
   if (auto loop = dyn_cast<scf::ForOp>(op))
     return lowerFor(loop);
   if (auto branch = dyn_cast<scf::IfOp>(op))
@@ -477,9 +460,6 @@ LogicalResult FunctionLowering::lowerOp(Operation *op) {
         system && system.isSystem() && system.getOrder() != 1)
       return op->emitError("extern system matrices are not supported by the "
                            "loop lowering: they have no storage");
-    if (isa<ComplexType>(getComponentType(global.getType())))
-      return op->emitError("complex externs are not supported by the loop "
-                           "lowering yet");
     map(ref, getExtern(global));
     return success();
   }
@@ -563,11 +543,6 @@ LogicalResult FunctionLowering::run(func::FuncOp original) {
   b.setInsertionPointToEnd(entry);
   for (auto [i, arg] : llvm::enumerate(original.getArguments())) {
     Type type = convertType(arg.getType());
-    if (isComplexSystem(arg.getType()))
-      return original.emitError("exported function parameter ")
-             << i << " of type " << arg.getType()
-             << " cannot be lowered: complex system tensors are not supported "
-                "by the loop lowering yet";
     if (!type || isa<SetType, ElementType>(arg.getType()))
       return original.emitError("exported function parameter ")
              << i << " of type " << arg.getType()

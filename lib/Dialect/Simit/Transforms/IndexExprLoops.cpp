@@ -265,7 +265,7 @@ void IndexExprLowering::prefetchAhead(unsigned i, Value position) {
   // memory allows.
   Value values = l.lookup(op.getInputs()[i]);
   auto type = cast<MemRefType>(values.getType());
-  int64_t blockBytes = type.getElementTypeBitWidth() / 8;
+  int64_t blockBytes = componentBytes(type.getElementType());
   for (int64_t d = 1; d < type.getRank(); ++d)
     blockBytes *= type.getDimSize(d);
   int64_t distance = llvm::divideCeil(l.prefetchMatrixBytes,

@@ -8,6 +8,7 @@
 
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
+#include "mlir/Dialect/Complex/IR/Complex.h"
 #include "mlir/IR/PatternMatch.h"
 
 namespace mlir {
@@ -22,7 +23,8 @@ using namespace mlir::simit;
 
 namespace {
 /// The scalar operation of a body.
-enum class BodyKind { Add, Sub, Mul, Div, Neg };
+/// SquaredModulus: |x|^2 of one input (x * x, or re^2 + im^2 for complex).
+enum class BodyKind { Add, Sub, Mul, Div, Neg, SquaredModulus };
 
 /// Whether `type` is a matrix over two sets.
 bool isSystemMatrix(Type type) {
@@ -35,9 +37,52 @@ bool isSystemMatrix(Type type) {
 /// The body of an element-wise operation; `ofMatrix` when its result is a
 /// system matrix.
 Value emitScalar(OpBuilder &b, Location loc, BodyKind kind, ValueRange args,
+                 bool ofMatrix);
+
+/// The body on complex components. Complex division follows the rule of
+/// the float one: outside a matrix's sparsity 0/0 reads as zero.
+Value emitComplex(OpBuilder &b, Location loc, BodyKind kind, ValueRange args,
+                  bool ofMatrix) {
+  switch (kind) {
+  case BodyKind::Add:
+    return complex::AddOp::create(b, loc, args[0], args[1]);
+  case BodyKind::Sub:
+    return complex::SubOp::create(b, loc, args[0], args[1]);
+  case BodyKind::Mul:
+    return complex::MulOp::create(b, loc, args[0], args[1]);
+  case BodyKind::Neg:
+    return complex::NegOp::create(b, loc, args[0]);
+  case BodyKind::SquaredModulus: {
+    Value re = complex::ReOp::create(b, loc, args[0]);
+    Value im = complex::ImOp::create(b, loc, args[0]);
+    return emitScalar(b, loc, BodyKind::Add,
+                      {emitScalar(b, loc, BodyKind::Mul, {re, re}, false),
+                       emitScalar(b, loc, BodyKind::Mul, {im, im}, false)},
+                      false);
+  }
+  case BodyKind::Div: {
+    Value quotient = complex::DivOp::create(b, loc, args[0], args[1]);
+    if (!ofMatrix)
+      return quotient;
+    Type part = cast<ComplexType>(args[0].getType()).getElementType();
+    Attribute zeroPart = b.getZeroAttr(part);
+    Value zero = complex::ConstantOp::create(
+        b, loc, args[0].getType(), b.getArrayAttr({zeroPart, zeroPart}));
+    Value isZero = complex::EqualOp::create(b, loc, args[0], zero);
+    return arith::SelectOp::create(b, loc, isZero, zero, quotient);
+  }
+  }
+  llvm_unreachable("body kind");
+}
+
+Value emitScalar(OpBuilder &b, Location loc, BodyKind kind, ValueRange args,
                  bool ofMatrix) {
+  if (isa<ComplexType>(args[0].getType()))
+    return emitComplex(b, loc, kind, args, ofMatrix);
   bool isFloat = isa<FloatType>(args[0].getType());
   switch (kind) {
+  case BodyKind::SquaredModulus:
+    return emitScalar(b, loc, BodyKind::Mul, {args[0], args[0]}, ofMatrix);
   case BodyKind::Add:
     return isFloat ? arith::AddFOp::create(b, loc, args[0], args[1]).getResult()
                    : arith::AddIOp::create(b, loc, args[0], args[1]).getResult();
@@ -193,11 +238,11 @@ Value rewrite(OpBuilder &b, Operation *op) {
                           {{0}, {1}}, BodyKind::Mul);
   }
   if (auto norm = dyn_cast<NormOp>(op)) {
-    // norm(x) = sqrt(sum_i x(i) * x(i)).
+    // norm(x) = sqrt(sum_i |x(i)|^2).
     Type x = norm.getOperand().getType();
-    Value squares = buildIndexExpr(
-        b, loc, resultType, {norm.getOperand(), norm.getOperand()},
-        {hierarchy(x, 0)}, {}, {{0}, {0}}, BodyKind::Mul);
+    Value squares =
+        buildIndexExpr(b, loc, resultType, {norm.getOperand()},
+                       {hierarchy(x, 0)}, {}, {{0}}, BodyKind::SquaredModulus);
     return math::SqrtOp::create(b, loc, squares);
   }
   return nullptr;

@@ -314,17 +314,20 @@ Value FunctionLowering::getExtern(ExternOp global) {
         BindingKind::Extern,
         {global.getSymName(), cast<StringAttr>(system.getDims()[0]).getValue()},
         convertType(type));
-  Type memref = isa<FloatType, IntegerType>(type)
-                    ? MemRefType::get({}, type)
-                    : MemRefType::get({numComponents(type)},
-                                      getComponentType(type));
+  // Stored as a variable of its type is: complex tensors as their parts.
+  auto memref =
+      cast<MemRefType>(convertType(RefType::get(type.getContext(), type)));
   // Scalars and unblocked local tensors: the host checks the shape it binds
-  // (a 3x2 array is no matrix[2,3], though it has as many numbers).
-  std::optional<ArrayRef<int64_t>> declared;
-  if (isa<FloatType, IntegerType>(type))
-    declared = ArrayRef<int64_t>{};
+  // (a 3x2 array is no matrix[2,3], though it has as many numbers); complex
+  // components are (re, im) pairs.
+  std::optional<SmallVector<int64_t>> declared;
+  if (isa<FloatType, IntegerType, ComplexType>(type))
+    declared.emplace();
   else if (auto tensor = dyn_cast<RankedTensorType>(type))
-    declared = tensor.getShape();
+    declared.emplace(tensor.getShape());
+  if (declared && isa<ComplexType>(getComponentType(type)))
+    declared->push_back(2);
   return getBinding(BindingKind::Extern, {global.getSymName()}, memref,
-                    declared);
+                    declared ? std::optional<ArrayRef<int64_t>>(*declared)
+                             : std::nullopt);
 }

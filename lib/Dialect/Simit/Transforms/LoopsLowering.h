@@ -31,6 +31,7 @@
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
 #include "mlir/Dialect/Arith/IR/Arith.h"
+#include "mlir/Dialect/Complex/IR/Complex.h"
 #include "mlir/IR/Builders.h"
 #include "llvm/ADT/MapVector.h"
 #include "llvm/ADT/SetVector.h"
@@ -211,14 +212,28 @@ struct Storage {
 /// stencil or dense one.
 bool hasBCSRView(const Storage &s);
 
-/// lhs + rhs and lhs * rhs of float or int numbers, scalars or vectors
-/// (ints wrap, as the language's do).
+/// Bytes of one stored component (a complex one holds two parts; a bool
+/// takes a byte).
+inline int64_t componentBytes(Type component) {
+  if (auto complex = dyn_cast<ComplexType>(component))
+    return 2 * componentBytes(complex.getElementType());
+  if (component.isIntOrFloat())
+    return std::max<int64_t>(1, component.getIntOrFloatBitWidth() / 8);
+  return 8;
+}
+
+/// lhs + rhs and lhs * rhs of float, int or complex numbers, scalars or
+/// vectors (ints wrap, as the language's do).
 inline Value addNumbers(OpBuilder &b, Location loc, Value lhs, Value rhs) {
+  if (isa<ComplexType>(lhs.getType()))
+    return complex::AddOp::create(b, loc, lhs, rhs);
   if (isa<FloatType>(getElementTypeOrSelf(lhs.getType())))
     return arith::AddFOp::create(b, loc, lhs, rhs);
   return arith::AddIOp::create(b, loc, lhs, rhs);
 }
 inline Value multiplyNumbers(OpBuilder &b, Location loc, Value lhs, Value rhs) {
+  if (isa<ComplexType>(lhs.getType()))
+    return complex::MulOp::create(b, loc, lhs, rhs);
   if (isa<FloatType>(getElementTypeOrSelf(lhs.getType())))
     return arith::MulFOp::create(b, loc, lhs, rhs);
   return arith::MulIOp::create(b, loc, lhs, rhs);

@@ -28,8 +28,6 @@ static int64_t storedLength(Type type) {
 /// where there is no lowering.
 static Type systemArrayType(SystemTensorType system) {
   Type component = system.getComponentType();
-  if (isa<ComplexType>(component))
-    return nullptr;
   SmallVector<int64_t> shape{ShapedType::kDynamic};
   unsigned sets = 0;
   for (Attribute dim : system.getDims()) {

@@ -676,10 +676,6 @@ ExtractOp FunctionLowering::blockRead(IndexExprOp op) {
 }
 
 LogicalResult FunctionLowering::lowerIndexExpr(IndexExprOp op, ExtractOp at) {
-  // The loop nests sum with arith on floats and integers only.
-  if (isa<ComplexType>(getComponentType(op.getType())))
-    return op.emitError("index expressions on complex tensors are not "
-                        "supported by the loop lowering yet");
   // Lowered with its block read, right after it (blockRead).
   if (!at && blockRead(op))
     return success();

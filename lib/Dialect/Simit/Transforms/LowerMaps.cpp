@@ -109,11 +109,9 @@ static Value combine(OpBuilder &b, Location loc, ReductionKind kind, Value old,
   bool isFloat = isa<FloatType>(getElementTypeOrSelf(value.getType()));
   switch (kind) {
   case ReductionKind::Add:
-    return isFloat ? arith::AddFOp::create(b, loc, old, value).getResult()
-                   : arith::AddIOp::create(b, loc, old, value).getResult();
+    return addNumbers(b, loc, old, value);
   case ReductionKind::Mul:
-    return isFloat ? arith::MulFOp::create(b, loc, old, value).getResult()
-                   : arith::MulIOp::create(b, loc, old, value).getResult();
+    return multiplyNumbers(b, loc, old, value);
   case ReductionKind::Min:
     return isFloat ? arith::MinimumFOp::create(b, loc, old, value).getResult()
                    : arith::MinSIOp::create(b, loc, old, value).getResult();
@@ -522,13 +520,7 @@ LogicalResult FunctionLowering::lowerElementAccess(Operation *op,
   auto access = [&](Value elementValue, StringAttr field,
                     Type &fieldType) -> std::pair<Value, Value> {
     StringAttr set = elementSetOf(elementValue);
-    fieldType =
-        cast<ElementType>(elementValue.getType()).getFieldType(field);
-    if (isa<ComplexType>(getComponentType(fieldType))) {
-      op->emitError("complex fields are not supported by the loop lowering "
-                    "yet");
-      return {};
-    }
+    fieldType = cast<ElementType>(elementValue.getType()).getFieldType(field);
     if (!set) {
       op->emitError("the loop lowering cannot tell which set this element "
                     "belongs to");

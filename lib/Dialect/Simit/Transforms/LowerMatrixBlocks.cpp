@@ -185,9 +185,7 @@ Value FunctionLowering::sumStencilBlocks(Location loc, const Storage &storage,
                                         stencilColumn(storage, row, kv), col);
     Value value = arith::SelectOp::create(
         b, loc, match, read(stencilBlock(storage, row, kv)), zeroOf(scalar));
-    sum = isa<FloatType>(scalar)
-              ? arith::AddFOp::create(b, loc, sum, value).getResult()
-              : arith::AddIOp::create(b, loc, sum, value).getResult();
+    sum = addNumbers(b, loc, sum, value);
   }
   return sum;
 }

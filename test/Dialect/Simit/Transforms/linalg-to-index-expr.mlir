@@ -37,7 +37,9 @@ func.func @products(%A : !K, %x : !F, %R : !R) -> (!F, f64, f64, !K, !simit.tens
   // CHECK: simit.index_expr [i : "points" x 3] () = (%{{.*}}(i), %{{.*}}(i)) {{.*}} -> f64
   %d = simit.dot %x, %y : !F, !F -> f64
   // norm: the sum of squares, then the square root.
-  // CHECK: %[[SQ:.*]] = simit.index_expr [i : "points" x 3] () = (%{{.*}}(i), %{{.*}}(i)) {{.*}} -> f64
+  // CHECK: %[[SQ:.*]] = simit.index_expr [i : "points" x 3] () = (%{{.*}}(i)) {{.*}} -> f64
+  // CHECK-NEXT: ^bb0(%[[Y:.*]]: f64):
+  // CHECK-NEXT: arith.mulf %[[Y]], %[[Y]]
   // CHECK: math.sqrt %[[SQ]] : f64
   %n = simit.norm %y : !F -> f64
   // A product of system matrices stays: the loop lowering stores it on the

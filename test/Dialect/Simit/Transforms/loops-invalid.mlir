@@ -70,38 +70,6 @@ func.func @clock() -> f64 attributes {simit.export} {
 
 // -----
 
-// Complex numbers are lowered as scalars and local tensors only.
-!C = !simit.tensor<["points"] x complex<f64>>
-!Point = !simit.element<"Point", {x : tensor<3xf64>}>
-simit.extern @points : !simit.set<"points", !Point>
-
-// expected-error @below {{exported function parameter 0 of type '!simit.tensor<["points"] x complex<f64>>' cannot be lowered: complex system tensors are not supported by the loop lowering yet}}
-func.func @complex_system_param(%z : !C) attributes {simit.export} {
-  return
-}
-
-// -----
-
-!Point = !simit.element<"Point", {z : complex<f64>}>
-!Points = !simit.set<"points", !Point>
-simit.extern @points : !Points
-
-func.func @conj(%p : !Point) {
-  // expected-error @below {{complex fields are not supported by the loop lowering yet}}
-  %z = simit.elem_read %p["z"] : !Point -> complex<f64>
-  %c = complex.conj %z : complex<f64>
-  simit.elem_write %c, %p["z"] : complex<f64>, !Point
-  return
-}
-
-func.func @step() attributes {simit.export} {
-  %s = simit.get_set @points : !Points
-  simit.map @conj() to %s : (!Points) -> ()
-  return
-}
-
-// -----
-
 !Point = !simit.element<"Point", {m : f64}>
 !Points = !simit.set<"points", !Point>
 simit.extern @points : !Points

@@ -183,7 +183,7 @@ IndexExprLowering::choose(ArrayRef<unsigned> vars) {
   // sparsity leads (an edge pattern holds a diagonal).
   unsigned result = op.getInputs().size();
   for (unsigned v : vars) {
-    if (isSetBound(v) || !isa<StringAttr>(level(v, 0)))
+    if (denseVars.contains(v) || isSetBound(v) || !isa<StringAttr>(level(v, 0)))
       continue;
     int best = -1;
     unsigned partner = 0;

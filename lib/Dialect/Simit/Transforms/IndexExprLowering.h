@@ -171,6 +171,9 @@ private:
   Location loc;
   Type scalarType;
   Storage resultStorage;
+  /// The variables whose terms can be nonzero outside the sparse matrices'
+  /// blocks: each runs over its whole set.
+  llvm::SmallDenseSet<unsigned> denseVars;
   DenseMap<unsigned, SmallVector<Value>> bound;
   /// Block positions of matrix operands bound by a pattern loop.
   DenseMap<unsigned, Value> positions;

@@ -164,9 +164,16 @@ Value rewrite(OpBuilder &b, Operation *op) {
   Location loc = op->getLoc();
   Type resultType = op->getResult(0).getType();
 
-  // Element-wise: one variable per dimension, read alike everywhere.
-  auto elementwise = [&](BodyKind kind, ValueRange inputs) {
-    Type type = inputs.back().getType();
+  // Element-wise: one variable per dimension, read alike everywhere. A
+  // scalar broadcast to the operand's type (`A / 2.0`) is read as the
+  // scalar: a matrix of it would fill every block of the sets.
+  auto elementwise = [&](BodyKind kind, ValueRange operands) {
+    SmallVector<Value> inputs;
+    for (Value operand : operands) {
+      auto broadcast = operand.getDefiningOp<BroadcastOp>();
+      inputs.push_back(broadcast ? broadcast.getOperand() : operand);
+    }
+    Type type = resultType;
     SmallVector<ArrayAttr> domains;
     SmallVector<int64_t> all;
     for (unsigned d = 0; d < getTensorOrder(type); ++d) {
@@ -259,10 +266,18 @@ struct LinalgToIndexExpr
     });
     for (Operation *op : candidates) {
       OpBuilder b(op);
-      if (Value replacement = rewrite(b, op)) {
-        op->getResult(0).replaceAllUsesWith(replacement);
-        op->erase();
-      }
+      Value replacement = rewrite(b, op);
+      if (!replacement)
+        continue;
+      SmallVector<Value> operands(op->getOperands());
+      op->getResult(0).replaceAllUsesWith(replacement);
+      op->erase();
+      // A broadcast the index expression reads as its scalar has no storage
+      // of its own.
+      for (Value operand : operands)
+        if (auto broadcast = operand.getDefiningOp<BroadcastOp>();
+            broadcast && broadcast->use_empty())
+          broadcast->erase();
     }
   }
 };

@@ -18,7 +18,9 @@
 
 #include "IndexExprLowering.h"
 
+#include "mlir/Dialect/Complex/IR/Complex.h"
 #include "mlir/Dialect/Vector/IR/VectorOps.h"
+#include "mlir/IR/Matchers.h"
 
 using namespace mlir;
 using namespace mlir::simit;
@@ -50,6 +52,63 @@ bool multipliesMatrices(IndexExprOp op) {
     return WalkResult::advance();
   });
   return walk.wasInterrupted();
+}
+
+/// The variables whose sum (or, for the result's and the top-level summed
+/// variables, the body) can be nonzero where every sparse matrix input is
+/// zero (`A(i,j) + s`, `A(i,j) + u(i) * v(j)`, `s / A(i,j)`): no matrix's
+/// sparsity bounds their loops.
+llvm::SmallDenseSet<unsigned>
+varsNonzeroOutsideMatrices(IndexExprOp op,
+                           function_ref<bool(unsigned)> isSparseInput) {
+  Block &body = op.getBody().front();
+  // Per value: whether it is zero wherever the sparse matrices are.
+  DenseMap<Value, bool> bounded;
+  auto boundedValue = [&](Value v) {
+    if (auto arg = dyn_cast<BlockArgument>(v); arg && arg.getOwner() == &body)
+      return isSparseInput(arg.getArgNumber());
+    auto it = bounded.find(v);
+    return it != bounded.end() && it->second;
+  };
+  llvm::SmallDenseSet<unsigned> vars;
+  llvm::SmallDenseSet<int64_t> nested;
+  // Post-order: a sum's body comes before the sum.
+  body.walk([&](Operation *inner) {
+    auto operand = [&](unsigned i) {
+      return boundedValue(inner->getOperand(i));
+    };
+    bool value = false;
+    if (isa<arith::MulFOp, arith::MulIOp, complex::MulOp>(inner)) {
+      value = operand(0) || operand(1);
+    } else if (isa<arith::DivFOp, arith::DivSIOp, complex::DivOp>(inner)) {
+      value = operand(0);
+    } else if (isa<arith::AddFOp, arith::SubFOp, arith::AddIOp, arith::SubIOp,
+                   complex::AddOp, complex::SubOp>(inner)) {
+      value = operand(0) && operand(1);
+    } else if (isa<arith::SelectOp>(inner)) {
+      value = operand(1) && operand(2);
+    } else if (isa<arith::NegFOp, complex::NegOp>(inner)) {
+      value = operand(0);
+    } else if (auto sum = dyn_cast<IndexSumOp>(inner)) {
+      value =
+          boundedValue(sum.getBody().front().getTerminator()->getOperand(0));
+      for (int64_t v : sum.getVars()) {
+        nested.insert(v);
+        if (!value)
+          vars.insert(v);
+      }
+    } else if (auto constant = dyn_cast<arith::ConstantOp>(inner)) {
+      value = matchPattern(constant.getResult(), m_AnyZeroFloat()) ||
+              matchPattern(constant.getResult(), m_Zero());
+    }
+    for (Value result : inner->getResults())
+      bounded[result] = value;
+  });
+  if (!boundedValue(body.getTerminator()->getOperand(0)))
+    for (unsigned v = 0, e = op.getIndexVars().size(); v < e; ++v)
+      if (!nested.contains(v))
+        vars.insert(v);
+  return vars;
 }
 } // namespace
 
@@ -445,6 +504,11 @@ LogicalResult IndexExprLowering::lower(ExtractOp at) {
       multipliesMatrices(op) && llvm::any_of(op.getInputs(), [&](Value in) {
         return l.storageOf(in).kind == Storage::Kind::Incidence;
       });
+  denseVars = varsNonzeroOutsideMatrices(op, [&](unsigned i) {
+    Storage s = l.storageOf(op.getInputs()[i]);
+    return s.isMatrix() && s.kind != Storage::Kind::DenseMatrix &&
+           op.getInputIndexList(i).size() == 2;
+  });
   // Inputs, then the result.
   swappedLists.resize(op.getInputs().size() + 1);
   for (auto [i, input] : llvm::enumerate(op.getInputs())) {

@@ -202,6 +202,11 @@ StorageAnalysis::visitOperation(Operation *op,
       .Case([&](ZerosOp) {
         setResult(0, StorageRule::of(storage::empty(ctx)), op);
       })
+      // Every block holds the scalar (simit-linalg-to-index-expr reads a
+      // broadcast operand of element-wise ops as the scalar instead).
+      .Case([&](BroadcastOp) {
+        setResult(0, StorageRule::of(storage::dense(ctx)), op);
+      })
       .Case<AddOp, SubOp>(
           [&](auto) { setResult(0, sumStorage(in[0], in[1]), op); })
       .Case([&](MulOp) { setResult(0, mulStorage(in[0], in[1]), op); })

@@ -219,11 +219,9 @@ StorageRule mlir::simit::getIndexExprStorage(IndexExprOp op,
   case Kind::Unsupported:
     return StorageRule::error(yielded.reason);
   case Kind::Full:
-    return StorageRule::error(
-        "this matrix is nonzero outside the sparsity of its matrix operands "
-        "(a term without a matrix factor, such as an outer product of "
-        "vectors added to a sparse matrix): its result would be dense, "
-        "which the loop lowering does not support");
+    // Nonzero outside the sparsity of its matrix operands (a scalar or an
+    // outer product of vectors added to a sparse matrix): every block.
+    return StorageRule::of(storage::dense(op.getContext()));
   case Kind::Left:
   case Kind::Right:
     return StorageRule::error("the summed variable of this index expression "

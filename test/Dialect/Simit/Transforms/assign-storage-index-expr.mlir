@@ -115,3 +115,18 @@ func.func @unrelated_product(%springs : !Springs, %hinges : !Hinges) -> f64 {
   return %zero : f64
 }
 
+// A matrix plus a term without a matrix factor is nonzero outside every
+// matrix operand's blocks: it is stored dense.
+// CHECK-LABEL: func.func @dense_index_expr
+// CHECK: simit.index_expr {{.*}} -> !simit.tensor<["points", "points"] x f64, #simit.storage<dense>>
+func.func @dense_index_expr(%points : !Points, %x : !V) -> f64 {
+  %M = simit.assemble @mass() to %points reduce <add> : (!Points) -> !K
+  %A = simit.index_expr [i : "points", j : "points"] (i, j) = (%M(i, j), %x(i))
+       : (!K, !V) -> !K {
+  ^bb0(%m: f64, %xi: f64):
+    %s = arith.addf %m, %xi : f64
+    simit.yield %s : f64
+  }
+  %zero = arith.constant 0.0 : f64
+  return %zero : f64
+}

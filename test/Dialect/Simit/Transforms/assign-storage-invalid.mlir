@@ -153,34 +153,6 @@ func.func @stencil_rows(%points : !Points, %cells : !Cells) -> f64 {
 
 // -----
 
-!Point = !simit.element<"Point", {x : f64}>
-!Points = !simit.set<"points", !Point>
-!K = !simit.tensor<["points", "points"] x f64>
-!V = !simit.tensor<["points"] x f64>
-
-func.func private @mass(%p : !Point) -> !K {
-  %m = simit.elem_read %p["x"] : !Point -> f64
-  %z = simit.zeros : !K
-  %M = simit.insert %m into %z[%p, %p] : f64 into !K, (!Point, !Point)
-  return %M : !K
-}
-
-func.func @dense_index_expr(%points : !Points, %x : !V) -> f64 {
-  // expected-note @+1 {{'diag("points")' comes from here}}
-  %M = simit.assemble @mass() to %points reduce <add> : (!Points) -> !K
-  // expected-error @+1 {{this matrix is nonzero outside the sparsity of its matrix operands (a term without a matrix factor, such as an outer product of vectors added to a sparse matrix): its result would be dense, which the loop lowering does not support}}
-  %A = simit.index_expr [i : "points", j : "points"] (i, j) = (%M(i, j), %x(i))
-       : (!K, !V) -> !K {
-  ^bb0(%m: f64, %xi: f64):
-    %s = arith.addf %m, %xi : f64
-    simit.yield %s : f64
-  }
-  %zero = arith.constant 0.0 : f64
-  return %zero : f64
-}
-
-// -----
-
 // A quotient by a matrix whose storage does not hold the dividend's.
 !Point = !simit.element<"Point", {x : f64}>
 !Spring = !simit.element<"Spring", {k : f64}>

@@ -11,17 +11,21 @@
 #include "simit/ABI/RuntimeFunctions.h"
 #include "simit/Runtime/SolveSession.h"
 
-#include "llvm/Support/ErrorHandling.h"
-
 #include <Eigen/Cholesky>
 #include <Eigen/Dense>
 #include <Eigen/LU>
 
+#include <limits>
 #include <memory>
+#include <mutex>
+#include <optional>
+#include <type_traits>
+#include <unordered_set>
 
 using simit::abi::abandonRun;
 using simit::abi::bcsrView;
 using simit::abi::fail;
+using simit::abi::failRun;
 using simit::abi::isContiguous;
 using simit::abi::MemRefDescriptor;
 using simit::abi::solver;
@@ -37,12 +41,14 @@ asVector(MemRefDescriptor<double, 1> *m) {
           Eigen::InnerStride<>(m->strides[0])};
 }
 
-/// A row-major rows x cols matrix held in a memref<?xf64>.
-RowMatrix asMatrix(MemRefDescriptor<double, 1> *m, int64_t rows, int64_t cols,
-                   const char *who) {
-  if (rows < 0 || cols < 0 || m->sizes[0] != rows * cols)
-    llvm::report_fatal_error(llvm::Twine(who) +
-                             ": operand size does not match its shape");
+/// A row-major rows x cols matrix held in a memref<?xf64>, or none (the
+/// failure recorded) when the sizes differ.
+std::optional<RowMatrix> asMatrix(MemRefDescriptor<double, 1> *m, int64_t rows,
+                                  int64_t cols, const char *where) {
+  if (rows < 0 || cols < 0 || m->sizes[0] != rows * cols) {
+    fail(where, "operand size does not match its shape");
+    return std::nullopt;
+  }
   RowMatrix result(rows, cols);
   auto flat = asVector(m);
   for (int64_t i = 0; i < rows; ++i)
@@ -51,14 +57,15 @@ RowMatrix asMatrix(MemRefDescriptor<double, 1> *m, int64_t rows, int64_t cols,
   return result;
 }
 
-void storeMatrix(const RowMatrix &value, MemRefDescriptor<double, 1> *m,
-                 const char *who) {
+bool storeMatrix(const RowMatrix &value, MemRefDescriptor<double, 1> *m,
+                 const char *where) {
   if (m->sizes[0] != value.size())
-    llvm::report_fatal_error(llvm::Twine(who) + ": result size does not match");
+    return fail(where, "result size does not match");
   auto flat = asVector(m);
   for (int64_t i = 0; i < value.rows(); ++i)
     for (int64_t j = 0; j < value.cols(); ++j)
       flat[i * value.cols() + j] = value(i, j);
+  return true;
 }
 
 /// A factorisation handle: lufree/cholfree delete dense and sparse ones
@@ -79,15 +86,88 @@ struct SystemFactor : Factorisation {
   std::shared_ptr<const simit::SparseFactorisation> factor;
 };
 
+/// The handles made and not yet freed: a freed or foreign handle is an
+/// error, not a read of freed memory.
+std::mutex liveMutex;
+std::unordered_set<const Factorisation *> live;
+
+void *keep(Factorisation *factor) {
+  std::lock_guard<std::mutex> lock(liveMutex);
+  live.insert(factor);
+  return static_cast<void *>(factor);
+}
+
+/// The factorisation behind `handle`, or null (the failure recorded) when
+/// it is none the program holds.
+Factorisation *held(void *handle, const char *where) {
+  auto *factor = static_cast<Factorisation *>(handle);
+  {
+    std::lock_guard<std::mutex> lock(liveMutex);
+    if (factor && live.count(factor))
+      return factor;
+  }
+  fail(where, handle ? "the factorisation was freed (lufree/cholfree)"
+                     : "no factorisation (a failed lu or chol)");
+  return nullptr;
+}
+
 template <typename Solver>
-Solver &solverOf(void *handle, const char *who, const char *kind) {
-  if (!handle)
-    llvm::report_fatal_error(llvm::Twine(who) + ": null factorisation");
-  auto *factor =
-      dynamic_cast<Factor<Solver> *>(static_cast<Factorisation *>(handle));
+Solver *solverOf(void *handle, const char *where, const char *kind) {
+  Factorisation *factor = held(handle, where);
   if (!factor)
-    llvm::report_fatal_error(llvm::Twine(who) + ": the handle is not " + kind);
-  return factor->solver;
+    return nullptr;
+  auto *dense = dynamic_cast<Factor<Solver> *>(factor);
+  if (!dense)
+    fail(where, llvm::Twine("the handle is not ") + kind);
+  return dense ? &dense->solver : nullptr;
+}
+
+/// Solves with the dense factorisation `Solver` of `handle` for a
+/// right-hand side of `cols` columns; on a failure (recorded) every
+/// component of x is NaN, which a parallel region keeps until it ends.
+template <typename Solver>
+bool denseSolve(void *handle, MemRefDescriptor<double, 1> *b,
+                MemRefDescriptor<double, 1> *x, int64_t cols, const char *where,
+                const char *kind) {
+  Solver *factor = solverOf<Solver>(handle, where, kind);
+  std::optional<RowMatrix> rhs =
+      factor ? asMatrix(b, factor->rows(), cols, where) : std::nullopt;
+  if (rhs &&
+      storeMatrix(RowMatrix(factor->solve(Eigen::MatrixXd(*rhs))), x, where))
+    return true;
+  asVector(x).setConstant(std::numeric_limits<double>::quiet_NaN());
+  return false;
+}
+
+/// lu or chol of a dense n x n matrix into `handle`, or false (recorded).
+template <typename Solver>
+bool denseFactorise(MemRefDescriptor<double, 1> *a, int64_t n,
+                    const char *where, void *&handle) {
+  std::optional<RowMatrix> matrix = asMatrix(a, n, n, where);
+  if (!matrix)
+    return false;
+  auto factor = std::make_unique<Factor<Solver>>();
+  factor->solver.compute(Eigen::MatrixXd(*matrix));
+  // Eigen's LLT reads the lower triangle and stops at a pivot <= 0.
+  if constexpr (std::is_same_v<Solver, LLT>)
+    if (factor->solver.info() != Eigen::Success)
+      return fail(where, "the matrix is not positive definite");
+  handle = keep(factor.release());
+  return true;
+}
+
+/// lufree and cholfree, or false (recorded) for a handle the program does
+/// not hold (freed twice).
+bool freeFactorisation(void *handle, const char *where) {
+  Factorisation *factor = held(handle, where);
+  if (!factor)
+    return false;
+  {
+    std::lock_guard<std::mutex> lock(liveMutex);
+    live.erase(factor);
+  }
+  delete factor;
+  return true;
 }
 
 /// chol/lu of a system matrix into `handle`, or false with runFailure set.
@@ -106,7 +186,7 @@ bool factoriseSystem(simit::FactorKind kind,
   held->kind = kind;
   held->factorSize = view.size();
   held->factor = std::move(*factor);
-  handle = static_cast<Factorisation *>(held);
+  handle = keep(held);
   return true;
 }
 
@@ -114,38 +194,40 @@ bool factoriseSystem(simit::FactorKind kind,
 /// runFailure set.
 bool solveSystem(void *handle, bool lu, MemRefDescriptor<double, 2> *b,
                  MemRefDescriptor<double, 2> *x, const char *where) {
-  auto *held =
-      handle
-          ? dynamic_cast<SystemFactor *>(static_cast<Factorisation *>(handle))
-          : nullptr;
-  if (!held || (held->kind == simit::FactorKind::LU) != lu)
+  Factorisation *factor = held(handle, where);
+  if (!factor)
+    return false;
+  auto *system = dynamic_cast<SystemFactor *>(factor);
+  if (!system || (system->kind == simit::FactorKind::LU) != lu)
     return fail(where, lu ? "the handle is not a sparse LU factorisation"
                           : "the handle is not a sparse Cholesky "
                             "factorisation");
   if (!isContiguous(*b) || !isContiguous(*x) ||
-      b->sizes[0] * b->sizes[1] != held->factorSize ||
-      x->sizes[0] * x->sizes[1] != held->factorSize)
+      b->sizes[0] * b->sizes[1] != system->factorSize ||
+      x->sizes[0] * x->sizes[1] != system->factorSize)
     return fail(where, "vector size does not match the matrix");
-  auto report =
-      solver().solveWith(*held->factor, b->data + b->offset,
+  auto solved =
+      solver().solveWith(*system->factor, b->data + b->offset,
                          x->data + x->offset, where ? where : "solve");
-  return report ? true : fail(where, llvm::toString(report.takeError()));
+  return solved ? true : fail(where, llvm::toString(solved.takeError()));
 }
 
 } // namespace
 
 extern "C" void *_mlir_ciface_simit_rt_lu(MemRefDescriptor<double, 1> *a,
-                                          int64_t n) {
-  auto *factor = new Factor<LU>;
-  factor->solver.compute(Eigen::MatrixXd(asMatrix(a, n, n, "lu")));
-  return static_cast<Factorisation *>(factor);
+                                          int64_t n, const char *where) {
+  void *handle = nullptr;
+  if (!denseFactorise<LU>(a, n, where, handle))
+    failRun();
+  return handle;
 }
 
 extern "C" void *_mlir_ciface_simit_rt_chol(MemRefDescriptor<double, 1> *a,
-                                            int64_t n) {
-  auto *factor = new Factor<LLT>;
-  factor->solver.compute(Eigen::MatrixXd(asMatrix(a, n, n, "chol")));
-  return static_cast<Factorisation *>(factor);
+                                            int64_t n, const char *where) {
+  void *handle = nullptr;
+  if (!denseFactorise<LLT>(a, n, where, handle))
+    failRun();
+  return handle;
 }
 
 extern "C" void *_mlir_ciface_simit_rt_lu_bcsr(
@@ -185,53 +267,61 @@ extern "C" void _mlir_ciface_simit_rt_lltsolve_bcsr(
 
 extern "C" void _mlir_ciface_simit_rt_lusolve(void *handle,
                                               MemRefDescriptor<double, 1> *b,
-                                              MemRefDescriptor<double, 1> *x) {
-  auto &lu = solverOf<LU>(handle, "lusolve", "a dense LU factorisation");
-  RowMatrix rhs = asMatrix(b, lu.rows(), 1, "lusolve");
-  storeMatrix(RowMatrix(lu.solve(Eigen::MatrixXd(rhs))), x, "lusolve");
+                                              MemRefDescriptor<double, 1> *x,
+                                              const char *where) {
+  if (!denseSolve<LU>(handle, b, x, 1, where, "a dense LU factorisation"))
+    failRun();
 }
 
 extern "C" void _mlir_ciface_simit_rt_lltsolve(void *handle,
                                                MemRefDescriptor<double, 1> *b,
-                                               MemRefDescriptor<double, 1> *x) {
-  auto &llt =
-      solverOf<LLT>(handle, "lltsolve", "a dense Cholesky factorisation");
-  RowMatrix rhs = asMatrix(b, llt.rows(), 1, "lltsolve");
-  storeMatrix(RowMatrix(llt.solve(Eigen::MatrixXd(rhs))), x, "lltsolve");
+                                               MemRefDescriptor<double, 1> *x,
+                                               const char *where) {
+  if (!denseSolve<LLT>(handle, b, x, 1, where,
+                       "a dense Cholesky factorisation"))
+    failRun();
 }
 
 extern "C" void _mlir_ciface_simit_rt_lumatsolve(void *handle,
                                                  MemRefDescriptor<double, 1> *b,
                                                  MemRefDescriptor<double, 1> *x,
-                                                 int64_t cols) {
-  auto &lu = solverOf<LU>(handle, "lumatsolve", "a dense LU factorisation");
-  RowMatrix rhs = asMatrix(b, lu.rows(), cols, "lumatsolve");
-  storeMatrix(RowMatrix(lu.solve(Eigen::MatrixXd(rhs))), x, "lumatsolve");
+                                                 int64_t cols,
+                                                 const char *where) {
+  if (!denseSolve<LU>(handle, b, x, cols, where, "a dense LU factorisation"))
+    failRun();
 }
 
 extern "C" void
 _mlir_ciface_simit_rt_lltmatsolve(void *handle, MemRefDescriptor<double, 1> *b,
-                                  MemRefDescriptor<double, 1> *x,
-                                  int64_t cols) {
-  auto &llt =
-      solverOf<LLT>(handle, "lltmatsolve", "a dense Cholesky factorisation");
-  RowMatrix rhs = asMatrix(b, llt.rows(), cols, "lltmatsolve");
-  storeMatrix(RowMatrix(llt.solve(Eigen::MatrixXd(rhs))), x, "lltmatsolve");
+                                  MemRefDescriptor<double, 1> *x, int64_t cols,
+                                  const char *where) {
+  if (!denseSolve<LLT>(handle, b, x, cols, where,
+                       "a dense Cholesky factorisation"))
+    failRun();
 }
 
-extern "C" void simit_rt_lufree(void *handle) {
-  delete static_cast<Factorisation *>(handle);
+extern "C" void simit_rt_lufree(void *handle, const char *where) {
+  if (!freeFactorisation(handle, where))
+    failRun();
 }
 
-extern "C" void simit_rt_cholfree(void *handle) {
-  delete static_cast<Factorisation *>(handle);
+extern "C" void simit_rt_cholfree(void *handle, const char *where) {
+  if (!freeFactorisation(handle, where))
+    failRun();
 }
 
 extern "C" void _mlir_ciface_simit_rt_triangularSolve(
     MemRefDescriptor<double, 1> *a, MemRefDescriptor<double, 1> *b,
-    MemRefDescriptor<double, 1> *x, int64_t n) {
-  RowMatrix matrix = asMatrix(a, n, n, "triangularSolve");
-  RowMatrix rhs = asMatrix(b, n, 1, "triangularSolve");
-  RowMatrix solution = matrix.triangularView<Eigen::Lower>().solve(rhs);
-  storeMatrix(solution, x, "triangularSolve");
+    MemRefDescriptor<double, 1> *x, int64_t n, const char *where) {
+  bool solved = false;
+  {
+    std::optional<RowMatrix> matrix = asMatrix(a, n, n, where);
+    std::optional<RowMatrix> rhs =
+        matrix ? asMatrix(b, n, 1, where) : std::nullopt;
+    solved =
+        rhs && storeMatrix(matrix->triangularView<Eigen::Lower>().solve(*rhs),
+                           x, where);
+  }
+  if (!solved)
+    failRun();
 }

@@ -74,6 +74,8 @@ extern "C" void simit_rt_fail(const char *message) {
   simit::abi::abandonRun();
 }
 
+void simit::abi::failRun() { simit_rt_fail(runFailure.c_str()); }
+
 extern "C" void simit_rt_raise_parallel_failure() {
   std::optional<std::string> failure;
   {

@@ -25,6 +25,11 @@ namespace abi {
 /// Records the failure of the statement `where` and returns false.
 bool fail(const char *where, const llvm::Twine &message);
 
+/// Ends the run with the failure fail() recorded, as simit_rt_fail does:
+/// inside a parallel region of the run's code the failure is kept for the
+/// region's end, and this returns.
+void failRun();
+
 /// The solver of the run in progress on this thread (its Program's), else
 /// one of the process for lowered code run outside a Program.
 SolveSession &solver();

@@ -14,6 +14,7 @@
 #include "mlir/Dialect/Arith/IR/Arith.h"
 #include "mlir/Dialect/Complex/IR/Complex.h"
 #include "mlir/Dialect/Math/IR/Math.h"
+#include "llvm/Support/MathExtras.h"
 
 using namespace simit::frontend;
 using namespace mlir;
@@ -169,6 +170,30 @@ static Value toFloats(OpBuilder &builder, Location l, Value local,
   return arith::SIToFPOp::create(builder, l, type.clone(real), local);
 }
 
+/// atan2(y, x), with C's values at y = x = 0 (±0 or ±pi by the signs):
+/// MLIR folds math.atan2 of two constant zeros to NaN, which the same call
+/// at run time never gives.
+Value IRGenerator::genAtan2(Value y, Value x, Location l) {
+  mlir::Type type = y.getType();
+  auto constant = [&](double value) -> Value {
+    return arith::ConstantOp::create(builder, l, type,
+                                     builder.getFloatAttr(type, value));
+  };
+  Value angle = math::Atan2Op::create(builder, l, y, x);
+  Value zero = constant(0.0);
+  Value bothZero = arith::AndIOp::create(
+      builder, l,
+      arith::CmpFOp::create(builder, l, arith::CmpFPredicate::OEQ, y, zero),
+      arith::CmpFOp::create(builder, l, arith::CmpFPredicate::OEQ, x, zero));
+  Value xNegative = arith::CmpFOp::create(
+      builder, l, arith::CmpFPredicate::OLT,
+      math::CopySignOp::create(builder, l, constant(1.0), x), zero);
+  Value magnitude = arith::SelectOp::create(builder, l, xNegative,
+                                            constant(llvm::numbers::pi), zero);
+  Value atZero = math::CopySignOp::create(builder, l, magnitude, y);
+  return arith::SelectOp::create(builder, l, bothZero, atZero, angle);
+}
+
 Value IRGenerator::genIntrinsic(const CallExpr &e) {
   SmallVector<Value> args;
   for (const ExprPtr &arg : e.args)
@@ -187,7 +212,8 @@ Value IRGenerator::genIntrinsic(const CallExpr &e) {
   case Intrinsic::Log: return math::LogOp::create(builder, l, args[0]);
   case Intrinsic::Exp: return math::ExpOp::create(builder, l, args[0]);
   case Intrinsic::Abs: return math::AbsFOp::create(builder, l, args[0]);
-  case Intrinsic::Atan2: return math::Atan2Op::create(builder, l, args[0], args[1]);
+  case Intrinsic::Atan2:
+    return genAtan2(args[0], args[1], l);
   case Intrinsic::Pow: return math::PowFOp::create(builder, l, args[0], args[1]);
   case Intrinsic::Max: return arith::MaximumFOp::create(builder, l, args[0], args[1]);
   case Intrinsic::Min: return arith::MinimumFOp::create(builder, l, args[0], args[1]);

@@ -456,6 +456,10 @@ Value IRGenerator::genRead(const ReadExpr &e) {
     if (index)
       indices.push_back(genIndex(*index));
   }
+  // `v(:)`, `A(:,:)`: every dimension kept, the tensor itself.
+  if (e.isSlice() && indices.empty() &&
+      base.getType() == convertType(e.type, e.loc))
+    return base;
   // Its blocks keep every dimension: no IR type has that shape.
   if (e.isSlice() && e.base->type->block)
     return unsupported(e.loc, "a slice of a blocked tensor outside the "

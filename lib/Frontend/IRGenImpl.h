@@ -155,6 +155,7 @@ private:
   llvm::SmallVector<mlir::Type> convertResultTypes(const Expr &e);
   llvm::SmallVector<mlir::Value> genUserCall(const CallExpr &e);
   mlir::Value genIntrinsic(const CallExpr &e);
+  mlir::Value genAtan2(mlir::Value y, mlir::Value x, mlir::Location l);
   /// lu, chol, their solves and frees, and triangularSolve as simit ops.
   llvm::SmallVector<mlir::Value> genSolverIntrinsic(const CallExpr &e);
   /// A call of the runtime's `function`, the language's `name`.

@@ -584,6 +584,15 @@ void Sema::checkVarDecl(VarDecl &var) {
                               (value ? value->str() : "?") + "'");
     var.type = Type::error();
   }
+  // language.md 4.5: implicit locals hold opaque handles, `var`s do not.
+  if (var.role == VarDecl::Role::Var && var.type->isOpaque()) {
+    diags.error(var.loc, "variable '" + var.name +
+                             "' must have a tensor type; an opaque handle "
+                             "(from lu, chol or an extern func) is held by "
+                             "an implicit local ('" +
+                             var.name + " = lu(A);')");
+    var.type = Type::error();
+  }
   if (declared && value) {
     if (var.role == VarDecl::Role::Const && !value->isError() &&
         value->isTensor() && !value->isScalar() && !declared->isError()) {

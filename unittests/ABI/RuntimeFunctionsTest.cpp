@@ -180,7 +180,34 @@ TEST(RuntimeFunctionsTest, SparseLUSolvesAndHandlesAreChecked) {
   EXPECT_NEAR(x[1], 1.0, 1e-12);
   EXPECT_DEATH(_mlir_ciface_simit_rt_lltsolve_bcsr(lu, &bm, &xm, "lltsolve"),
                "lltsolve: the handle is not a sparse Cholesky factorisation");
-  simit_rt_lufree(lu);
+  simit_rt_lufree(lu, "lufree");
+}
+
+// Dense handles: chol of [1 2; 2 1] (not positive definite), a handle of
+// the other kind, a right-hand side of another size and a second free
+// each end the run naming the call.
+TEST(RuntimeFunctionsTest, DenseFactorisationsAndHandlesAreChecked) {
+  std::vector<double> a{1.0, 2.0, 2.0, 1.0}, b{3.0, 3.0}, b3{1.0, 1.0, 1.0},
+      x{0.0, 0.0};
+  auto am = describe<double, 1>(a.data(), {4});
+  auto bm = describe<double, 1>(b.data(), {2});
+  auto b3m = describe<double, 1>(b3.data(), {3});
+  auto xm = describe<double, 1>(x.data(), {2});
+  EXPECT_DEATH(_mlir_ciface_simit_rt_chol(&am, 2, "chol (f.sim:2:7)"),
+               "chol \\(f.sim:2:7\\): the matrix is not positive definite");
+  void *lu = _mlir_ciface_simit_rt_lu(&am, 2, "lu");
+  _mlir_ciface_simit_rt_lusolve(lu, &bm, &xm, "lusolve");
+  EXPECT_NEAR(x[0], 1.0, 1e-12);
+  EXPECT_NEAR(x[1], 1.0, 1e-12);
+  EXPECT_DEATH(_mlir_ciface_simit_rt_lltsolve(lu, &bm, &xm, "lltsolve"),
+               "lltsolve: the handle is not a dense Cholesky factorisation");
+  EXPECT_DEATH(_mlir_ciface_simit_rt_lusolve(lu, &b3m, &xm, "lusolve"),
+               "lusolve: operand size does not match its shape");
+  simit_rt_lufree(lu, "lufree");
+  EXPECT_DEATH(_mlir_ciface_simit_rt_lusolve(lu, &bm, &xm, "lusolve"),
+               "lusolve: the factorisation was freed");
+  EXPECT_DEATH(simit_rt_lufree(lu, "lufree (f.sim:9:3)"),
+               "lufree \\(f.sim:9:3\\): the factorisation was freed");
 }
 
 namespace {

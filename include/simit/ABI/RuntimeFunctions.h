@@ -292,33 +292,43 @@ void _mlir_ciface_simit_rt_check_numerics_f32(
 
 /// Dense solvers of small local f64 matrices (Eigen). Matrices and vectors
 /// are row-major memref<?xf64>; a factorisation is an opaque heap handle
-/// (!llvm.ptr) that lufree/cholfree delete.
+/// (!llvm.ptr) that lufree/cholfree delete. Each takes `where`, the call's
+/// "lusolve (file:line:col)": a size that does not match, chol of a matrix
+/// that is not positive definite, a handle of the other kind, one already
+/// freed or none (a failed factorisation) end the run naming it (inside a
+/// parallel region, at the region's end; the solution is NaN until then).
 /// MLIR (each attributes {llvm.emit_c_interface} except the frees):
-///   @simit_rt_lu(memref<?xf64> A, i64 n) -> !llvm.ptr   (PartialPivLU)
-///   @simit_rt_chol(memref<?xf64> A, i64 n) -> !llvm.ptr (LLT)
-///   @simit_rt_lusolve(!llvm.ptr, memref<?xf64> b, memref<?xf64> x)
-///   @simit_rt_lltsolve(!llvm.ptr, memref<?xf64> b, memref<?xf64> x)
-///   @simit_rt_lumatsolve(!llvm.ptr, memref<?xf64> B, memref<?xf64> X, i64 k)
-///   @simit_rt_lltmatsolve(!llvm.ptr, memref<?xf64> B, memref<?xf64> X, i64 k)
-///   @simit_rt_lufree(!llvm.ptr), @simit_rt_cholfree(!llvm.ptr)
+///   @simit_rt_lu(memref<?xf64> A, i64 n, !llvm.ptr where) -> !llvm.ptr
+///       (PartialPivLU), likewise @simit_rt_chol (LLT)
+///   @simit_rt_lusolve(!llvm.ptr, memref<?xf64> b, memref<?xf64> x,
+///       !llvm.ptr where), likewise @simit_rt_lltsolve
+///   @simit_rt_lumatsolve(!llvm.ptr, memref<?xf64> B, memref<?xf64> X, i64 k,
+///       !llvm.ptr where), likewise @simit_rt_lltmatsolve
+///   @simit_rt_lufree(!llvm.ptr, !llvm.ptr where), likewise
+///       @simit_rt_cholfree
 ///   @simit_rt_triangularSolve(memref<?xf64> A, memref<?xf64> b,
-///       memref<?xf64> x, i64 n)   (A's lower triangle, forward substitution)
+///       memref<?xf64> x, i64 n, !llvm.ptr where)   (A's lower triangle,
+///       forward substitution)
 void *_mlir_ciface_simit_rt_lu(simit::abi::MemRefDescriptor<double, 1> *a,
-                               int64_t n);
+                               int64_t n, const char *where);
 void *_mlir_ciface_simit_rt_chol(simit::abi::MemRefDescriptor<double, 1> *a,
-                                 int64_t n);
+                                 int64_t n, const char *where);
 void _mlir_ciface_simit_rt_lusolve(void *handle,
                                    simit::abi::MemRefDescriptor<double, 1> *b,
-                                   simit::abi::MemRefDescriptor<double, 1> *x);
+                                   simit::abi::MemRefDescriptor<double, 1> *x,
+                                   const char *where);
 void _mlir_ciface_simit_rt_lltsolve(void *handle,
                                     simit::abi::MemRefDescriptor<double, 1> *b,
-                                    simit::abi::MemRefDescriptor<double, 1> *x);
+                                    simit::abi::MemRefDescriptor<double, 1> *x,
+                                    const char *where);
 void _mlir_ciface_simit_rt_lumatsolve(
     void *handle, simit::abi::MemRefDescriptor<double, 1> *b,
-    simit::abi::MemRefDescriptor<double, 1> *x, int64_t cols);
+    simit::abi::MemRefDescriptor<double, 1> *x, int64_t cols,
+    const char *where);
 void _mlir_ciface_simit_rt_lltmatsolve(
     void *handle, simit::abi::MemRefDescriptor<double, 1> *b,
-    simit::abi::MemRefDescriptor<double, 1> *x, int64_t cols);
+    simit::abi::MemRefDescriptor<double, 1> *x, int64_t cols,
+    const char *where);
 /// Sparse factorisations of square system matrices through the SolveSession
 /// of the run (UMFPACK LU, CHOLMOD supernodal Cholesky; symbolic analysis
 /// once per pattern, a factorisation reused for the same values), BCSR
@@ -347,12 +357,12 @@ void _mlir_ciface_simit_rt_lusolve_bcsr(
 void _mlir_ciface_simit_rt_lltsolve_bcsr(
     void *handle, simit::abi::MemRefDescriptor<double, 2> *b,
     simit::abi::MemRefDescriptor<double, 2> *x, const char *where);
-void simit_rt_lufree(void *handle);
-void simit_rt_cholfree(void *handle);
+void simit_rt_lufree(void *handle, const char *where);
+void simit_rt_cholfree(void *handle, const char *where);
 void _mlir_ciface_simit_rt_triangularSolve(
     simit::abi::MemRefDescriptor<double, 1> *a,
     simit::abi::MemRefDescriptor<double, 1> *b,
-    simit::abi::MemRefDescriptor<double, 1> *x, int64_t n);
+    simit::abi::MemRefDescriptor<double, 1> *x, int64_t n, const char *where);
 
 /// What the host code of simit-gpu-pipeline calls (GPUFunctions.cpp), over
 /// the CUDA driver loaded at run time (simit/Runtime/CudaDriver.h): the

@@ -60,6 +60,10 @@ LoopsTypeConverter::LoopsTypeConverter() {
   addConversion([](RankedTensorType tensor) -> Type {
     if (tensor.getRank() == 0)
       return tensor.getElementType();
+    // Strings are pointers, which vectors do not hold (language.md 4.1:
+    // nothing uses tensors of strings).
+    if (isa<StringType>(tensor.getElementType()))
+      return nullptr;
     return VectorType::get({storedLength(tensor)},
                            storedNumberType(tensor.getElementType()));
   });
@@ -78,6 +82,8 @@ LoopsTypeConverter::LoopsTypeConverter() {
     if (isa<StringType>(value))
       return MemRefType::get({},
                              LLVM::LLVMPointerType::get(ref.getContext()));
+    if (isa<StringType>(getComponentType(value)))
+      return nullptr;
     if (isa<RankedTensorType, SystemTensorType>(value))
       return MemRefType::get({storedLength(value)},
                              storedNumberType(getComponentType(value)));

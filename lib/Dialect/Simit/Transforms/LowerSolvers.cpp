@@ -557,6 +557,10 @@ LogicalResult FunctionLowering::lowerFactorisation(Operation *op) {
     sizeArg(shape(0)[0]);
   else if (matSolve)
     sizeArg(shape(1)[1]);
+  // The runtime ends the run naming `where` ("lusolve (file:line:col)")
+  // when a size, the matrix or the handle is wrong.
+  args.push_back(stringConstant(loc, name + sourcePositionSuffix(op)));
+  argTypes.push_back(ptr);
 
   StringRef runtimeName = mlir::simit::runtimeName(call.function);
   if (free) {

@@ -48,7 +48,7 @@ func.func @link(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> !A {
 // CHECK:     %[[AT:.*]] = arith.addi %[[ROW]], %[[J]] : index
 // CHECK:     %[[V:.*]] = memref.load %[[SOLUTION]][%[[R2]]] : memref<?xf64>
 // CHECK:     memref.store %[[V]], %[[X]][%[[AT]]] : memref<?xf64>
-// CHECK: call @simit_rt_lufree(%[[H]])
+// CHECK: call @simit_rt_lufree(%[[H]], %{{.*}})
 // The product X * x over whole sets, X read at r * |points| + c.
 // CHECK: scf.parallel (%[[I:.*]]) = (%{{.*}}) to (%[[NP]])
 // CHECK:   scf.for %[[C:.*]] = %{{.*}} to %[[NP]]

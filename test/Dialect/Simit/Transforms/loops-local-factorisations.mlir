@@ -8,7 +8,7 @@
 // declarations get llvm.emit_c_interface (the JIT binds
 // _mlir_ciface_simit_rt_<name>), except the frees.
 
-// CHECK: func.func private @simit_rt_lufree(!llvm.ptr){{$}}
+// CHECK: func.func private @simit_rt_lufree(!llvm.ptr, !llvm.ptr){{$}}
 // CHECK-LABEL: func.func @lumat
 // CHECK-SAME: (%[[A:.*]]: vector<9xf64>, %[[B:.*]]: vector<6xf64>) -> vector<6xf64>
 // CHECK-DAG: %[[XBUF:.*]] = memref.alloca() : memref<6xf64>
@@ -17,17 +17,17 @@
 // CHECK: vector.store %[[A]], %[[ABUF]][%{{.*}}] : memref<9xf64>, vector<9xf64>
 // CHECK: %[[AC:.*]] = memref.cast %[[ABUF]] : memref<9xf64> to memref<?xf64>
 // CHECK: %[[N:.*]] = arith.constant 3 : i64
-// CHECK: %[[H:.*]] = call @simit_rt_lu(%[[AC]], %[[N]]) : (memref<?xf64>, i64) -> !llvm.ptr
+// CHECK: %[[H:.*]] = call @simit_rt_lu(%[[AC]], %[[N]], %{{.*}}) : (memref<?xf64>, i64, !llvm.ptr) -> !llvm.ptr
 // CHECK: vector.store %[[B]], %[[BBUF]]
 // CHECK: %[[BC:.*]] = memref.cast %[[BBUF]] : memref<6xf64> to memref<?xf64>
 // CHECK: %[[XC:.*]] = memref.cast %[[XBUF]] : memref<6xf64> to memref<?xf64>
 // CHECK: %[[K:.*]] = arith.constant 2 : i64
-// CHECK: call @simit_rt_lumatsolve(%[[H]], %[[BC]], %[[XC]], %[[K]]) : (!llvm.ptr, memref<?xf64>, memref<?xf64>, i64) -> ()
+// CHECK: call @simit_rt_lumatsolve(%[[H]], %[[BC]], %[[XC]], %[[K]], %{{.*}}) : (!llvm.ptr, memref<?xf64>, memref<?xf64>, i64, !llvm.ptr) -> ()
 // CHECK: %[[X:.*]] = vector.load %[[XBUF]][%{{.*}}] : memref<6xf64>, vector<6xf64>
-// CHECK: call @simit_rt_lufree(%[[H]]) : (!llvm.ptr) -> ()
+// CHECK: call @simit_rt_lufree(%[[H]], %{{.*}}) : (!llvm.ptr, !llvm.ptr) -> ()
 // CHECK: return %[[X]] : vector<6xf64>
-// CHECK-DAG: func.func private @simit_rt_lu(memref<?xf64>, i64) -> !llvm.ptr attributes {llvm.emit_c_interface}
-// CHECK-DAG: func.func private @simit_rt_lumatsolve(!llvm.ptr, memref<?xf64>, memref<?xf64>, i64) attributes {llvm.emit_c_interface}
+// CHECK-DAG: func.func private @simit_rt_lu(memref<?xf64>, i64, !llvm.ptr) -> !llvm.ptr attributes {llvm.emit_c_interface}
+// CHECK-DAG: func.func private @simit_rt_lumatsolve(!llvm.ptr, memref<?xf64>, memref<?xf64>, i64, !llvm.ptr) attributes {llvm.emit_c_interface}
 func.func @lumat(%a: tensor<3x3xf64>, %b: tensor<3x2xf64>) -> tensor<3x2xf64> attributes {simit.export} {
   %h = simit.factorize lu %a : tensor<3x3xf64>
   %x = simit.factor_solve lu %h, %b : tensor<3x2xf64> -> tensor<3x2xf64>
@@ -37,17 +37,17 @@ func.func @lumat(%a: tensor<3x3xf64>, %b: tensor<3x2xf64>) -> tensor<3x2xf64> at
 
 // -----
 
-// CHECK: func.func private @simit_rt_cholfree(!llvm.ptr){{$}}
+// CHECK: func.func private @simit_rt_cholfree(!llvm.ptr, !llvm.ptr){{$}}
 // CHECK-LABEL: func.func @cholesky
-// CHECK: %[[H:.*]] = call @simit_rt_chol(%{{.*}}, %{{.*}}) : (memref<?xf64>, i64) -> !llvm.ptr
-// CHECK: call @simit_rt_lltsolve(%[[H]], %{{.*}}, %{{.*}}) : (!llvm.ptr, memref<?xf64>, memref<?xf64>) -> ()
+// CHECK: %[[H:.*]] = call @simit_rt_chol(%{{.*}}, %{{.*}}, %{{.*}}) : (memref<?xf64>, i64, !llvm.ptr) -> !llvm.ptr
+// CHECK: call @simit_rt_lltsolve(%[[H]], %{{.*}}, %{{.*}}, %{{.*}}) : (!llvm.ptr, memref<?xf64>, memref<?xf64>, !llvm.ptr) -> ()
 // CHECK: %[[X:.*]] = vector.load %{{.*}} : memref<2xf64>, vector<2xf64>
-// CHECK: call @simit_rt_cholfree(%[[H]]) : (!llvm.ptr) -> ()
+// CHECK: call @simit_rt_cholfree(%[[H]], %{{.*}}) : (!llvm.ptr, !llvm.ptr) -> ()
 // CHECK: %[[T:.*]] = arith.constant 2 : i64
-// CHECK: call @simit_rt_triangularSolve(%{{.*}}, %{{.*}}, %{{.*}}, %[[T]]) : (memref<?xf64>, memref<?xf64>, memref<?xf64>, i64) -> ()
-// CHECK-DAG: func.func private @simit_rt_chol(memref<?xf64>, i64) -> !llvm.ptr attributes {llvm.emit_c_interface}
-// CHECK-DAG: func.func private @simit_rt_lltsolve(!llvm.ptr, memref<?xf64>, memref<?xf64>) attributes {llvm.emit_c_interface}
-// CHECK-DAG: func.func private @simit_rt_triangularSolve(memref<?xf64>, memref<?xf64>, memref<?xf64>, i64) attributes {llvm.emit_c_interface}
+// CHECK: call @simit_rt_triangularSolve(%{{.*}}, %{{.*}}, %{{.*}}, %[[T]], %{{.*}}) : (memref<?xf64>, memref<?xf64>, memref<?xf64>, i64, !llvm.ptr) -> ()
+// CHECK-DAG: func.func private @simit_rt_chol(memref<?xf64>, i64, !llvm.ptr) -> !llvm.ptr attributes {llvm.emit_c_interface}
+// CHECK-DAG: func.func private @simit_rt_lltsolve(!llvm.ptr, memref<?xf64>, memref<?xf64>, !llvm.ptr) attributes {llvm.emit_c_interface}
+// CHECK-DAG: func.func private @simit_rt_triangularSolve(memref<?xf64>, memref<?xf64>, memref<?xf64>, i64, !llvm.ptr) attributes {llvm.emit_c_interface}
 func.func @cholesky(%a: tensor<2x2xf64>, %b: tensor<2xf64>) -> tensor<2xf64> attributes {simit.export} {
   %h = simit.factorize chol %a : tensor<2x2xf64>
   %x = simit.factor_solve chol %h, %b : tensor<2xf64> -> tensor<2xf64>
@@ -61,8 +61,8 @@ func.func @cholesky(%a: tensor<2x2xf64>, %b: tensor<2xf64>) -> tensor<2xf64> att
 // Two sizes of one factorisation share the runtime function (the size is an
 // argument).
 // CHECK-LABEL: func.func @two_sizes
-// CHECK: call @simit_rt_lu(%{{.*}}, %{{.*}}) : (memref<?xf64>, i64) -> !llvm.ptr
-// CHECK: call @simit_rt_lu(%{{.*}}, %{{.*}}) : (memref<?xf64>, i64) -> !llvm.ptr
+// CHECK: call @simit_rt_lu(%{{.*}}, %{{.*}}, %{{.*}}) : (memref<?xf64>, i64, !llvm.ptr) -> !llvm.ptr
+// CHECK: call @simit_rt_lu(%{{.*}}, %{{.*}}, %{{.*}}) : (memref<?xf64>, i64, !llvm.ptr) -> !llvm.ptr
 func.func @two_sizes(%a: tensor<2x2xf64>, %b: tensor<3x3xf64>) attributes {simit.export} {
   %h = simit.factorize lu %a : tensor<2x2xf64>
   %g = simit.factorize lu %b : tensor<3x3xf64>

@@ -34,7 +34,7 @@ func.func @link(%s : !Spring, %ends : !simit.tuple<!Point x 2>) -> !A {
 // CHECK: memref.expand_shape %[[B]] {{\[\[}}0, 1]]
 // CHECK: memref.expand_shape %[[X]] {{\[\[}}0, 1]]
 // CHECK: call @simit_rt_lltsolve_bcsr(%[[H]], %{{.*}}, %{{.*}}, %{{.*}}) : (!llvm.ptr, memref<?x?xf64>, memref<?x?xf64>, !llvm.ptr) -> ()
-// CHECK: call @simit_rt_cholfree(%[[H]]) : (!llvm.ptr) -> ()
+// CHECK: call @simit_rt_cholfree(%[[H]], %{{.*}}) : (!llvm.ptr, !llvm.ptr) -> ()
 // CHECK: return %[[X]]
 func.func @cholesky() -> !V attributes {simit.export} {
   %springs = simit.get_set @springs : !Springs

@@ -437,6 +437,10 @@ SceneRunner::create(SceneDescription scene, const SceneRunOptions &options) {
     return llvm::createStringError(
         desc.path + ": no program: give one on the command line or as "
                     "\"program\" in the scene");
+  if (options.frames && *options.frames < 0)
+    return llvm::createStringError("frames: expected a frame count of at "
+                                   "least 0, not " +
+                                   llvm::Twine(*options.frames));
   runner->frameCount = options.frames.value_or(desc.frames);
   if (runner->frameCount > 0 && desc.step.empty())
     return llvm::createStringError(desc.path + ": " +
@@ -554,6 +558,10 @@ llvm::Error SceneRunner::init() {
 }
 
 llvm::Error SceneRunner::step(int count) {
+  if (count < 0)
+    return llvm::createStringError("step: expected a frame count of at "
+                                   "least 0, not " +
+                                   llvm::Twine(count));
   if (llvm::Error err = init())
     return err;
   if (count > 0 && stepFunctions.empty())

@@ -148,8 +148,12 @@ void bindParameters(PyFunction &self, const py::args &args) {
                                                            : "complex128");
       py::array values(
           numpy.attr("asarray")(args[i], complexType, py::arg("order") = "C"));
-      array = py::array(values.attr("view")(dtypeOf(type)).attr("reshape")(
-          py::tuple(py::cast(shapeOf(values))) + py::make_tuple(2)));
+      // Flat first: NumPy views a 0-d array only as a dtype of its size.
+      array =
+          py::array(values.attr("reshape")(-1)
+                        .attr("view")(dtypeOf(type))
+                        .attr("reshape")(py::tuple(py::cast(shapeOf(values))) +
+                                         py::make_tuple(2)));
     } else {
       array = convertExactly(args[i], type,
                              "function '" + self.name + "': parameter " +

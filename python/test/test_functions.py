@@ -75,3 +75,10 @@ def test_a_matrix_result_has_its_declared_shape():
     np.testing.assert_array_equal(
         c, np.array([[1 + 2j, 0], [-1j, 3]], dtype=np.complex128))
     np.testing.assert_array_equal(v, [7.0, 8.0, 9.0])
+
+
+def test_a_complex_scalar_parameter_takes_a_python_complex():
+    program = simit.compile("export func sq(c : complex) -> (d : complex)\n"
+                            "  d = c * c;\nend\n")
+    assert program.sq(1 + 2j) == -3 + 4j
+    assert program.sq(np.complex128(2j)) == -4

@@ -154,3 +154,13 @@ def test_the_same_bits_on_one_and_two_threads():
 def test_threads_must_be_positive():
     with pytest.raises(simit.Error, match="number of threads must be positive"):
         simit.Scene(PAIR, threads=-1)
+
+
+def test_frame_counts_must_not_be_negative():
+    with pytest.raises(simit.Error, match="frames: expected a frame count of "
+                       "at least 0, not -1"):
+        simit.Scene(PAIR, frames=-1)
+    scene = simit.Scene(PAIR, frames=0)
+    with pytest.raises(simit.Error, match="step: expected a frame count of "
+                       "at least 0, not -2"):
+        scene.step(-2)

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 using namespace simit;
 
@@ -417,6 +418,22 @@ llvm::Error simit::toHostBuffer(const Literal &literal, const ValueType &type,
                                    llvm::Twine(literal.numComponents()) +
                                    " components cannot be passed as " +
                                    type.str());
+  // Values that do not fit are errors, as in source (language.md 2), never
+  // wrapped or rounded to infinity.
+  for (double v : literal.values) {
+    if (type.scalar == ScalarKind::Int32 &&
+        (v < std::numeric_limits<int32_t>::min() ||
+         v > std::numeric_limits<int32_t>::max()))
+      return llvm::createStringError("integer literal " +
+                                     llvm::Twine(static_cast<int64_t>(v)) +
+                                     " does not fit in 32 bits");
+    bool single = type.scalar == ScalarKind::Float32;
+    if ((type.scalar == ScalarKind::Float64 || single) &&
+        (std::isinf(v) || (single && std::isinf(static_cast<float>(v)))))
+      return llvm::createStringError(
+          llvm::Twine("float literal is too large for a ") +
+          (single ? "32" : "64") + "-bit float");
+  }
   // Complex components are passed as (re, im) pairs of floats.
   shape.assign(literal.shape.begin(), literal.shape.end());
   if (type.isComplex)
@@ -536,16 +553,19 @@ std::string simit::compareResult(const HostValue &actual,
 /// exponent so that it is a float literal: positional for decimal
 /// exponents from -4 to 15 (30.0, 0.001), scientific beyond (1e+16), as
 /// Python's repr.
-static std::string formatFloat(double v, int maxDigits) {
+static std::string formatFloat(double v, bool single = false) {
   if (std::isnan(v))
     return "nan";
   if (std::isinf(v))
     return v < 0 ? "-inf" : "inf";
   char buffer[64];
+  // The fewest digits that read back as the same number of its precision.
+  int maxDigits = single ? 9 : 17;
   int digits = 1;
   for (; digits < maxDigits; ++digits) {
     std::snprintf(buffer, sizeof buffer, "%.*e", digits - 1, v);
-    if (std::strtod(buffer, nullptr) == v)
+    if (single ? std::strtof(buffer, nullptr) == static_cast<float>(v)
+               : std::strtod(buffer, nullptr) == v)
       break;
   }
   std::snprintf(buffer, sizeof buffer, "%.*e", digits - 1, v);
@@ -593,9 +613,9 @@ std::string simit::formatValue(const HostValue &value) {
     double v = value.component(i);
     switch (value.scalar) {
     case ScalarKind::Float64:
-      return formatFloat(v, 17);
+      return formatFloat(v);
     case ScalarKind::Float32:
-      return formatFloat(v, 9);
+      return formatFloat(v, /*single=*/true);
     case ScalarKind::Bool:
       return v != 0 ? "true" : "false";
     case ScalarKind::Int32:
@@ -622,14 +642,14 @@ std::string simit::formatLiteral(const Literal &literal) {
   auto component = [&](size_t i) -> std::string {
     switch (literal.kind) {
     case Literal::Kind::Float:
-      return formatFloat(literal.values[i], 17);
+      return formatFloat(literal.values[i]);
     case Literal::Kind::Bool:
       return literal.values[i] != 0 ? "true" : "false";
     case Literal::Kind::Int:
       return std::to_string(static_cast<int64_t>(literal.values[i]));
     case Literal::Kind::Complex:
-      return "<" + formatFloat(literal.values[2 * i], 17) + ", " +
-             formatFloat(literal.values[2 * i + 1], 17) + ">";
+      return "<" + formatFloat(literal.values[2 * i]) + ", " +
+             formatFloat(literal.values[2 * i + 1]) + ">";
     case Literal::Kind::String:
       return quoted(literal.text);
     }

@@ -34,6 +34,7 @@
 #include "llvm/Support/raw_ostream.h"
 
 #include <optional>
+#include <vector>
 
 using namespace simit;
 
@@ -372,6 +373,27 @@ int main(int argc, char **argv) {
       : cacheDir.getNumOccurrences() ? std::string(cacheDir)
                                      : defaultCompileCacheDirectory();
 
+  // One mode per run: a second one would be silently ignored.
+  std::vector<const char *> modes;
+  if (cudaDevice)
+    modes.push_back("--cuda-device");
+  if (emitStage.getNumOccurrences())
+    modes.push_back("--emit");
+  if (testMode)
+    modes.push_back("--test");
+  if (!evalCall.empty())
+    modes.push_back("--eval");
+  if (!scenePath.empty())
+    modes.push_back("--scene");
+  if (modes.size() > 1)
+    return fail(llvm::createStringError(
+        llvm::Twine(modes[0]) + " and " + modes[1] +
+        " contradict: give one of --scene, --test, --eval, --emit and "
+        "--cuda-device"));
+  if (frames.getNumOccurrences() && frames < 0)
+    return fail(
+        llvm::createStringError("--frames=" + llvm::Twine(frames) +
+                                ": expected a frame count of at least 0"));
   if (cudaDevice) {
     llvm::Expected<cuda::Device &> device = cuda::defaultDevice();
     if (!device)

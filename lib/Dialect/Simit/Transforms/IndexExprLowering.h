@@ -29,6 +29,11 @@ public:
   LogicalResult lower(ExtractOp at = nullptr);
 
 private:
+  /// A local tensor result of sums over sets: one sum per component.
+  LogicalResult lowerLocalResultOfSums(ArrayRef<unsigned> summed,
+                                       function_ref<FailureOr<Value>()> body);
+
+private:
   unsigned numLevels(unsigned v) { return op.getDomain(v).size(); }
   Attribute level(unsigned v, unsigned i) { return op.getDomain(v)[i]; }
   bool isBound(unsigned v) {

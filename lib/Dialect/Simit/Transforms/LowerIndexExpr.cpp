@@ -112,6 +112,44 @@ varsNonzeroOutsideMatrices(IndexExprOp op,
 }
 } // namespace
 
+LogicalResult IndexExprLowering::lowerLocalResultOfSums(
+    ArrayRef<unsigned> summed, function_ref<FailureOr<Value>()> body) {
+  // A local tensor summed over sets (`w = R' * x` of a matrix[V,2]): one
+  // sum per component, its result variables bound to the component's
+  // indices, in row-major order.
+  ArrayRef<int64_t> resultVars = op.getResultIndices();
+  SmallVector<int64_t> extents;
+  for (int64_t v : resultVars) {
+    auto range =
+        numLevels(v) == 1 ? dyn_cast<IntegerAttr>(level(v, 0)) : IntegerAttr();
+    if (!range)
+      return op.emitError("an index expression over sets must produce a "
+                          "system tensor, a scalar or an unblocked local "
+                          "tensor");
+    extents.push_back(range.getInt());
+  }
+  int64_t total = 1;
+  for (int64_t extent : extents)
+    total *= extent;
+  SmallVector<Value> components;
+  for (int64_t flat = 0; flat < total; ++flat) {
+    int64_t rest = flat;
+    for (int64_t d = resultVars.size() - 1; d >= 0; --d) {
+      bound[resultVars[d]] = {l.indexConstant(rest % extents[d])};
+      rest /= extents[d];
+    }
+    FailureOr<Value> component =
+        sum(SmallVector<unsigned>(summed), body, /*parallelTop=*/true);
+    if (failed(component))
+      return failure();
+    components.push_back(*component);
+  }
+  for (int64_t v : resultVars)
+    bound.erase(v);
+  l.map(op, l.fromComponents(l.convertType(op.getType()), components));
+  return success();
+}
+
 FailureOr<Value> IndexExprLowering::evaluate(Block &block) {
   for (Operation &inner : block) {
     // Inputs are read where they are used, with the variables bound there.
@@ -535,8 +573,7 @@ LogicalResult IndexExprLowering::lower(ExtractOp at) {
 
   auto type = dyn_cast<SystemTensorType>(op.getType());
   if (!type || !type.isSystem())
-    return op.emitError("an index expression over sets must produce a "
-                        "system tensor or a scalar");
+    return lowerLocalResultOfSums(summed, body);
   // A matrix result is stored as its type says (simit-assign-storage reads
   // the body as a path expression, so the storage holds every nonzero); a
   // vector result is dense.

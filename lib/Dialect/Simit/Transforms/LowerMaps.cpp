@@ -622,8 +622,14 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
     // Stored as simit-assign-storage found from the set (and, through a
     // grid, the offsets the element function writes).
     Storage storage = storageOf(result);
-    if (!storage.isMatrix() &&
-        (type.getOrder() != 1 || !isa<StringAttr>(type.getDims()[0])))
+    // A vector over a set, or a tensor over a set and ranges (`matrix[V,2]`),
+    // stored alike: a block per element.
+    auto rangesAfterSet = [&] {
+      return isa<StringAttr>(type.getDims()[0]) &&
+             llvm::all_of(type.getDims().getValue().drop_front(),
+                          [](Attribute d) { return isa<IntegerAttr>(d); });
+    };
+    if (!storage.isMatrix() && !rangesAfterSet())
       return op->emitError("map result ")
              << type << " is not supported by the loop lowering";
     if (init && storage != storageOf(extras[(*inits)[r]]))

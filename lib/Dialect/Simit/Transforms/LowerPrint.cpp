@@ -214,12 +214,18 @@ LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {
     }
     if (auto system = dyn_cast<SystemTensorType>(type);
         system && system.isSystem()) {
-      if (system.getOrder() == 2) {
+      // Over a set and ranges (`matrix[V,2]`): a block per element, as a
+      // vector of blocks is stored.
+      bool rangesAfterSet =
+          isa<StringAttr>(system.getDims()[0]) &&
+          llvm::all_of(system.getDims().getValue().drop_front(),
+                       [](Attribute d) { return isa<IntegerAttr>(d); });
+      if (system.getOrder() == 2 && !rangesAfterSet) {
         if (failed(printMatrix(loc, value, printScalar)))
           return failure();
         continue;
       }
-      if (system.getOrder() != 1)
+      if (system.getOrder() != 1 && !rangesAfterSet)
         return op->emitError("printing system tensors of order ")
                << system.getOrder() << " is not supported";
       // A system vector: its elements in set order, separated by spaces
@@ -227,7 +233,9 @@ LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {
       // (the block's components separated by spaces).
       Value array = lookup(value);
       auto memref = cast<MemRefType>(array.getType());
-      int64_t blockSize = numComponents(system.getBlockType());
+      int64_t blockSize = 1;
+      for (int64_t d : memref.getShape().drop_front())
+        blockSize *= d;
       Value size = memref::DimOp::create(b, loc, array, 0);
       LogicalResult inner = success();
       scf::ForOp::create(

@@ -124,6 +124,12 @@ LogicalResult FunctionLowering::checkStorages(func::FuncOp original) {
     // slot, would need them carried too.
     Operation *producer = value.getDefiningOp();
     if (storage && storage->kind == Storage::Kind::Host &&
+        isBindingPattern(storage->runtimeEncoding)) {
+      reported.insert(encoding);
+      entryPatterns.push_back(*storage);
+      return;
+    }
+    if (storage && storage->kind == Storage::Kind::Host &&
         (!producer || isa<RegionBranchOpInterface>(producer) ||
          isa<RefType>(value.getType()))) {
       unsupported = true;
@@ -587,6 +593,10 @@ LogicalResult FunctionLowering::run(func::FuncOp original) {
   if (hasMatrixResult)
     function->setAttr(StringRef(::simit::abi::kResultShapesAttr),
                       ArrayAttr::get(ctx, resultShapes));
+  // Patterns of the bound sets alone, built once here: every later use of
+  // the function reaches them (a loop's body, a branch, a slot's load).
+  for (const Storage &storage : entryPatterns)
+    runtimePattern(storage);
   if (failed(lowerOps(original.front())))
     return failure();
 

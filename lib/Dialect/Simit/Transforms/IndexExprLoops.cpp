@@ -423,36 +423,39 @@ IndexExprLowering::emitLoop(const Choice &choice, ValueRange inits,
   return SmallVector<Value>(loop.getResults());
 }
 
-FailureOr<Value>
-IndexExprLowering::sum(SmallVector<unsigned> vars,
-                       function_ref<FailureOr<Value>()> body,
-                       bool parallelTop) {
+FailureOr<Value> IndexExprLowering::sum(SmallVector<unsigned> vars,
+                                        function_ref<FailureOr<Value>()> body,
+                                        bool parallelTop, Type type) {
   std::optional<Choice> choice = choose(vars);
   if (!choice)
     return body();
-  Value zero = l.zeroOf(scalarType);
+  if (!type)
+    type = scalarType;
+  Value zero = l.zeroOf(type);
   bool failedBody = false;
-  if (parallelTop && choice->coupledBy < 0 && isa<FloatType>(scalarType)) {
-    SmallVector<Value> results = emitLoop(*choice, {zero}, true, [&](ValueRange) {
-      FailureOr<Value> term = sum(vars, body, false);
-      if (failed(term)) {
-        failedBody = true;
-        return SmallVector<Value>{zero};
-      }
-      return SmallVector<Value>{*term};
-    });
+  if (parallelTop && choice->coupledBy < 0 && isa<FloatType>(type)) {
+    SmallVector<Value> results =
+        emitLoop(*choice, {zero}, true, [&](ValueRange) {
+          FailureOr<Value> term = sum(vars, body, false, type);
+          if (failed(term)) {
+            failedBody = true;
+            return SmallVector<Value>{zero};
+          }
+          return SmallVector<Value>{*term};
+        });
     if (failedBody)
       return failure();
     return results[0];
   }
-  SmallVector<Value> results = emitLoop(*choice, {zero}, false, [&](ValueRange args) {
-    FailureOr<Value> term = sum(vars, body, false);
-    if (failed(term)) {
-      failedBody = true;
-      return SmallVector<Value>{args[0]};
-    }
-    return SmallVector<Value>{add(args[0], *term)};
-  });
+  SmallVector<Value> results =
+      emitLoop(*choice, {zero}, false, [&](ValueRange args) {
+        FailureOr<Value> term = sum(vars, body, false, type);
+        if (failed(term)) {
+          failedBody = true;
+          return SmallVector<Value>{args[0]};
+        }
+        return SmallVector<Value>{add(args[0], *term)};
+      });
   if (failedBody)
     return failure();
   return results[0];

@@ -117,10 +117,12 @@ private:
   /// Prefetches the block of matrix input `i` that lies
   /// FunctionLowering::prefetchMatrixBytes after block `position`.
   void prefetchAhead(unsigned i, Value position);
-  /// The sum over `vars` of `body` (nested loops, loop-carried scalar).
+  /// The sum over `vars` of `body` (nested loops, loop-carried scalar) of
+  /// numbers of `type` (default: the result's components; a nested
+  /// simit.index_sum's own, such as the complex row sums of a norm).
   FailureOr<Value> sum(SmallVector<unsigned> vars,
-                       function_ref<FailureOr<Value>()> body,
-                       bool parallelTop);
+                       function_ref<FailureOr<Value>()> body, bool parallelTop,
+                       Type type = {});
   /// lhs + rhs in the scalar type (addf or addi).
   Value add(Value lhs, Value rhs);
   /// The result variable whose row a sum over a set (y = A x) can

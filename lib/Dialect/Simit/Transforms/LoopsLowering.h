@@ -212,6 +212,13 @@ struct Storage {
 /// stencil or dense one.
 bool hasBCSRView(const Storage &s);
 
+/// Whether a pattern known at run time depends on the bound sets alone (a
+/// union or transpose of patterns, stencils and diagonals, no host
+/// function's matrix): it is built once where the function's body starts
+/// to need it, so values stored on it can be carried by loops, ifs and
+/// variable slots.
+bool isBindingPattern(StorageAttr runtimeEncoding);
+
 /// Bytes of one stored component (a complex one holds two parts; a bool
 /// takes a byte).
 inline int64_t componentBytes(Type component) {
@@ -588,6 +595,9 @@ private:
   /// The row pointers and column indices of the patterns known at run
   /// time built so far, by Storage::runtimeEncoding.
   DenseMap<Attribute, std::pair<Value, Value>> runtimePatterns;
+  /// The storages of the function's values whose patterns are built at
+  /// its start (isBindingPattern), found by checkStorages.
+  SmallVector<Storage> entryPatterns;
   /// The index arrays of `storage` (Kind::Host) where the code is being
   /// lowered: built already and in reach, or a union's built now.
   std::pair<Value, Value> runtimePattern(const Storage &storage);

@@ -167,9 +167,9 @@ FailureOr<Value> IndexExprLowering::evaluate(Block &block) {
     if (auto nested = dyn_cast<IndexSumOp>(inner)) {
       SmallVector<unsigned> vars(nested.getVars().begin(),
                                  nested.getVars().end());
-      FailureOr<Value> value =
-          sum(vars, [&]() { return evaluate(nested.getBody().front()); },
-              false);
+      FailureOr<Value> value = sum(
+          vars, [&]() { return evaluate(nested.getBody().front()); }, false,
+          nested.getResult().getType());
       if (failed(value))
         return failure();
       l.map(nested.getResult(), *value);

@@ -25,9 +25,9 @@ using namespace mlir::simit::loops;
 /// one slot component per tensor component.
 static bool isSlotResult(Type type) {
   auto tensor = dyn_cast<RankedTensorType>(type);
-  return isa<FloatType, IntegerType>(type) ||
+  return isa<FloatType, IntegerType, ComplexType>(type) ||
          (tensor && tensor.hasStaticShape() &&
-          isa<FloatType, IntegerType>(tensor.getElementType()));
+          isa<FloatType, IntegerType, ComplexType>(tensor.getElementType()));
 }
 
 /// Finds the values of `callee` that stand for its results: everything a
@@ -439,7 +439,7 @@ LogicalResult FunctionLowering::lowerElementAccess(Operation *op,
     auto insert = store.getValue().getDefiningOp<InsertOp>();
     auto base = insert ? insert.getTensor().getDefiningOp<LoadOp>() : LoadOp();
     if (element->accumulate && base && base.getRef() == store.getRef() &&
-        isa<FloatType, IntegerType>(insert.getValue().getType())) {
+        isa<FloatType, IntegerType, ComplexType>(insert.getValue().getType())) {
       // The insert's own lowering, before this store, asserted that a
       // dynamic index lies in its dimension.
       auto tensorType = cast<RankedTensorType>(insert.getTensor().getType());
@@ -449,11 +449,22 @@ LogicalResult FunctionLowering::lowerElementAccess(Operation *op,
             b, loc, position, indexConstant(tensorType.getDimSize(dim)));
         position = arith::AddIOp::create(b, loc, scaled, lookup(index));
       }
-      Value old = memref::LoadOp::create(b, loc, output, position);
-      memref::StoreOp::create(
-          b, loc,
-          combine(b, loc, element->reduction, old, lookup(insert.getValue())),
-          output, position);
+      Value inserted = lookup(insert.getValue());
+      // A complex component is stored as its (re, im) parts, each reduced.
+      SmallVector<std::pair<Value, Value>> parts;
+      if (isa<ComplexType>(inserted.getType())) {
+        Value re = arith::MulIOp::create(b, loc, position, indexConstant(2));
+        parts.push_back({re, complex::ReOp::create(b, loc, inserted)});
+        parts.push_back({arith::AddIOp::create(b, loc, re, indexConstant(1)),
+                         complex::ImOp::create(b, loc, inserted)});
+      } else {
+        parts.push_back({position, inserted});
+      }
+      for (auto [at, part] : parts) {
+        Value old = memref::LoadOp::create(b, loc, output, at);
+        memref::StoreOp::create(
+            b, loc, combine(b, loc, element->reduction, old, part), output, at);
+      }
       return success();
     }
     if (!element->accumulate) {
@@ -462,14 +473,18 @@ LogicalResult FunctionLowering::lowerElementAccess(Operation *op,
     }
     // One scalar update per component, as for a scalar result, so that
     // the GPU pipeline makes each an atomic (GPUScatterAtomics).
+    // Complex components are reduced part by part, as they are stored.
+    bool parts = isa<ComplexType>(getComponentType(store.getValue().getType()));
     for (int64_t c = 0, n = slotType.getNumElements(); c < n; ++c) {
       Value position = indexConstant(c);
       Value old = memref::LoadOp::create(b, loc, output, position);
-      memref::StoreOp::create(
-          b, loc,
-          combine(b, loc, element->reduction, old,
-                  component(store.getValue().getType(), value, c)),
-          output, position);
+      Value update =
+          parts ? vector::ExtractOp::create(b, loc, value, ArrayRef<int64_t>{c})
+                      .getResult()
+                : component(store.getValue().getType(), value, c);
+      memref::StoreOp::create(b, loc,
+                              combine(b, loc, element->reduction, old, update),
+                              output, position);
     }
     return success();
   }

@@ -299,8 +299,8 @@ LogicalResult FunctionLowering::lowerMatrixSlice(SliceOp op) {
       Value value = memref::LoadOp::create(
           b, loc, matrix, blockIndices(matrixType, {from}, c));
       if (add)
-        value = arith::AddFOp::create(
-            b, loc, memref::LoadOp::create(b, loc, result, at), value);
+        value = addNumbers(b, loc, memref::LoadOp::create(b, loc, result, at),
+                           value);
       memref::StoreOp::create(b, loc, value, result, at);
     }
   };
@@ -320,7 +320,7 @@ LogicalResult FunctionLowering::lowerMatrixSlice(SliceOp op) {
   bool incidence = storage.kind == Storage::Kind::Incidence;
   bool stencil = storage.kind == Storage::Kind::Stencil;
   bool dense = storage.kind == Storage::Kind::DenseMatrix;
-  if (!isa<FloatType>(scalar) ||
+  if (!isa<FloatType, IntegerType, ComplexType>(scalar) ||
       !(storage.kind == Storage::Kind::Diagonal || storage.isBCSR() ||
         incidence || stencil || dense))
     return op.emitError("this slice of a matrix stored as ")

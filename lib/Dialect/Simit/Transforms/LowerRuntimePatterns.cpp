@@ -43,6 +43,13 @@ FunctionLowering::runtimePatternOf(Location loc, RuntimeFunction function,
   return {rowptr, colidx};
 }
 
+bool mlir::simit::loops::isBindingPattern(StorageAttr runtimeEncoding) {
+  return runtimeEncoding &&
+         (runtimeEncoding.getKind() == StorageKind::Union ||
+          runtimeEncoding.getKind() == StorageKind::Transpose) &&
+         !storage::findHost(runtimeEncoding);
+}
+
 /// The number of blocks of `set` as the runtime's pattern functions take
 /// it (i64).
 static Value blockCount(FunctionLowering &l, Location loc, StringAttr set) {

@@ -27,6 +27,24 @@ def test_a_frontend_error_carries_file_line_and_column():
     assert "error:" in error.message and "'y'" in error.message
 
 
+def test_a_lowering_error_carries_its_first_position():
+    program = simit.compile("element V\n  c : complex;\nend\n"
+                            "element E\nend\n"
+                            "extern vs : set{V};\n"
+                            "extern es : set{E}(vs, vs);\n"
+                            "func f(e : E, v : (V*2)) -> "
+                            "(K : matrix[vs,vs](complex))\n"
+                            "  K(v(0),v(1)) = createComplex(1.0, 0.0);\nend\n"
+                            "export func solve()\n"
+                            "  K = map f to es reduce +;\n"
+                            "  vs.c = K \\ vs.c;\nend\n", name="c.sim")
+    with pytest.raises(simit.Error) as info:
+        program.solve()
+    error = info.value
+    assert error.message.startswith("lowering failed")
+    assert (error.file, error.line, error.column) == ("c.sim", 13, 12)
+
+
 def test_a_missing_file():
     with pytest.raises(simit.Error) as info:
         simit.compile("no/such/program.sim")

@@ -15,6 +15,7 @@
 #include <Eigen/Dense>
 #include <Eigen/LU>
 
+#include <cmath>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -148,10 +149,19 @@ bool denseFactorise(MemRefDescriptor<double, 1> *a, int64_t n,
     return false;
   auto factor = std::make_unique<Factor<Solver>>();
   factor->solver.compute(Eigen::MatrixXd(*matrix));
-  // Eigen's LLT reads the lower triangle and stops at a pivot <= 0.
-  if constexpr (std::is_same_v<Solver, LLT>)
+  // Eigen's LLT reads the lower triangle and stops at a pivot <= 0; its
+  // partial-pivoting LU finishes, with a zero pivot where A is singular.
+  if constexpr (std::is_same_v<Solver, LLT>) {
     if (factor->solver.info() != Eigen::Success)
       return fail(where, "the matrix is not positive definite");
+  } else {
+    auto pivots = factor->solver.matrixLU().diagonal();
+    for (Eigen::Index i = 0; i < pivots.size(); ++i)
+      if (pivots[i] == 0.0 || !std::isfinite(pivots[i]))
+        return fail(where, "the matrix is singular (pivot " +
+                               llvm::Twine(static_cast<int64_t>(i)) +
+                               " is zero)");
+  }
   handle = keep(factor.release());
   return true;
 }

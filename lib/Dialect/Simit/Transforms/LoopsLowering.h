@@ -580,6 +580,18 @@ private:
   /// (through memref<?xf64>; handles are !llvm.ptr), else
   /// lowerSystemFactorisation.
   LogicalResult lowerFactorisation(Operation *op);
+  /// A stack buffer of `size` f64 numbers, as memref<?xf64> (the dense
+  /// runtime solvers' operands and results); one holding `vector` (a lowered
+  /// local tensor, widened to f64).
+  Value denseRuntimeBuffer(Location loc, int64_t size);
+  Value denseRuntimeBuffer(Location loc, Value vector);
+  /// The f64 numbers of `buffer` as a lowered local tensor of `type`.
+  Value loadDenseRuntimeBuffer(Location loc, Value buffer, VectorType type);
+  /// `matrix \ rhs` of a dense local n x n system by the runtime's LU with
+  /// partial pivoting (lu, lusolve, lufree), for systems too large to
+  /// invert in place; the runtime names `op` when it fails.
+  Value solveByDenseLU(Location loc, Operation *op, Value matrix, Value rhs,
+                       int64_t n);
   /// simit.woodbury: the runtime's Sherman–Morrison or Woodbury last step.
   LogicalResult lowerWoodbury(WoodburyOp op);
   /// Calls of host functions (`extern func`, LowerHostCalls.cpp) with the

@@ -749,13 +749,32 @@ LogicalResult FunctionLowering::lowerLocalOp(Operation *op, bool &handled) {
     return success();
   }
   if (isa<SolveOp>(op)) {
-    // Small dense systems: x = inv(A) b (A is at most 4 x 4).
     SmallVector<int64_t> s = shapes[0];
-    if (s.size() != 2 || s[0] != s[1] || s[0] > 4 ||
-        shapes[1] != ArrayRef<int64_t>{s[0]})
+    if (s.size() != 2 || s[0] != s[1] || shapes[1] != ArrayRef<int64_t>{s[0]})
       return op->emitError("local solves are supported for square matrices "
-                           "of at most 4 x 4 and a vector");
+                           "and a vector");
     int64_t n = s[0];
+    // Larger systems: the runtime's LU with partial pivoting.
+    if (n > 4) {
+      Type number = getComponentType(op->getOperand(0).getType());
+      if (!isa<FloatType>(number))
+        return op->emitError("local solves of more than 4 x 4 take float "
+                             "matrices");
+      auto flat = [&](ArrayRef<Value> components) -> Value {
+        return vector::FromElementsOp::create(
+            b, loc,
+            VectorType::get({static_cast<int64_t>(components.size())}, number),
+            components);
+      };
+      Value x =
+          solveByDenseLU(loc, op, flat(unblocked[0]), flat(unblocked[1]), n);
+      SmallVector<Value> r;
+      for (int64_t i = 0; i < n; ++i)
+        r.push_back(vector::ExtractOp::create(b, loc, x, ArrayRef<int64_t>{i}));
+      mapUnblocked(r);
+      return success();
+    }
+    // Small dense systems: x = inv(A) b.
     SmallVector<Value> inv = inverse(a, unblocked[0], n);
     ArrayRef<Value> rhs = unblocked[1];
     SmallVector<Value> r;

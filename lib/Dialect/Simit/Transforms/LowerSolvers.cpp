@@ -512,10 +512,6 @@ LogicalResult FunctionLowering::lowerFactorisation(Operation *op) {
 
   // Local tensors (vectors) are stored to a stack buffer passed as
   // memref<?xf64>; tensor results come back through one.
-  auto buffer = [&](int64_t size) {
-    return allocaSlot(loc, MemRefType::get({size}, f64));
-  };
-  Value zero = free ? Value() : indexConstant(0);
   SmallVector<Value> args;
   SmallVector<Type> argTypes;
   for (Value operand : op->getOperands()) {
@@ -525,13 +521,7 @@ LogicalResult FunctionLowering::lowerFactorisation(Operation *op) {
       argTypes.push_back(ptr);
       continue;
     }
-    int64_t size = cast<RankedTensorType>(operand.getType()).getNumElements();
-    Value slot = buffer(size);
-    if (!precision.isF64())
-      value =
-          arith::ExtFOp::create(b, loc, VectorType::get({size}, f64), value);
-    vector::StoreOp::create(b, loc, value, slot, ValueRange{zero});
-    args.push_back(memref::CastOp::create(b, loc, flat, slot));
+    args.push_back(denseRuntimeBuffer(loc, value));
     argTypes.push_back(flat);
   }
   Value resultSlot;
@@ -540,8 +530,8 @@ LogicalResult FunctionLowering::lowerFactorisation(Operation *op) {
     resultTypes.push_back(ptr);
   } else if (!free) {
     auto resultType = cast<RankedTensorType>(op->getResult(0).getType());
-    resultSlot = buffer(resultType.getNumElements());
-    args.push_back(memref::CastOp::create(b, loc, flat, resultSlot));
+    resultSlot = denseRuntimeBuffer(loc, resultType.getNumElements());
+    args.push_back(resultSlot);
     argTypes.push_back(flat);
   }
   // Sizes: n of a factorised or triangular matrix, the columns of a
@@ -579,12 +569,73 @@ LogicalResult FunctionLowering::lowerFactorisation(Operation *op) {
     map(op->getResult(0), lowered.getResult(0));
     return success();
   }
-  auto resultType = cast<VectorType>(convertType(op->getResult(0).getType()));
-  Value result = vector::LoadOp::create(
-      b, loc, VectorType::get(resultType.getShape(), f64), resultSlot,
-      ValueRange{zero});
-  if (!precision.isF64())
-    result = arith::TruncFOp::create(b, loc, resultType, result);
-  map(op->getResult(0), result);
+  map(op->getResult(0),
+      loadDenseRuntimeBuffer(
+          loc, resultSlot,
+          cast<VectorType>(convertType(op->getResult(0).getType()))));
   return success();
+}
+
+Value FunctionLowering::denseRuntimeBuffer(Location loc, int64_t size) {
+  Type f64 = b.getF64Type();
+  Value slot = allocaSlot(loc, MemRefType::get({size}, f64));
+  return memref::CastOp::create(
+      b, loc, MemRefType::get({ShapedType::kDynamic}, f64), slot);
+}
+
+Value FunctionLowering::denseRuntimeBuffer(Location loc, Value vector) {
+  auto type = cast<VectorType>(vector.getType());
+  int64_t size = type.getNumElements();
+  Value buffer = denseRuntimeBuffer(loc, size);
+  // The runtime's dense solvers run in f64 (language.md 4.1: float32
+  // values are widened and their results rounded back).
+  if (!type.getElementType().isF64())
+    vector = arith::ExtFOp::create(
+        b, loc, VectorType::get({size}, b.getF64Type()), vector);
+  // Stored through the slot's static type, whose size the store shows.
+  vector::StoreOp::create(b, loc, vector,
+                          buffer.getDefiningOp<memref::CastOp>().getSource(),
+                          ValueRange{indexConstant(0)});
+  return buffer;
+}
+
+Value FunctionLowering::loadDenseRuntimeBuffer(Location loc, Value buffer,
+                                               VectorType type) {
+  buffer = buffer.getDefiningOp<memref::CastOp>().getSource();
+  Value value = vector::LoadOp::create(
+      b, loc, VectorType::get(type.getShape(), b.getF64Type()), buffer,
+      ValueRange{indexConstant(0)});
+  if (!type.getElementType().isF64())
+    value = arith::TruncFOp::create(b, loc, type, value);
+  return value;
+}
+
+using ::simit::abi::RuntimeFunction;
+
+Value FunctionLowering::solveByDenseLU(Location loc, Operation *op,
+                                       Value matrix, Value rhs, int64_t n) {
+  MLIRContext *ctx = b.getContext();
+  Type ptr = LLVM::LLVMPointerType::get(ctx);
+  Value where = stringConstant(loc, "solve" + sourcePositionSuffix(op));
+  auto call = [&](RuntimeFunction function, ArrayRef<Value> args,
+                  TypeRange results) -> Value {
+    StringRef name = mlir::simit::runtimeName(function);
+    SmallVector<Type> types;
+    for (Value arg : args)
+      types.push_back(arg.getType());
+    if (function == RuntimeFunction::LUFree)
+      return callRuntime(loc, name, results, args);
+    func::FuncOp callee =
+        declareRuntime(loc, name, FunctionType::get(ctx, types, results));
+    auto lowered = func::CallOp::create(b, loc, callee, args);
+    return lowered.getNumResults() ? lowered.getResult(0) : Value();
+  };
+  Value n64 = arith::ConstantOp::create(b, loc, b.getI64IntegerAttr(n));
+  Value handle = call(RuntimeFunction::LU,
+                      {denseRuntimeBuffer(loc, matrix), n64, where}, {ptr});
+  Value x = denseRuntimeBuffer(loc, n);
+  call(RuntimeFunction::LUSolve,
+       {handle, denseRuntimeBuffer(loc, rhs), x, where}, {});
+  call(RuntimeFunction::LUFree, {handle, where}, {});
+  return loadDenseRuntimeBuffer(loc, x, cast<VectorType>(rhs.getType()));
 }

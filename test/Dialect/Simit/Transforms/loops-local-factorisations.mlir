@@ -14,12 +14,12 @@
 // CHECK-DAG: %[[XBUF:.*]] = memref.alloca() : memref<6xf64>
 // CHECK-DAG: %[[BBUF:.*]] = memref.alloca() : memref<6xf64>
 // CHECK-DAG: %[[ABUF:.*]] = memref.alloca() : memref<9xf64>
-// CHECK: vector.store %[[A]], %[[ABUF]][%{{.*}}] : memref<9xf64>, vector<9xf64>
 // CHECK: %[[AC:.*]] = memref.cast %[[ABUF]] : memref<9xf64> to memref<?xf64>
+// CHECK: vector.store %[[A]], %[[ABUF]][%{{.*}}] : memref<9xf64>, vector<9xf64>
 // CHECK: %[[N:.*]] = arith.constant 3 : i64
 // CHECK: %[[H:.*]] = call @simit_rt_lu(%[[AC]], %[[N]], %{{.*}}) : (memref<?xf64>, i64, !llvm.ptr) -> !llvm.ptr
-// CHECK: vector.store %[[B]], %[[BBUF]]
 // CHECK: %[[BC:.*]] = memref.cast %[[BBUF]] : memref<6xf64> to memref<?xf64>
+// CHECK: vector.store %[[B]], %[[BBUF]]
 // CHECK: %[[XC:.*]] = memref.cast %[[XBUF]] : memref<6xf64> to memref<?xf64>
 // CHECK: %[[K:.*]] = arith.constant 2 : i64
 // CHECK: call @simit_rt_lumatsolve(%[[H]], %[[BC]], %[[XC]], %[[K]], %{{.*}}) : (!llvm.ptr, memref<?xf64>, memref<?xf64>, i64, !llvm.ptr) -> ()

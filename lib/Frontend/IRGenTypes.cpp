@@ -14,6 +14,8 @@
 #include "mlir/Dialect/Arith/IR/Arith.h"
 #include "mlir/Dialect/Complex/IR/Complex.h"
 
+#include <cmath>
+
 using namespace simit::frontend;
 using namespace mlir;
 namespace dialect = mlir::simit;
@@ -248,6 +250,25 @@ Value IRGenerator::genConstant(const FoldedLiteral &literal, mlir::Type type,
     return dialect::StringConstantOp::create(builder, l, literal.string);
   auto tensorType = dyn_cast<RankedTensorType>(type);
   mlir::Type component = tensorType ? tensorType.getElementType() : type;
+  // Under --float32 a literal beyond the single range is an error, as one
+  // beyond the double range always is (language.md 4.1: the precision
+  // applies to literals too).
+  mlir::Type part = component;
+  if (auto complexType = dyn_cast<ComplexType>(component))
+    part = complexType.getElementType();
+  if (part.isF32()) {
+    auto beyond = [](double v) {
+      return std::isfinite(v) && std::isinf(static_cast<float>(v));
+    };
+    bool tooLarge =
+        llvm::any_of(literal.floats, beyond) ||
+        llvm::any_of(literal.complexes, [&](std::complex<double> v) {
+          return beyond(v.real()) || beyond(v.imag());
+        });
+    if (tooLarge)
+      diags.error(where, "float literal is too large for a 32-bit float "
+                         "(the program is compiled with single precision)");
+  }
   if (!tensorType) {
     switch (literal.kind) {
     case ScalarKind::Int:

@@ -418,6 +418,10 @@ public:
       if (!index || index.getInt() < 0)
         return error("expected a non-negative integer 'index'");
       binding.index = index.getInt();
+      // A vector over a set names the set, as an extern does.
+      if (dict.get("set"))
+        if (llvm::Error err = get("set", binding.set))
+          return err;
       return getShape(binding);
     }
     }

@@ -82,3 +82,19 @@ def test_a_complex_scalar_parameter_takes_a_python_complex():
                             "  d = c * c;\nend\n")
     assert program.sq(1 + 2j) == -3 + 4j
     assert program.sq(np.complex128(2j)) == -4
+
+
+def test_a_vector_over_a_set_parameter_has_a_block_per_element():
+    program = simit.compile("element V\n  x : float;\nend\n"
+                            "extern verts : set{V};\n"
+                            "export func scale(s : vector[verts](float))\n"
+                            "  verts.x = verts.x .* s;\nend\n")
+    verts = simit.Set("verts", size=3)
+    verts["x"] = np.array([1.0, 2.0, 3.0])
+    program.bind(verts=verts)
+    program.scale(np.array([2.0, 3.0, 4.0]))
+    np.testing.assert_array_equal(verts["x"], [2.0, 6.0, 12.0])
+    with pytest.raises(simit.Error, match=r"parameter 0 is bound to float64 "
+                       r"of shape \[2\], but the program expects float64 of "
+                       r"shape \[3\]"):
+        program.scale(np.array([2.0, 3.0]))

@@ -575,6 +575,11 @@ LogicalResult FunctionLowering::run(func::FuncOp original) {
         tensor && !isa<ComplexType>(tensor.getElementType()))
       entries.emplace_back(StringAttr::get(ctx, "shape"),
                            DenseI64ArrayAttr::get(ctx, tensor.getShape()));
+    // A vector over a set: a block per element of the set bound then.
+    if (isSystem(arg.getType()))
+      entries.emplace_back(
+          StringAttr::get(ctx, "set"),
+          cast<StringAttr>(cast<SystemTensorType>(arg.getType()).getDims()[0]));
     bindingAttrs.push_back(DictionaryAttr::get(ctx, entries));
   }
   SmallVector<Attribute> resultShapes;

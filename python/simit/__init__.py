@@ -11,6 +11,9 @@ scenes (docs/python.md).
 """
 
 import os
+from collections.abc import Mapping
+
+import numpy as np
 
 from .errors import Error, NumericsError
 from ._simit import (Function, Mesh, Program, Scene, Set, load_mesh,
@@ -19,6 +22,38 @@ from ._simit import (Function, Mesh, Program, Scene, Set, load_mesh,
 __all__ = ["Error", "NumericsError", "Function", "Mesh", "Program", "Scene",
            "Set", "compile", "load_mesh", "phase_times", "reset_phase_times",
            "sets_from_mesh"]
+
+
+class ExternArrays(Mapping):
+    """A scene's extern tensors by name, each an array over the scene's own
+    storage. Assigning writes into that array, as `externs["h"][()] = 0.005`
+    does: `externs["h"] = 0.005` (a value that does not fit the dtype or
+    the shape is an error, never a silently unbound copy)."""
+
+    def __init__(self, arrays):
+        self._arrays = arrays
+
+    def __getitem__(self, name):
+        return self._arrays[name]
+
+    def __iter__(self):
+        return iter(self._arrays)
+
+    def __len__(self):
+        return len(self._arrays)
+
+    def __setitem__(self, name, value):
+        if name not in self._arrays:
+            raise KeyError(f"the scene's program reads no extern tensor "
+                           f"{name!r}")
+        np.copyto(self._arrays[name], value, casting="same_kind")
+
+
+_scene_externs = Scene.externs
+Scene.externs = property(
+    lambda self: ExternArrays(_scene_externs.fget(self)),
+    doc="{name: array} over the extern tensors the program reads; "
+        "assigning to a name writes into its array.")
 
 
 def _is_path(program):

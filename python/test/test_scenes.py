@@ -63,6 +63,21 @@ def test_externs_written_between_frames_are_read_by_the_next_one():
                                rtol=1e-12)
 
 
+def test_assigning_an_extern_writes_into_its_array():
+    scene = simit.Scene(PAIR, frames=3)
+    scene.step()
+    scene.externs["h"] = 0.05
+    assert scene.externs["h"] == 0.05
+    scene.step(2)
+    v, y = pair_motion([0.1, 0.05, 0.05])
+    np.testing.assert_allclose(scene.sets["points"]["x"][:, 1], [y, y],
+                               rtol=1e-12)
+    with pytest.raises(KeyError, match="no extern tensor 'hh'"):
+        scene.externs["hh"] = 1.0
+    with pytest.raises(ValueError):
+        scene.externs["h"] = [1.0, 2.0]
+
+
 def test_externs_marked_constant_are_not_folded_in_python():
     # Python may write any extern between frames: a Scene folds none
     # (docs/scene-specialisation.md), not even those marked constant.

@@ -562,8 +562,47 @@ LogicalResult IndexExprLowering::lower(ExtractOp at) {
       summed.push_back(v);
   auto body = [&]() { return evaluate(op.getBody().front()); };
 
+  // A loop over a stencil on a grid narrower than its offsets visits an
+  // entry once per offset naming its column: block by block is right only
+  // when every matrix is that stencil, read as the result is written (not
+  // transposed: the transposed entry lands at another offset, which may
+  // name the same column as one the loop also writes), and the body adds
+  // and scales them.
+  auto decideEntrywiseStencils = [&] {
+    SmallVector<Storage> matrixStorages;
+    // Sums into a scalar or a local tensor have no result order to read a
+    // matrix in: any stencil among their inputs is read entry by entry.
+    bool transposesMatrix = llvm::none_of(
+        resultVars, [&](int64_t v) { return isa<StringAttr>(level(v, 0)); });
+    for (auto [i, in] : llvm::enumerate(op.getInputs())) {
+      if (!l.storageOf(in).isMatrix())
+        continue;
+      matrixStorages.push_back(l.storageOf(in));
+      // Read transposed: its column is a result variable before its row in
+      // the result's order (or its row none), as A(j, i) in C(i, j) = A(j, i)
+      // and in y(i) = sum_j A(j, i) x(j).
+      ArrayRef<int64_t> list = op.getInputIndexList(i);
+      auto resultPosition = [&](int64_t v) {
+        return static_cast<size_t>(llvm::find(resultVars, v) -
+                                   resultVars.begin());
+      };
+      transposesMatrix |=
+          list.size() == 2 && resultPosition(list[1]) < resultPosition(list[0]);
+    }
+    if (resultStorage.isMatrix())
+      matrixStorages.push_back(resultStorage);
+    entrywiseStencils = llvm::any_of(matrixStorages,
+                                     [](const Storage &s) {
+                                       return s.kind == Storage::Kind::Stencil;
+                                     }) &&
+                        (multipliesMatrices(op) || transposesMatrix ||
+                         llvm::any_of(matrixStorages, [&](const Storage &s) {
+                           return s != matrixStorages.front();
+                         }));
+  };
   // A scalar: one sum.
   if (resultVars.empty()) {
+    decideEntrywiseStencils();
     FailureOr<Value> total = sum(summed, body, /*parallelTop=*/true);
     if (failed(total))
       return failure();
@@ -572,8 +611,10 @@ LogicalResult IndexExprLowering::lower(ExtractOp at) {
   }
 
   auto type = dyn_cast<SystemTensorType>(op.getType());
-  if (!type || !type.isSystem())
+  if (!type || !type.isSystem()) {
+    decideEntrywiseStencils();
     return lowerLocalResultOfSums(summed, body);
+  }
   // A matrix result is stored as its type says (simit-assign-storage reads
   // the body as a path expression, so the storage holds every nonzero); a
   // vector result is dense.
@@ -591,33 +632,7 @@ LogicalResult IndexExprLowering::lower(ExtractOp at) {
         resultStorage.transposed)
       swappedLists.back() = {resultVars[1], resultVars[0]};
   }
-  // A loop over a stencil on a grid narrower than its offsets visits an
-  // entry once per offset naming its column: block by block is right only
-  // when every matrix is that stencil, read as the result is written (not
-  // transposed: the transposed entry lands at another offset, which may
-  // name the same column as one the loop also writes), and the body adds
-  // and scales them.
-  SmallVector<Storage> matrixStorages;
-  bool transposesMatrix = false;
-  for (auto [i, in] : llvm::enumerate(op.getInputs())) {
-    if (!l.storageOf(in).isMatrix())
-      continue;
-    matrixStorages.push_back(l.storageOf(in));
-    ArrayRef<int64_t> list = op.getInputIndexList(i);
-    transposesMatrix |= resultStorage.isMatrix() && list.size() == 2 &&
-                        resultVars.size() == 2 && list[0] == resultVars[1] &&
-                        list[1] == resultVars[0];
-  }
-  if (resultStorage.isMatrix())
-    matrixStorages.push_back(resultStorage);
-  entrywiseStencils = llvm::any_of(matrixStorages,
-                                   [](const Storage &s) {
-                                     return s.kind == Storage::Kind::Stencil;
-                                   }) &&
-                      (multipliesMatrices(op) || transposesMatrix ||
-                       llvm::any_of(matrixStorages, [&](const Storage &s) {
-                         return s != matrixStorages.front();
-                       }));
+  decideEntrywiseStencils();
   ArrayRef<int64_t> resultOrder = indexList(op.getInputs().size());
   SmallVector<unsigned> free(resultOrder.begin(), resultOrder.end());
   bool sparseSum =

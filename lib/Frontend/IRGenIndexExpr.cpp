@@ -297,6 +297,14 @@ void IRGenerator::genIndexAssign(const AssignStmt &stmt) {
       state.sumsAt[scope].push_back(state.indexOf(var));
   }
 
+  // `s = K(i,i)` of a blocked K sums blocks: the value is a block whose
+  // dimensions no variable names.
+  if (dialect::getTensorOrder(resultType) != resultIndices.size()) {
+    unsupported(target.loc, "an index expression whose value is a block of "
+                            "a blocked tensor (its variables index the "
+                            "blocks, not their components)");
+    return;
+  }
   SmallVector<Attribute> names, domains;
   for (auto [var, domain] : llvm::zip(state.vars, state.domains)) {
     names.push_back(builder.getStringAttr(var->name));

@@ -570,24 +570,29 @@ LogicalResult IndexExprLowering::lower(ExtractOp at) {
   // and scales them.
   auto decideEntrywiseStencils = [&] {
     SmallVector<Storage> matrixStorages;
-    // Sums into a scalar or a local tensor have no result order to read a
-    // matrix in: any stencil among their inputs is read entry by entry.
-    bool transposesMatrix = llvm::none_of(
-        resultVars, [&](int64_t v) { return isa<StringAttr>(level(v, 0)); });
+    // The order the loops bind variables in: the result's set variables, or
+    // for sums into a scalar or a local tensor the top-level summed ones
+    // (nested sums' variables come after all of them).
+    SmallVector<int64_t> order;
+    for (int64_t v : resultVars)
+      if (isa<StringAttr>(level(v, 0)))
+        order.push_back(v);
+    if (order.empty())
+      order.assign(summed.begin(), summed.end());
+    auto position = [&](int64_t v) {
+      return static_cast<size_t>(llvm::find(order, v) - order.begin());
+    };
+    bool transposesMatrix = false;
     for (auto [i, in] : llvm::enumerate(op.getInputs())) {
       if (!l.storageOf(in).isMatrix())
         continue;
       matrixStorages.push_back(l.storageOf(in));
-      // Read transposed: its column is a result variable before its row in
-      // the result's order (or its row none), as A(j, i) in C(i, j) = A(j, i)
-      // and in y(i) = sum_j A(j, i) x(j).
+      // Read transposed: its column is bound before its row (or its row by
+      // a nested sum), as A(j, i) in C(i, j) = A(j, i), in y(i) = sum_j
+      // A(j, i) x(j) and in x' (A' x).
       ArrayRef<int64_t> list = op.getInputIndexList(i);
-      auto resultPosition = [&](int64_t v) {
-        return static_cast<size_t>(llvm::find(resultVars, v) -
-                                   resultVars.begin());
-      };
       transposesMatrix |=
-          list.size() == 2 && resultPosition(list[1]) < resultPosition(list[0]);
+          list.size() == 2 && position(list[1]) < position(list[0]);
     }
     if (resultStorage.isMatrix())
       matrixStorages.push_back(resultStorage);

@@ -17,6 +17,16 @@ namespace mlir {
 namespace simit {
 namespace loops {
 
+/// Whether the body multiplies or divides two values that both come from
+/// matrix inputs.
+bool multipliesMatrices(IndexExprOp op);
+/// The variables whose sum (or, for the result's and the top-level summed
+/// variables, the body) can be nonzero where every sparse matrix input
+/// (`isSparseInput`) is zero: no matrix's sparsity bounds their loops.
+llvm::SmallDenseSet<unsigned>
+varsNonzeroOutsideMatrices(IndexExprOp op,
+                           function_ref<bool(unsigned)> isSparseInput);
+
 class IndexExprLowering {
 public:
   IndexExprLowering(FunctionLowering &l, IndexExprOp op)

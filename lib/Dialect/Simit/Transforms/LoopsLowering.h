@@ -229,21 +229,24 @@ inline int64_t componentBytes(Type component) {
   return 8;
 }
 
-/// lhs + rhs and lhs * rhs of float, int or complex numbers, scalars or
-/// vectors (ints wrap, as the language's do).
-inline Value addNumbers(OpBuilder &b, Location loc, Value lhs, Value rhs) {
+/// lhs op rhs of float, int or complex numbers, scalars or vectors, by the
+/// op of their kind.
+template <typename ComplexOp, typename FloatOp, typename IntOp>
+Value combineNumbers(OpBuilder &b, Location loc, Value lhs, Value rhs) {
   if (isa<ComplexType>(lhs.getType()))
-    return complex::AddOp::create(b, loc, lhs, rhs);
+    return ComplexOp::create(b, loc, lhs, rhs);
   if (isa<FloatType>(getElementTypeOrSelf(lhs.getType())))
-    return arith::AddFOp::create(b, loc, lhs, rhs);
-  return arith::AddIOp::create(b, loc, lhs, rhs);
+    return FloatOp::create(b, loc, lhs, rhs);
+  return IntOp::create(b, loc, lhs, rhs);
+}
+/// lhs + rhs and lhs * rhs (ints wrap, as the language's do).
+inline Value addNumbers(OpBuilder &b, Location loc, Value lhs, Value rhs) {
+  return combineNumbers<complex::AddOp, arith::AddFOp, arith::AddIOp>(b, loc,
+                                                                      lhs, rhs);
 }
 inline Value multiplyNumbers(OpBuilder &b, Location loc, Value lhs, Value rhs) {
-  if (isa<ComplexType>(lhs.getType()))
-    return complex::MulOp::create(b, loc, lhs, rhs);
-  if (isa<FloatType>(getElementTypeOrSelf(lhs.getType())))
-    return arith::MulFOp::create(b, loc, lhs, rhs);
-  return arith::MulIOp::create(b, loc, lhs, rhs);
+  return combineNumbers<complex::MulOp, arith::MulFOp, arith::MulIOp>(b, loc,
+                                                                      lhs, rhs);
 }
 
 /// The storage of the transpose of a matrix stored as `s` (a pattern over
@@ -683,6 +686,13 @@ private:
 int64_t numComponents(Type type);
 /// Whether a type is a tensor with a set dimension (a system tensor).
 bool isSystem(Type type);
+/// Whether `type` is over a set and then ranges only (a vector over a set,
+/// `matrix[V,2]`): stored as one block per element of the set.
+inline bool hasBlockPerElement(SystemTensorType type) {
+  return isa<StringAttr>(type.getDims()[0]) &&
+         llvm::all_of(type.getDims().getValue().drop_front(),
+                      [](Attribute d) { return isa<IntegerAttr>(d); });
+}
 /// The storage positions of a local tensor's components in the row-major
 /// order of its unblocked shape, which goes to `shape`: levels of (r_l x c_l)
 /// make a (prod r_l) x (prod c_l) matrix, vector levels a vector; a scalar

@@ -637,14 +637,7 @@ LogicalResult FunctionLowering::lowerMapLike(Operation *op) {
     // Stored as simit-assign-storage found from the set (and, through a
     // grid, the offsets the element function writes).
     Storage storage = storageOf(result);
-    // A vector over a set, or a tensor over a set and ranges (`matrix[V,2]`),
-    // stored alike: a block per element.
-    auto rangesAfterSet = [&] {
-      return isa<StringAttr>(type.getDims()[0]) &&
-             llvm::all_of(type.getDims().getValue().drop_front(),
-                          [](Attribute d) { return isa<IntegerAttr>(d); });
-    };
-    if (!storage.isMatrix() && !rangesAfterSet())
+    if (!storage.isMatrix() && !hasBlockPerElement(type))
       return op->emitError("map result ")
              << type << " is not supported by the loop lowering";
     if (init && storage != storageOf(extras[(*inits)[r]]))

@@ -214,20 +214,14 @@ LogicalResult FunctionLowering::lowerPrintOrString(Operation *op) {
     }
     if (auto system = dyn_cast<SystemTensorType>(type);
         system && system.isSystem()) {
-      // Over a set and ranges (`matrix[V,2]`): a block per element, as a
-      // vector of blocks is stored.
-      bool rangesAfterSet =
-          isa<StringAttr>(system.getDims()[0]) &&
-          llvm::all_of(system.getDims().getValue().drop_front(),
-                       [](Attribute d) { return isa<IntegerAttr>(d); });
-      if (system.getOrder() == 2 && !rangesAfterSet) {
+      if (!hasBlockPerElement(system)) {
+        if (system.getOrder() != 2)
+          return op->emitError("printing system tensors of order ")
+                 << system.getOrder() << " is not supported";
         if (failed(printMatrix(loc, value, printScalar)))
           return failure();
         continue;
       }
-      if (system.getOrder() != 1 && !rangesAfterSet)
-        return op->emitError("printing system tensors of order ")
-               << system.getOrder() << " is not supported";
       // A system vector: its elements in set order, separated by spaces
       // when they are scalars, one element's block per line otherwise
       // (the block's components separated by spaces).

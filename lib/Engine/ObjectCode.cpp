@@ -36,6 +36,23 @@ llvm::Expected<llvm::orc::JITTargetMachineBuilder> simit::hostTarget() {
   return target;
 }
 
+unsigned simit::hostVectorBits() {
+  auto target = hostTarget();
+  if (!target) {
+    llvm::consumeError(target.takeError());
+    return 128;
+  }
+  const llvm::SubtargetFeatures &features = target->getFeatures();
+  auto has = [&](llvm::StringRef feature) {
+    return llvm::is_contained(features.getFeatures(), "+" + feature.str());
+  };
+  if (has("avx512f"))
+    return 512;
+  if (has("avx"))
+    return 256;
+  return 128;
+}
+
 /// Names the symbols the objects need that none of them, the runtime, the
 /// OpenMP runtime nor the process (its libraries, and the host libraries
 /// loaded for `extern func`s) defines, before the JIT would fail on them

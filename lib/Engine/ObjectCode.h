@@ -54,6 +54,10 @@ struct ObjectCode {
 /// position-independent code that the JIT's linker (JITLink) expects.
 llvm::Expected<llvm::orc::JITTargetMachineBuilder> hostTarget();
 
+/// The width in bits of the host's widest vector registers that LLVM uses:
+/// 512 with AVX-512, 256 with AVX, else 128 (SSE2, NEON).
+unsigned hostVectorBits();
+
 /// Links `code` into a new JIT that resolves the runtime functions and the
 /// process's own symbols (libc, libm), and looks up every entry point.
 llvm::Expected<std::shared_ptr<CompiledModule>>

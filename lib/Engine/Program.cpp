@@ -5,6 +5,7 @@
 #include "CompileCache.h"
 #include "CompiledModule.h"
 #include "Lowering.h"
+#include "ObjectCode.h"
 #include "SimImport.h"
 #include "Specialise.h"
 #include "Stopwatch.h"
@@ -108,6 +109,14 @@ struct Program::Impl {
   /// One thread compiles code without parallel regions.
   bool openmp() const { return threads > 1; }
 
+  /// The vector width element kernels are compiled for; 0 when they run one
+  /// element at a time.
+  unsigned elementVectorBits() const {
+    return options.vectorizeElements && options.target == Target::CPU
+               ? hostVectorBits()
+               : 0;
+  }
+
   mlir::MLIRContext &getContext() {
     if (!context) {
       context = std::make_unique<mlir::MLIRContext>(
@@ -209,6 +218,7 @@ struct Program::Impl {
     pipelineOptions.openmp = openmp();
     pipelineOptions.shermanMorrison = options.shermanMorrison;
     pipelineOptions.eliminateDeadAssemblies = options.eliminateDeadAssemblies;
+    pipelineOptions.elementVectorBits = elementVectorBits();
     if (llvm::Error err = lowerToLLVM(*clone, result, pipelineOptions,
                                       kernelTarget(), keepLoopsStage))
       return err;
@@ -241,7 +251,8 @@ struct Program::Impl {
        << targetName(options.target);
     if (std::optional<GPUKernelTarget> gpu = kernelTarget())
       os << " " << gpu->chip << " " << gpu->features;
-    os << "\ndead assemblies " << options.eliminateDeadAssemblies;
+    os << "\ndead assemblies " << options.eliminateDeadAssemblies
+       << "\nelement vector bits " << elementVectorBits();
     writeSpecialisationKey(os, options.specialisation);
     os << "\n"
        << (from.kind == Source::Kind::Sim ? "sim " : "mlir ") << from.name

@@ -414,6 +414,7 @@ static ProgramOptions programOptionsOf(const SceneRunOptions &options,
   program.hostLibraries = options.hostLibraries;
   program.target = options.target;
   program.eliminateDeadAssemblies = options.eliminateDeadAssemblies;
+  program.vectorizeElements = options.vectorizeElements;
   program.specialisation = specialisationOf(options, scene);
   llvm::append_range(program.hostLibraries, scene.libraries);
   return program;

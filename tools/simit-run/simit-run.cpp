@@ -6,7 +6,7 @@
 //             [--refactor-iters N]
 //             [--no-warm-start] [--no-sherman-morrison]
 //             [--no-skip-uncalled] [--no-skip-unused-fields]
-//             [--no-fold-constants] [--no-dead-assemblies]
+//             [--no-fold-constants] [--no-dead-assemblies] [--no-simd]
 //   simit-run --test FILE.sim
 //   simit-run FILE.sim --eval 'f(1.0, [1, 2]')'
 //   simit-run FILE.sim --emit=simit|loops|llvm
@@ -141,6 +141,10 @@ static cl::opt<bool> noFoldConstants(
 static cl::opt<bool> noDeadAssemblies(
     cl::cat(runCategory), "no-dead-assemblies",
     cl::desc("Assemble map results that nothing uses"));
+static cl::opt<bool> noSimd(
+    cl::cat(runCategory), "no-simd",
+    cl::desc("Run element kernels one element at a time, not one element "
+             "per vector lane (the results are the same)"));
 static cl::opt<Target> target(
     cl::cat(runCategory), "target",
     cl::desc("Where the program's set loops run (default: cpu)"),
@@ -323,6 +327,7 @@ static int runSceneFile(FloatPrecision precision,
   options.foldConstantExterns = !noFoldConstants;
   options.foldUniformFields = !noFoldConstants;
   options.eliminateDeadAssemblies = !noDeadAssemblies;
+  options.vectorizeElements = !noSimd;
   auto runner = SceneRunner::create(std::move(*scene), options);
   if (!runner)
     return fail(runner.takeError());
@@ -410,6 +415,7 @@ int main(int argc, char **argv) {
     programOptions.precision = precision;
     programOptions.threads = *threadCount;
     programOptions.target = target;
+    programOptions.vectorizeElements = !noSimd;
     Program program(programOptions);
     if (llvm::Error err = program.loadFile(programPath))
       return fail(std::move(err));

@@ -91,6 +91,10 @@ struct ProgramOptions {
   /// Map and assembly results nothing uses are not computed
   /// (simit-eliminate-dead-assemblies).
   bool eliminateDeadAssemblies = true;
+  /// Element kernels run on as many elements at once as the host's vectors
+  /// hold (simit-vectorize-element-loops); off, one element at a time. The
+  /// results are the same.
+  bool vectorizeElements = true;
   /// What the runs need, when the host knows (SceneRunner does).
   ProgramSpecialisation specialisation;
   /// Shared libraries that define the C functions of the program's

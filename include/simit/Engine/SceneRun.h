@@ -75,6 +75,8 @@ struct SceneRunOptions {
   bool foldUniformFields = true;
   /// ProgramOptions::eliminateDeadAssemblies (--no-dead-assemblies).
   bool eliminateDeadAssemblies = true;
+  /// ProgramOptions::vectorizeElements (--no-simd).
+  bool vectorizeElements = true;
 };
 
 /// The medians of SceneTimes, as simit-run --time prints them.

@@ -72,6 +72,11 @@ void mlir::simit::buildSimitCpuPipeline(
   parallelOptions.reductionChunk = options.reductionChunk;
   parallelOptions.scatterChunk = options.scatterChunk;
   pm.addPass(createSimitParallelLoops(parallelOptions));
+  if (options.elementVectorBits > 0) {
+    SimitVectorizeElementLoopsOptions vectorOptions;
+    vectorOptions.vectorBits = options.elementVectorBits;
+    pm.addPass(createSimitVectorizeElementLoops(vectorOptions));
+  }
   // Temporaries of system tensors are freed once no value needs them.
   bufferization::buildBufferDeallocationPipeline(pm);
   if (options.openmp)
@@ -100,10 +105,17 @@ namespace {
 struct CpuPipeline : public simit::impl::SimitCpuPipelineBase<CpuPipeline> {
   using Base::Base;
   SimitCpuPipelineOptions options() const {
-    return {timePhases,      checkNumerics,      runtimeAllocator,
-            shermanMorrison, openmp,             reductionChunk,
-            scatterChunk,    foldSceneConstants, eliminateDeadAssemblies,
-            prefetchMatrixBytes};
+    return {timePhases,
+            checkNumerics,
+            runtimeAllocator,
+            shermanMorrison,
+            openmp,
+            reductionChunk,
+            scatterChunk,
+            foldSceneConstants,
+            eliminateDeadAssemblies,
+            prefetchMatrixBytes,
+            elementVectorBits};
   }
   void getDependentDialects(DialectRegistry &registry) const override {
     OpPassManager pm(ModuleOp::getOperationName());

@@ -315,6 +315,39 @@ def SimitParallelLoopsToOpenMP : Pass<"simit-parallel-loops-to-openmp", "::mlir:
                            "::mlir::scf::SCFDialect"];
 }
 
+def SimitVectorizeElementLoops : Pass<"simit-vectorize-element-loops", "::mlir::ModuleOp"> {
+  let summary = "Runs element kernels on several elements at once, one per vector lane";
+  let description = [{
+    Every one-dimensional `scf.parallel` without results and with step 1
+    that simit-parallel-loops left unmarked (the loop over one chunk of a
+    set, or a set loop that runs in order) is split in two: a loop that
+    steps `lanes` elements at a time, then the loop as it was for the
+    elements after the last whole step. In the first, the body's arithmetic
+    (element-wise arith and math ops, vector ops at constant positions,
+    loads from memory the loop does not write, and local tensors held in
+    stack slots that are only read and written whole or at constant
+    positions) runs once on vectors of `lanes` components, one element per
+    lane; everything else (stores, scatters, calls, ifs, loops) then runs
+    for each element in order, reading what it needs of the vectors from
+    stack buffers. `lanes` is `vector-bits` divided by the width of the
+    widest floating-point type the kernel computes in. Each lane computes
+    what the scalar loop computes, in the same order, so results do not
+    change. Loops with fewer than `min-vector-ops` floating-point
+    operations (counting components) are left alone. Run it after
+    simit-parallel-loops and before simit-parallel-loops-to-openmp.
+  }];
+  let options = [
+    Option<"vectorBits", "vector-bits", "unsigned", /*default=*/"512",
+           "Width of the machine's vectors in bits">,
+    Option<"minVectorOps", "min-vector-ops", "int64_t", /*default=*/"64",
+           "Fewest floating-point operations (counting components) a loop "
+           "body needs to be vectorised">,
+  ];
+  let dependentDialects = ["::mlir::vector::VectorDialect",
+                           "::mlir::memref::MemRefDialect",
+                           "::mlir::arith::ArithDialect"];
+}
+
 def SimitHoistParallelAllocas : Pass<"simit-hoist-parallel-allocas", "::mlir::func::FuncOp"> {
   let summary = "Moves stack slots out of scf.parallel bodies (CPU, sequential)";
   let description = [{
@@ -485,9 +518,11 @@ def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
     them, lowers to loops, unrolls the loops that index local tensors
     (simit-unroll-local-tensor-loops), marks the set loops that may run on all cores and
     makes their results independent of the number of threads
-    (simit-parallel-loops), frees temporaries, with `openmp` runs the marked
-    loops on OpenMP threads (simit-parallel-loops-to-openmp), moves the stack
-    slots out of the sequential parallel loops, and lowers to the LLVM
+    (simit-parallel-loops), with `element-vector-bits` runs element kernels
+    across vector lanes (simit-vectorize-element-loops), frees temporaries,
+    with `openmp` runs the marked loops on OpenMP threads
+    (simit-parallel-loops-to-openmp), moves the stack slots out of the
+    sequential parallel loops, and lowers to the LLVM
     dialect (vector to scf, scf to cf, vector, math, arith, index, memref,
     OpenMP, func and cf to LLVM, reconcile casts). The pipeline is
     buildSimitCpuPipeline(), which the JIT runs as well.
@@ -529,6 +564,10 @@ def SimitCpuPipeline : Pass<"simit-cpu-pipeline", "::mlir::ModuleOp"> {
            "convert-simit-to-loops: how far ahead, in bytes, loops over a "
            "BCSR row's blocks prefetch the matrices they read (0: no "
            "prefetch)">,
+    Option<"elementVectorBits", "element-vector-bits", "unsigned",
+           /*default=*/"0",
+           "simit-vectorize-element-loops: width of the machine's vectors in "
+           "bits (0: element loops are not vectorised)">,
   ];
 }
 

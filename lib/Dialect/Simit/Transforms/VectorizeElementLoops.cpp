@@ -1,0 +1,811 @@
+//===- VectorizeElementLoops.cpp - Element kernels across vector lanes ----===//
+//
+// An element function's arithmetic is the same for every element of its set:
+// the loop over a chunk of the set runs it on `lanes` elements at a time, one
+// element per lane of a machine vector, instead of relying on LLVM to find
+// parallelism inside one element (a 3x3 block is a poor fit for a vector of
+// eight). What the elements write (scatters into system tensors, stores,
+// calls, anything not understood) then runs element by element in the loop's
+// order, reading the kernel's results from small stack buffers. The
+// arithmetic of each lane is the scalar arithmetic (no reassociation, no
+// contraction), so results are bit-identical to the scalar loop's.
+//
+//===----------------------------------------------------------------------===//
+
+#include "simit/Dialect/Simit/Transforms/Passes.h"
+
+#include "mlir/Dialect/Utils/IndexingUtils.h"
+#include "mlir/Dialect/Utils/StaticValueUtils.h"
+#include "mlir/IR/IRMapping.h"
+#include "mlir/Interfaces/SideEffectInterfaces.h"
+#include "mlir/Interfaces/ViewLikeInterface.h"
+#include "mlir/Transforms/RegionUtils.h"
+
+#include <map>
+
+namespace mlir {
+namespace simit {
+#define GEN_PASS_DEF_SIMITVECTORIZEELEMENTLOOPS
+#include "simit/Dialect/Simit/Transforms/Passes.h.inc"
+} // namespace simit
+} // namespace mlir
+
+using namespace mlir;
+using namespace mlir::simit;
+
+namespace {
+
+/// The scalar type of one component of `type` (a scalar or a vector of
+/// scalars), or null when it is neither.
+Type componentType(Type type) {
+  if (auto vector = dyn_cast<VectorType>(type)) {
+    if (vector.isScalable())
+      return {};
+    type = vector.getElementType();
+  }
+  if (type.isIntOrIndexOrFloat())
+    return type;
+  return {};
+}
+
+int64_t componentCount(Type type) {
+  if (auto vector = dyn_cast<VectorType>(type))
+    return vector.getNumElements();
+  return 1;
+}
+
+bool allConstantIndices(ValueRange indices) {
+  return llvm::all_of(indices, [](Value index) {
+    return getConstantIntValue(index).has_value();
+  });
+}
+
+/// The linear position of constant `indices` in a memref of `shape`.
+int64_t linearPosition(ArrayRef<int64_t> shape, ValueRange indices) {
+  int64_t position = 0;
+  for (auto [size, index] : llvm::zip(shape, indices))
+    position = position * size + *getConstantIntValue(index);
+  return position;
+}
+
+/// The memref a view (subview, cast, ...) looks into, through every view.
+Value viewRoot(Value memref) {
+  while (auto view = memref.getDefiningOp<ViewLikeOpInterface>())
+    memref = view.getViewSource();
+  return memref;
+}
+
+/// Rewrites one loop. Ops of its body are either vector ops, run once for
+/// `lanes` elements (a value that differs between elements becomes one
+/// vector<lanes x T> per component, a value that does not stays as it was),
+/// or lane ops, run for each element in order after the vector ops.
+class ElementLoopVectorizer {
+public:
+  ElementLoopVectorizer(scf::ParallelOp loop, unsigned vectorBits,
+                        int64_t minVectorOps)
+      : loop(loop), body(loop.getBody()), iv(loop.getInductionVars()[0]),
+        vectorBits(vectorBits), minVectorOps(minVectorOps) {}
+
+  /// Classifies the body's ops; false when the loop is not worth
+  /// vectorising.
+  bool plan();
+  void rewrite();
+
+private:
+  // Planning.
+  void findPromotableAllocas();
+  bool isPromotedAccess(Operation *op, Value &alloca) const;
+  void findWrittenMemrefs();
+  bool isReadOnlyLoad(Operation *op) const;
+  bool canWiden(Operation *op) const;
+  bool usesAny(Operation *op, const DenseSet<Value> &values) const;
+  bool classify(Value &demote);
+
+  // Rewriting.
+  ArrayRef<Value> wide(OpBuilder &b, Value value);
+  Value broadcastScalar(OpBuilder &b, Value scalar);
+  void widen(OpBuilder &b, Operation *op);
+  void widenAllocaAccess(OpBuilder &b, Operation *op, Value alloca);
+  Value laneScalar(OpBuilder &b, Value value, int64_t lane);
+  SmallVector<Value> laneIndices(OpBuilder &b, ValueRange indices,
+                                 int64_t lane);
+  Value elementBlockComponent(OpBuilder &b, memref::LoadOp load);
+  void gather(OpBuilder &b, memref::LoadOp load);
+  void prefetchLanes(OpBuilder &b, memref::PrefetchOp prefetch);
+  VectorType laneType(Type component) const {
+    return VectorType::get({lanes}, component);
+  }
+
+  scf::ParallelOp loop;
+  Block *body;
+  Value iv;
+  unsigned vectorBits;
+  int64_t minVectorOps;
+  int64_t lanes = 0;
+
+  /// Allocas of local tensors held as values; a fill loop (an scf.parallel
+  /// storing one value to every component) counts as an access.
+  DenseSet<Value> promoted;
+  /// Roots of the memrefs the body may write (other than promoted allocas).
+  DenseSet<Value> writtenRoots;
+  DenseSet<Operation *> laneOps;
+  DenseSet<Operation *> prefetches;
+  SetVector<Value> needed;
+  /// Values (results of vector ops, and the induction variable) that differ
+  /// between elements.
+  DenseSet<Value> varying;
+
+  IRMapping uniform;
+  DenseMap<Value, SmallVector<Value>> components;
+  DenseMap<Value, SmallVector<Value>> allocaState;
+  /// The first index of the vector loop's lanes.
+  Value base;
+  /// Scalars of varying index values, per lane (laneScalar()).
+  DenseMap<Value, SmallVector<Value>> laneScalars;
+  /// Loads already made, by memref and indices.
+  std::map<SmallVector<const void *>, Value> gathered;
+  /// The blocks of all lanes of an element field (elementBlockComponent()).
+  DenseMap<Value, Value> elementBlocks;
+};
+
+} // namespace
+
+//===----------------------------------------------------------------------===//
+// Planning
+//===----------------------------------------------------------------------===//
+
+/// The alloca a fill loop `scf.parallel (%i) = (0) to (n) { store %c, %a[%i] }`
+/// fills, or null.
+static Value filledAlloca(Operation *op) {
+  auto fill = dyn_cast<scf::ParallelOp>(op);
+  if (!fill || fill.getNumLoops() != 1 || fill.getNumResults() != 0 ||
+      fill.getBody()->getOperations().size() != 2)
+    return {};
+  auto store = dyn_cast<memref::StoreOp>(fill.getBody()->front());
+  if (!store || store.getIndices().size() != 1 ||
+      store.getIndices()[0] != fill.getInductionVars()[0] ||
+      fill->isAncestor(store.getValueToStore().getParentBlock()->getParentOp()))
+    return {};
+  auto alloca = store.getMemRef().getDefiningOp<memref::AllocaOp>();
+  if (!alloca || alloca.getType().getRank() != 1)
+    return {};
+  std::optional<int64_t> lb = getConstantIntValue(fill.getLowerBound()[0]),
+                         ub = getConstantIntValue(fill.getUpperBound()[0]),
+                         step = getConstantIntValue(fill.getStep()[0]);
+  if (lb != 0 || step != 1 || ub != alloca.getType().getDimSize(0))
+    return {};
+  return alloca;
+}
+
+bool ElementLoopVectorizer::isPromotedAccess(Operation *op,
+                                             Value &alloca) const {
+  Value memref;
+  if (auto load = dyn_cast<vector::LoadOp>(op))
+    memref = load.getBase();
+  else if (auto store = dyn_cast<vector::StoreOp>(op))
+    memref = store.getBase();
+  else if (auto load = dyn_cast<memref::LoadOp>(op))
+    memref = load.getMemRef();
+  else if (auto store = dyn_cast<memref::StoreOp>(op))
+    memref = store.getMemRef();
+  else
+    memref = filledAlloca(op);
+  if (!memref || !promoted.contains(memref))
+    return false;
+  alloca = memref;
+  return true;
+}
+
+void ElementLoopVectorizer::findPromotableAllocas() {
+  for (Operation &op : body->without_terminator()) {
+    auto alloca = dyn_cast<memref::AllocaOp>(op);
+    if (!alloca || !alloca.getType().hasStaticShape() ||
+        !alloca.getType().getLayout().isIdentity() ||
+        !componentType(alloca.getType().getElementType()) ||
+        alloca->getNumOperands() != 0)
+      continue;
+    MemRefType type = alloca.getType();
+    auto isWhole = [&](VectorType vector, ValueRange indices) {
+      return vector.getShape() == type.getShape() &&
+             llvm::all_of(indices, [](Value index) {
+               return getConstantIntValue(index) == 0;
+             });
+    };
+    bool promotable = llvm::all_of(alloca->getUses(), [&](OpOperand &use) {
+      Operation *user = use.getOwner();
+      if (user->getBlock() != body)
+        return user->getBlock()->getParentOp()->getBlock() == body &&
+               filledAlloca(user->getBlock()->getParentOp()) ==
+                   alloca.getResult();
+      if (auto load = dyn_cast<vector::LoadOp>(user))
+        return isWhole(load.getVectorType(), load.getIndices());
+      if (auto store = dyn_cast<vector::StoreOp>(user))
+        return use.getOperandNumber() ==
+                   store.getBaseMutable().getOperandNumber() &&
+               isWhole(store.getVectorType(), store.getIndices());
+      if (auto load = dyn_cast<memref::LoadOp>(user))
+        return allConstantIndices(load.getIndices());
+      if (auto store = dyn_cast<memref::StoreOp>(user))
+        return use.getOperandNumber() ==
+                   store.getMemrefMutable().getOperandNumber() &&
+               allConstantIndices(store.getIndices());
+      return false;
+    });
+    if (promotable)
+      promoted.insert(alloca);
+  }
+}
+
+void ElementLoopVectorizer::findWrittenMemrefs() {
+  writtenRoots.clear();
+  body->walk([&](Operation *op) {
+    if (op->hasTrait<OpTrait::HasRecursiveMemoryEffects>())
+      return;
+    auto addAllMemrefOperands = [&] {
+      for (Value operand : op->getOperands())
+        if (isa<BaseMemRefType>(operand.getType()))
+          writtenRoots.insert(viewRoot(operand));
+    };
+    auto effects = dyn_cast<MemoryEffectOpInterface>(op);
+    if (!effects)
+      return addAllMemrefOperands();
+    SmallVector<MemoryEffects::EffectInstance> instances;
+    effects.getEffects(instances);
+    for (const MemoryEffects::EffectInstance &instance : instances) {
+      if (!isa<MemoryEffects::Write, MemoryEffects::Free>(instance.getEffect()))
+        continue;
+      if (Value value = instance.getValue())
+        writtenRoots.insert(viewRoot(value));
+      else
+        addAllMemrefOperands();
+    }
+  });
+  for (Value alloca : promoted)
+    writtenRoots.erase(alloca);
+}
+
+/// A memref.load from memory that nothing in the loop writes, through a
+/// memref defined outside the loop: it may run before the lane ops.
+bool ElementLoopVectorizer::isReadOnlyLoad(Operation *op) const {
+  auto load = dyn_cast<memref::LoadOp>(op);
+  if (!load || !componentType(load.getType()))
+    return false;
+  Value memref = load.getMemRef();
+  return !loop->isAncestor(memref.getParentBlock()->getParentOp()) &&
+         !writtenRoots.contains(viewRoot(memref));
+}
+
+/// Ops that act on each component alone (arith, math), and the vector ops
+/// that only move components at constant positions.
+bool ElementLoopVectorizer::canWiden(Operation *op) const {
+  if (op->getNumRegions() != 0 || op->getNumResults() != 1 ||
+      !componentType(op->getResult(0).getType()))
+    return false;
+  if (op->hasTrait<OpTrait::Elementwise>() && isPure(op))
+    return llvm::all_of(op->getOperandTypes(), [](Type type) {
+      return static_cast<bool>(componentType(type));
+    });
+  if (auto extract = dyn_cast<vector::ExtractOp>(op))
+    return extract.getDynamicPosition().empty();
+  if (auto insert = dyn_cast<vector::InsertOp>(op))
+    return insert.getDynamicPosition().empty();
+  if (auto broadcast = dyn_cast<vector::BroadcastOp>(op))
+    return static_cast<bool>(componentType(broadcast.getSourceType()));
+  return isa<vector::FromElementsOp, vector::ShapeCastOp, vector::TransposeOp>(
+             op) ||
+         isReadOnlyLoad(op);
+}
+
+bool ElementLoopVectorizer::usesAny(Operation *op,
+                                    const DenseSet<Value> &values) const {
+  if (llvm::any_of(op->getOperands(),
+                   [&](Value v) { return values.contains(v); }))
+    return true;
+  bool uses = false;
+  for (Region &region : op->getRegions())
+    visitUsedValuesDefinedAbove(region, [&](OpOperand *operand) {
+      uses |= values.contains(operand->get());
+    });
+  return uses;
+}
+
+/// Sorts the body's ops into vector and lane ops. A promoted alloca that
+/// would be written a value computed by a lane op is returned in `demote`.
+bool ElementLoopVectorizer::classify(Value &demote) {
+  laneOps.clear();
+  prefetches.clear();
+  varying.clear();
+  varying.insert(iv);
+  DenseSet<Value> laneValues;
+  for (Operation &op : body->without_terminator()) {
+    Value alloca;
+    if (isa<memref::AllocaOp>(op) && promoted.contains(op.getResult(0)))
+      continue;
+    if (isPromotedAccess(&op, alloca)) {
+      if (usesAny(&op, laneValues)) {
+        demote = alloca;
+        return false;
+      }
+      for (Value result : op.getResults())
+        varying.insert(result);
+      continue;
+    }
+    if (!usesAny(&op, laneValues) && isa<memref::PrefetchOp>(op) &&
+        !loop->isAncestor(op.getOperand(0).getParentBlock()->getParentOp())) {
+      // Prefetches for all lanes go first, so that their lines arrive while
+      // the kernel computes.
+      prefetches.insert(&op);
+      continue;
+    }
+    if (!usesAny(&op, laneValues)) {
+      // Uniform: computed once, as it was, for every lane.
+      bool isUniform = !usesAny(&op, varying);
+      if (isUniform &&
+          (isReadOnlyLoad(&op) || (op.getNumRegions() == 0 && isPure(&op))))
+        continue;
+      if (!isUniform && canWiden(&op)) {
+        varying.insert(op.getResult(0));
+        continue;
+      }
+    }
+    laneOps.insert(&op);
+    for (Value result : op.getResults())
+      laneValues.insert(result);
+  }
+  return true;
+}
+
+bool ElementLoopVectorizer::plan() {
+  findPromotableAllocas();
+  while (true) {
+    findWrittenMemrefs();
+    Value demote;
+    if (classify(demote))
+      break;
+    promoted.erase(demote);
+  }
+  // Lanes: as many elements as the widest floating-point component of the
+  // kernel fits in a machine vector.
+  int64_t flops = 0;
+  unsigned widest = 0;
+  for (Operation &op : body->without_terminator()) {
+    if (laneOps.contains(&op) || op.getNumResults() != 1 ||
+        !varying.contains(op.getResult(0)) ||
+        !op.hasTrait<OpTrait::Elementwise>())
+      continue;
+    Type type = componentType(op.getResult(0).getType());
+    if (!isa<FloatType>(type))
+      continue;
+    flops += componentCount(op.getResult(0).getType());
+    widest = std::max(widest, type.getIntOrFloatBitWidth());
+  }
+  // What the lane ops read of the vector ops, in the lane ops' order.
+  for (Operation &op : body->without_terminator()) {
+    if (!laneOps.contains(&op))
+      continue;
+    for (Value operand : op.getOperands())
+      if (varying.contains(operand))
+        needed.insert(operand);
+    for (Region &region : op.getRegions())
+      visitUsedValuesDefinedAbove(region, [&](OpOperand *operand) {
+        if (varying.contains(operand->get()))
+          needed.insert(operand->get());
+      });
+  }
+  needed.remove(iv);
+  if (flops < minVectorOps || widest == 0 || vectorBits < 2 * widest)
+    return false;
+  lanes = vectorBits / widest;
+  return true;
+}
+
+//===----------------------------------------------------------------------===//
+// Rewriting
+//===----------------------------------------------------------------------===//
+
+Value ElementLoopVectorizer::broadcastScalar(OpBuilder &b, Value scalar) {
+  return vector::BroadcastOp::create(b, scalar.getLoc(),
+                                     laneType(scalar.getType()), scalar);
+}
+
+/// The components of `value` as vectors over the lanes: a varying value's
+/// own, a uniform value's broadcast to every lane.
+ArrayRef<Value> ElementLoopVectorizer::wide(OpBuilder &b, Value value) {
+  auto found = components.find(value);
+  if (found != components.end())
+    return found->second;
+  Value scalar = uniform.lookupOrDefault(value);
+  SmallVector<Value> parts;
+  if (auto vector = dyn_cast<VectorType>(scalar.getType())) {
+    SmallVector<int64_t> strides = computeStrides(vector.getShape());
+    for (int64_t i = 0; i < vector.getNumElements(); ++i) {
+      Value part = vector::ExtractOp::create(b, scalar.getLoc(), scalar,
+                                             delinearize(i, strides));
+      parts.push_back(broadcastScalar(b, part));
+    }
+  } else {
+    parts.push_back(broadcastScalar(b, scalar));
+  }
+  return components[value] = std::move(parts);
+}
+
+/// `value` as lane `lane` sees it, as a scalar. Index computations from the
+/// induction variable and gathered loads (endpoints) are redone per lane on
+/// scalars rather than read back out of vectors.
+Value ElementLoopVectorizer::laneScalar(OpBuilder &b, Value value,
+                                        int64_t lane) {
+  if (!varying.contains(value))
+    return uniform.lookupOrDefault(value);
+  SmallVector<Value> &perLane = laneScalars[value];
+  if (perLane.empty())
+    perLane.resize(lanes);
+  if (perLane[lane])
+    return perLane[lane];
+  Location loc = value.getLoc();
+  Operation *def = value.getDefiningOp();
+  Value result;
+  if (value == iv) {
+    result = arith::AddIOp::create(
+        b, loc, base, arith::ConstantIndexOp::create(b, loc, lane));
+  } else if (def && !isa<VectorType>(value.getType()) &&
+             def->getNumRegions() == 0 && isPure(def) &&
+             def->hasTrait<OpTrait::Elementwise>() &&
+             isa<arith::ArithDialect>(def->getDialect()) &&
+             value.getType().isIntOrIndex()) {
+    IRMapping mapping;
+    for (Value operand : def->getOperands())
+      mapping.map(operand, laneScalar(b, operand, lane));
+    result = b.clone(*def, mapping)->getResult(0);
+  } else {
+    result = vector::ExtractOp::create(b, loc, wide(b, value)[0], lane);
+  }
+  return perLane[lane] = result;
+}
+
+SmallVector<Value> ElementLoopVectorizer::laneIndices(OpBuilder &b,
+                                                      ValueRange indices,
+                                                      int64_t lane) {
+  return llvm::map_to_vector(
+      indices, [&](Value index) { return laneScalar(b, index, lane); });
+}
+
+void ElementLoopVectorizer::prefetchLanes(OpBuilder &b,
+                                          memref::PrefetchOp prefetch) {
+  bool varies = llvm::any_of(prefetch.getIndices(),
+                             [&](Value v) { return varying.contains(v); });
+  for (int64_t lane = 0; lane < (varies ? lanes : 1); ++lane)
+    memref::PrefetchOp::create(
+        b, prefetch.getLoc(), prefetch.getMemref(),
+        laneIndices(b, prefetch.getIndices(), lane), prefetch.getIsWrite(),
+        prefetch.getLocalityHint(), prefetch.getIsDataCache());
+}
+
+/// The components of a field of the loop's own elements, `memref[iv, c...]`
+/// with a static block shape: the lanes' blocks lie next to each other in
+/// memory, so one vector load reads all of them and shuffles pick the
+/// component.
+Value ElementLoopVectorizer::elementBlockComponent(OpBuilder &b,
+                                                   memref::LoadOp load) {
+  auto type = cast<MemRefType>(load.getMemRef().getType());
+  ValueRange indices = load.getIndices();
+  if (indices.empty() || indices[0] != iv ||
+      !allConstantIndices(indices.drop_front()) ||
+      !type.getLayout().isIdentity() ||
+      llvm::any_of(type.getShape().drop_front(), ShapedType::isDynamic))
+    return {};
+  int64_t blockSize = 1;
+  for (int64_t size : type.getShape().drop_front())
+    blockSize *= size;
+  if (blockSize * lanes > 128)
+    return {};
+  Location loc = load.getLoc();
+  Value &blocks = elementBlocks[load.getMemRef()];
+  if (!blocks) {
+    Value memref = uniform.lookupOrDefault(load.getMemRef());
+    SmallVector<ReassociationIndices> all(1);
+    for (int64_t d = 0; d < type.getRank(); ++d)
+      all[0].push_back(d);
+    Value flat =
+        type.getRank() == 1
+            ? memref
+            : memref::CollapseShapeOp::create(b, loc, memref, all).getResult();
+    Value first = blockSize == 1
+                      ? base
+                      : arith::MulIOp::create(
+                            b, loc, base,
+                            arith::ConstantIndexOp::create(b, loc, blockSize))
+                            .getResult();
+    blocks = vector::LoadOp::create(
+        b, loc, VectorType::get({blockSize * lanes}, type.getElementType()),
+        flat, ValueRange{first});
+  }
+  if (blockSize == 1)
+    return blocks;
+  int64_t component = 0;
+  for (auto [size, index] :
+       llvm::zip(type.getShape().drop_front(), indices.drop_front()))
+    component = component * size + *getConstantIntValue(index);
+  SmallVector<int64_t> mask;
+  for (int64_t lane = 0; lane < lanes; ++lane)
+    mask.push_back(lane * blockSize + component);
+  return vector::ShuffleOp::create(b, loc, blocks, blocks, mask);
+}
+
+void ElementLoopVectorizer::gather(OpBuilder &b, memref::LoadOp load) {
+  // Loads of memory the loop does not write give the same value for the
+  // same indices: each is read once.
+  SmallVector<const void *> key{load.getMemRef().getAsOpaquePointer()};
+  for (Value index : load.getIndices())
+    key.push_back(index.getAsOpaquePointer());
+  auto [known, inserted] = gathered.try_emplace(key, load.getResult());
+  if (!inserted) {
+    components[load.getResult()] = components[known->second];
+    laneScalars[load.getResult()] = laneScalars[known->second];
+    return;
+  }
+  // Integers (endpoints) are mostly used as indices, lane by lane: those
+  // are loaded lane by lane.
+  if (Value block = isa<FloatType>(load.getType())
+                        ? elementBlockComponent(b, load)
+                        : Value()) {
+    components[load.getResult()] = {block};
+    return;
+  }
+  Location loc = load.getLoc();
+  SmallVector<Value> elements;
+  for (int64_t lane = 0; lane < lanes; ++lane)
+    elements.push_back(memref::LoadOp::create(
+        b, loc, uniform.lookupOrDefault(load.getMemRef()),
+        laneIndices(b, load.getIndices(), lane)));
+  laneScalars[load.getResult()] = elements;
+  components[load.getResult()] = {vector::FromElementsOp::create(
+      b, loc, laneType(load.getType()), elements)};
+}
+
+void ElementLoopVectorizer::widenAllocaAccess(OpBuilder &b, Operation *op,
+                                              Value alloca) {
+  auto type = cast<MemRefType>(alloca.getType());
+  SmallVector<Value> &state = allocaState[alloca];
+  if (state.empty()) {
+    // Components read before any write: zero.
+    Type element = type.getElementType();
+    Value zero = arith::ConstantOp::create(
+        b, op->getLoc(), laneType(element),
+        DenseElementsAttr::get(laneType(element), b.getZeroAttr(element)));
+    state.assign(type.getNumElements(), zero);
+  }
+  if (auto load = dyn_cast<vector::LoadOp>(op)) {
+    components[load.getResult()] = state;
+  } else if (auto store = dyn_cast<vector::StoreOp>(op)) {
+    state = llvm::to_vector(wide(b, store.getValueToStore()));
+  } else if (auto load = dyn_cast<memref::LoadOp>(op)) {
+    components[load.getResult()] = {
+        state[linearPosition(type.getShape(), load.getIndices())]};
+  } else if (auto store = dyn_cast<memref::StoreOp>(op)) {
+    state[linearPosition(type.getShape(), store.getIndices())] =
+        wide(b, store.getValueToStore())[0];
+  } else {
+    auto fill =
+        cast<memref::StoreOp>(cast<scf::ParallelOp>(op).getBody()->front());
+    Value value = wide(b, fill.getValueToStore())[0];
+    state.assign(type.getNumElements(), value);
+  }
+}
+
+void ElementLoopVectorizer::widen(OpBuilder &b, Operation *op) {
+  Value result = op->getResult(0);
+  Type resultType = result.getType();
+  SmallVector<Value> &parts = components[result];
+  if (auto load = dyn_cast<memref::LoadOp>(op))
+    return gather(b, load);
+  if (auto extract = dyn_cast<vector::ExtractOp>(op)) {
+    VectorType source = extract.getSourceVectorType();
+    SmallVector<int64_t> strides = computeStrides(source.getShape());
+    int64_t first = 0;
+    for (auto [position, stride] :
+         llvm::zip(extract.getStaticPosition(), strides))
+      first += position * stride;
+    ArrayRef<Value> from = wide(b, extract.getSource());
+    parts.assign(from.begin() + first,
+                 from.begin() + first + componentCount(resultType));
+    return;
+  }
+  if (auto insert = dyn_cast<vector::InsertOp>(op)) {
+    VectorType dest = insert.getDestVectorType();
+    SmallVector<int64_t> strides = computeStrides(dest.getShape());
+    int64_t first = 0;
+    for (auto [position, stride] :
+         llvm::zip(insert.getStaticPosition(), strides))
+      first += position * stride;
+    SmallVector<Value> into = llvm::to_vector(wide(b, insert.getDest()));
+    ArrayRef<Value> from = wide(b, insert.getValueToStore());
+    llvm::copy(from, into.begin() + first);
+    components[result] = std::move(into);
+    return;
+  }
+  if (auto broadcast = dyn_cast<vector::BroadcastOp>(op)) {
+    // Source dimensions line up with the result's last ones; a source
+    // dimension of 1 repeats.
+    ArrayRef<Value> from = wide(b, broadcast.getSource());
+    auto target = cast<VectorType>(resultType);
+    ArrayRef<int64_t> shape = target.getShape();
+    SmallVector<int64_t> sourceShape;
+    if (auto source = dyn_cast<VectorType>(broadcast.getSourceType()))
+      sourceShape = llvm::to_vector(source.getShape());
+    SmallVector<int64_t> strides = computeStrides(shape);
+    SmallVector<int64_t> sourceStrides = computeStrides(sourceShape);
+    size_t offset = shape.size() - sourceShape.size();
+    for (int64_t i = 0; i < target.getNumElements(); ++i) {
+      SmallVector<int64_t> position = delinearize(i, strides);
+      int64_t from_i = 0;
+      for (size_t d = 0; d < sourceShape.size(); ++d)
+        if (sourceShape[d] != 1)
+          from_i += position[offset + d] * sourceStrides[d];
+      parts.push_back(from[from_i]);
+    }
+    return;
+  }
+  if (auto elements = dyn_cast<vector::FromElementsOp>(op)) {
+    for (Value element : elements.getElements())
+      parts.push_back(wide(b, element)[0]);
+    return;
+  }
+  if (auto cast = dyn_cast<vector::ShapeCastOp>(op)) {
+    parts = llvm::to_vector(wide(b, cast.getSource()));
+    return;
+  }
+  if (auto transpose = dyn_cast<vector::TransposeOp>(op)) {
+    ArrayRef<Value> from = wide(b, transpose.getVector());
+    ArrayRef<int64_t> permutation = transpose.getPermutation();
+    VectorType source = transpose.getSourceVectorType();
+    SmallVector<int64_t> sourceStrides = computeStrides(source.getShape());
+    SmallVector<int64_t> strides =
+        computeStrides(transpose.getResultVectorType().getShape());
+    for (int64_t i = 0; i < source.getNumElements(); ++i) {
+      SmallVector<int64_t> position = delinearize(i, strides);
+      int64_t from_i = 0;
+      for (auto [d, p] : llvm::enumerate(permutation))
+        from_i += position[d] * sourceStrides[p];
+      parts.push_back(from[from_i]);
+    }
+    return;
+  }
+  // Element-wise: one op per component, on vectors over the lanes.
+  for (int64_t c = 0; c < componentCount(resultType); ++c) {
+    OperationState state(op->getLoc(), op->getName());
+    for (Value operand : op->getOperands()) {
+      ArrayRef<Value> from = wide(b, operand);
+      state.addOperands(from.size() == 1 ? from[0] : from[c]);
+    }
+    state.addTypes(laneType(componentType(resultType)));
+    state.addAttributes(op->getAttrs());
+    components[result].push_back(b.create(state)->getResult(0));
+  }
+}
+
+void ElementLoopVectorizer::rewrite() {
+  Location loc = loop.getLoc();
+  OpBuilder b(loop);
+  Value lb = loop.getLowerBound()[0], ub = loop.getUpperBound()[0];
+  Value zero = arith::ConstantIndexOp::create(b, loc, 0);
+  Value one = arith::ConstantIndexOp::create(b, loc, 1);
+  Value width = arith::ConstantIndexOp::create(b, loc, lanes);
+  Value trips = arith::MaxSIOp::create(
+      b, loc, arith::SubIOp::create(b, loc, ub, lb), zero);
+  Value whole = arith::SubIOp::create(
+      b, loc, trips, arith::RemUIOp::create(b, loc, trips, width));
+  Value vectorEnd = arith::AddIOp::create(b, loc, lb, whole);
+  auto vectorLoop = scf::ParallelOp::create(
+      b, loc, ValueRange{lb}, ValueRange{vectorEnd}, ValueRange{width});
+  // The elements after the last whole vector run the loop as it was.
+  loop.getLowerBoundMutable().assign(vectorEnd);
+
+  b.setInsertionPoint(vectorLoop.getBody()->getTerminator());
+  base = vectorLoop.getInductionVars()[0];
+  SmallVector<Attribute> laneNumbers;
+  for (int64_t lane = 0; lane < lanes; ++lane)
+    laneNumbers.push_back(b.getIndexAttr(lane));
+  Value laneOffsets = arith::ConstantOp::create(
+      b, loc, DenseElementsAttr::get(laneType(b.getIndexType()), laneNumbers));
+  components[iv] = {
+      arith::AddIOp::create(b, loc, broadcastScalar(b, base), laneOffsets)};
+
+  for (Operation &op : body->without_terminator()) {
+    if (laneOps.contains(&op))
+      continue;
+    if (isa<memref::AllocaOp>(op) && promoted.contains(op.getResult(0)))
+      continue;
+    Value alloca;
+    if (prefetches.contains(&op))
+      prefetchLanes(b, cast<memref::PrefetchOp>(op));
+    else if (isPromotedAccess(&op, alloca))
+      widenAllocaAccess(b, &op, alloca);
+    else if (op.getNumResults() == 1 && varying.contains(op.getResult(0)))
+      widen(b, &op);
+    else
+      b.clone(op, uniform);
+  }
+
+  // What the lane ops read of the vector ops goes through the stack: one
+  // buffer [component][lane] per value (i1 as i8, which memory can hold).
+  SmallVector<Value> buffers;
+  for (Value value : needed) {
+    Type component = componentType(value.getType());
+    Type stored = component.isInteger(1) ? b.getI8Type() : component;
+    ArrayRef<Value> parts = wide(b, value);
+    auto buffer = memref::AllocaOp::create(
+        b, loc,
+        MemRefType::get({static_cast<int64_t>(parts.size()), lanes}, stored));
+    for (auto [c, part] : llvm::enumerate(parts)) {
+      Value laneValues = part;
+      if (stored != component)
+        laneValues =
+            arith::ExtUIOp::create(b, loc, laneType(stored), laneValues);
+      vector::StoreOp::create(
+          b, loc, laneValues, buffer,
+          ValueRange{arith::ConstantIndexOp::create(b, loc, c), zero});
+    }
+    buffers.push_back(buffer);
+  }
+
+  auto laneLoop = scf::ForOp::create(b, loc, zero, width, one);
+  b.setInsertionPoint(laneLoop.getBody()->getTerminator());
+  Value lane = laneLoop.getInductionVar();
+  IRMapping mapping = uniform;
+  mapping.map(iv, arith::AddIOp::create(b, loc, base, lane));
+  for (auto [value, buffer] : llvm::zip(needed, buffers)) {
+    Type component = componentType(value.getType());
+    SmallVector<Value> parts;
+    for (int64_t c = 0; c < componentCount(value.getType()); ++c) {
+      Value part = memref::LoadOp::create(
+          b, loc, buffer,
+          ValueRange{arith::ConstantIndexOp::create(b, loc, c), lane});
+      if (part.getType() != component)
+        part = arith::TruncIOp::create(b, loc, component, part);
+      parts.push_back(part);
+    }
+    mapping.map(value,
+                isa<VectorType>(value.getType())
+                    ? vector::FromElementsOp::create(
+                          b, loc, cast<VectorType>(value.getType()), parts)
+                          .getResult()
+                    : parts[0]);
+  }
+  for (Operation &op : body->without_terminator())
+    if (laneOps.contains(&op))
+      b.clone(op, mapping);
+}
+
+//===----------------------------------------------------------------------===//
+// The pass
+//===----------------------------------------------------------------------===//
+
+namespace {
+struct VectorizeElementLoops
+    : public simit::impl::SimitVectorizeElementLoopsBase<
+          VectorizeElementLoops> {
+  using Base::Base;
+
+  void runOnOperation() override {
+    SmallVector<scf::ParallelOp> candidates;
+    getOperation().walk<WalkOrder::PreOrder>([&](scf::ParallelOp loop) {
+      if (loop.getNumLoops() == 1 && loop.getNumResults() == 0 &&
+          getConstantIntValue(loop.getStep()[0]) == 1 &&
+          !loop->hasAttr(kParallelLoopAttr))
+        candidates.push_back(loop);
+    });
+    SmallVector<Operation *> vectorised;
+    for (scf::ParallelOp loop : candidates) {
+      if (llvm::any_of(vectorised, [&](Operation *outer) {
+            return outer->isProperAncestor(loop);
+          }))
+        continue;
+      ElementLoopVectorizer vectorizer(loop, vectorBits, minVectorOps);
+      if (!vectorizer.plan())
+        continue;
+      vectorizer.rewrite();
+      vectorised.push_back(loop);
+    }
+  }
+};
+} // namespace

@@ -1,0 +1,117 @@
+// RUN: simit-opt %s --simit-vectorize-element-loops='vector-bits=512 min-vector-ops=4' | FileCheck %s
+// RUN: simit-opt %s --simit-vectorize-element-loops='vector-bits=256 min-vector-ops=4' | FileCheck %s --check-prefix=AVX
+// RUN: simit-opt %s --simit-vectorize-element-loops='vector-bits=512 min-vector-ops=1000' | FileCheck %s --check-prefix=SMALL
+
+// An element kernel: gathers through the endpoints, arithmetic on a local
+// tensor held in a stack slot, a uniform extern, and a conditional scatter.
+// The arithmetic runs on vector<8xf64> (one element per lane); the scatter
+// runs for each element in order, reading the kernel's values from stack
+// buffers; the elements after the last whole vector run the loop as it was.
+// CHECK-LABEL: func.func @kernel(
+// CHECK-SAME: %[[LB:[^:]*]]: index, %[[UB:[^:]*]]: index
+// CHECK:     %[[TRIPS:.*]] = arith.subi %[[UB]], %[[LB]]
+// CHECK:     %[[POS:.*]] = arith.maxsi %[[TRIPS]]
+// CHECK:     %[[REM:.*]] = arith.remui %[[POS]], %[[C8:.*]] :
+// CHECK:     %[[WHOLE:.*]] = arith.subi %[[POS]], %[[REM]]
+// CHECK:     %[[END:.*]] = arith.addi %[[LB]], %[[WHOLE]]
+// CHECK:     scf.parallel (%[[BASE:.*]]) = (%[[LB]]) to (%[[END]]) step (%[[C8]]) {
+// CHECK:       %[[IOTA:.*]] = arith.constant dense<[0, 1, 2, 3, 4, 5, 6, 7]> : vector<8xindex>
+// CHECK:       %[[E:.*]] = arith.addi %{{.*}}, %[[IOTA]] : vector<8xindex>
+// Endpoints are loaded lane by lane, and each lane's index computed as a
+// scalar; a float field of the elements themselves is read with one vector
+// load of all lanes' blocks.
+// CHECK-COUNT-8: memref.load %{{.*}} : memref<?x2xi32>
+// CHECK:       vector.from_elements {{.*}} : vector<8xi32>
+// CHECK:       arith.index_cast {{.*}} : vector<8xi32> to vector<8xindex>
+// The extern is loaded once, as a scalar.
+// CHECK:       %[[H:.*]] = memref.load %{{.*}}[] : memref<f64>
+// CHECK-COUNT-8: memref.load %{{.*}} : memref<?x3xf64>
+// CHECK:       arith.subf {{.*}} : vector<8xf64>
+// CHECK:       arith.mulf {{.*}} : vector<8xf64>
+// CHECK:       %[[W:.*]] = vector.load %{{.*}}[%[[BASE]]] : memref<?xf64>, vector<8xf64>
+// CHECK:       %[[G:.*]] = memref.collapse_shape %{{.*}} {{\[\[}}0, 1]] : memref<?x2xf64> into memref<?xf64>
+// CHECK:       %[[FIRST:.*]] = arith.muli %[[BASE]], %{{.*}} : index
+// CHECK:       %[[GS:.*]] = vector.load %[[G]][%[[FIRST]]] : memref<?xf64>, vector<16xf64>
+// CHECK:       %[[G1:.*]] = vector.shuffle %[[GS]], %[[GS]] [1, 3, 5, 7, 9, 11, 13, 15]
+// CHECK:       arith.mulf %[[W]], %[[G1]] : vector<8xf64>
+// CHECK:       arith.cmpf ogt, {{.*}} : vector<8xf64>
+// CHECK-NOT:   memref.alloca() : memref<3xf64>
+// CHECK-DAG:   %[[FLAGS:.*]] = memref.alloca() : memref<1x8xi8>
+// CHECK-DAG:   arith.extui %{{.*}} : vector<8xi1> to vector<8xi8>
+// CHECK-DAG:   %[[BUF:.*]] = memref.alloca() : memref<3x8xf64>
+// CHECK-DAG:   vector.store %{{.*}}, %[[BUF]][%{{.*}}, %{{.*}}] : memref<3x8xf64>, vector<8xf64>
+// CHECK-DAG:   %[[ENDBUF:.*]] = memref.alloca() : memref<1x8xindex>
+// CHECK:       scf.for %[[LANE:.*]] = %{{.*}} to %[[C8]] step
+// CHECK:         %[[FLAG:.*]] = memref.load %[[FLAGS]][%{{.*}}, %[[LANE]]] : memref<1x8xi8>
+// CHECK:         %[[COND:.*]] = arith.trunci %[[FLAG]] : i8 to i1
+// CHECK:         %[[A:.*]] = memref.load %[[ENDBUF]][%{{.*}}, %[[LANE]]] : memref<1x8xindex>
+// CHECK:         memref.load %[[BUF]][%{{.*}}, %[[LANE]]] : memref<3x8xf64>
+// CHECK:         scf.if %[[COND]] {
+// CHECK:           memref.load %{{.*}}[%[[A]], %{{.*}}] : memref<?x3xf64>
+// CHECK:           memref.store %{{.*}}[%[[A]], %{{.*}}] : memref<?x3xf64>
+// CHECK:     scf.parallel (%{{.*}}) = (%[[END]]) to (%[[UB]]) step (%{{.*}}) {
+// CHECK:       memref.alloca() : memref<3xf64>
+// CHECK:       arith.mulf {{.*}} : f64
+
+// With 256-bit vectors, four f64 lanes.
+// AVX-LABEL: func.func @kernel(
+// AVX: scf.parallel
+// AVX: arith.mulf {{.*}} : vector<4xf64>
+
+// Too few operations: the loop stays as it was.
+// SMALL-LABEL: func.func @kernel(
+// SMALL-NOT: arith.remui
+// SMALL-NOT: vector<8x
+// SMALL: return
+func.func @kernel(%lb : index, %ub : index, %ends : memref<?x2xi32>,
+                  %x : memref<?x3xf64>, %h : memref<f64>,
+                  %f : memref<?x3xf64>, %w : memref<?xf64>,
+                  %g : memref<?x2xf64>) {
+  %c0 = arith.constant 0 : index
+  %c1 = arith.constant 1 : index
+  %c2 = arith.constant 2 : index
+  %c3 = arith.constant 3 : index
+  %zero = arith.constant 0.0 : f64
+  scf.parallel (%e) = (%lb) to (%ub) step (%c1) {
+    %d = memref.alloca() : memref<3xf64>
+    scf.parallel (%i) = (%c0) to (%c3) step (%c1) {
+      memref.store %zero, %d[%i] : memref<3xf64>
+      scf.reduce
+    }
+    %a32 = memref.load %ends[%e, %c0] : memref<?x2xi32>
+    %a = arith.index_cast %a32 : i32 to index
+    %b32 = memref.load %ends[%e, %c1] : memref<?x2xi32>
+    %b = arith.index_cast %b32 : i32 to index
+    %hv = memref.load %h[] : memref<f64>
+    scf.for %k = %c0 to %c3 step %c1 {
+      scf.yield
+    }
+    %xa0 = memref.load %x[%a, %c0] : memref<?x3xf64>
+    %xb0 = memref.load %x[%b, %c0] : memref<?x3xf64>
+    %d0 = arith.subf %xa0, %xb0 : f64
+    %s0 = arith.mulf %d0, %hv : f64
+    memref.store %s0, %d[%c0] : memref<3xf64>
+    %xa1 = memref.load %x[%a, %c1] : memref<?x3xf64>
+    %xb1 = memref.load %x[%b, %c1] : memref<?x3xf64>
+    %d1 = arith.subf %xa1, %xb1 : f64
+    %we = memref.load %w[%e] : memref<?xf64>
+    %ge = memref.load %g[%e, %c1] : memref<?x2xf64>
+    %wg = arith.mulf %we, %ge : f64
+    %s1 = arith.mulf %d1, %wg : f64
+    memref.store %s1, %d[%c1] : memref<3xf64>
+    %dv = vector.load %d[%c0] : memref<3xf64>, vector<3xf64>
+    %sq = arith.mulf %dv, %dv : vector<3xf64>
+    %c = vector.extract %sq[0] : f64 from vector<3xf64>
+    %positive = arith.cmpf ogt, %c, %zero : f64
+    scf.if %positive {
+      %f0 = memref.load %f[%a, %c0] : memref<?x3xf64>
+      %g0 = vector.extract %sq[0] : f64 from vector<3xf64>
+      %n0 = arith.addf %f0, %g0 : f64
+      memref.store %n0, %f[%a, %c0] : memref<?x3xf64>
+      %g2 = vector.extract %sq[2] : f64 from vector<3xf64>
+      memref.store %g2, %f[%b, %c2] : memref<?x3xf64>
+    }
+    scf.reduce
+  }
+  return
+}

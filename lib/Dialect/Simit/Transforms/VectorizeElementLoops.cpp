@@ -68,6 +68,16 @@ int64_t linearPosition(ArrayRef<int64_t> shape, ValueRange indices) {
   return position;
 }
 
+/// The linear position in `type` of the first component at the leading
+/// `position` (a vector.extract's or vector.insert's).
+int64_t firstComponent(VectorType type, ArrayRef<int64_t> position) {
+  int64_t first = 0;
+  for (auto [index, stride] :
+       llvm::zip(position, computeStrides(type.getShape())))
+    first += index * stride;
+  return first;
+}
+
 /// The memref a view (subview, cast, ...) looks into, through every view.
 Value viewRoot(Value memref) {
   while (auto view = memref.getDefiningOp<ViewLikeOpInterface>())
@@ -599,24 +609,16 @@ void ElementLoopVectorizer::widen(OpBuilder &b, Operation *op) {
   if (auto load = dyn_cast<memref::LoadOp>(op))
     return gather(b, load);
   if (auto extract = dyn_cast<vector::ExtractOp>(op)) {
-    VectorType source = extract.getSourceVectorType();
-    SmallVector<int64_t> strides = computeStrides(source.getShape());
-    int64_t first = 0;
-    for (auto [position, stride] :
-         llvm::zip(extract.getStaticPosition(), strides))
-      first += position * stride;
+    int64_t first = firstComponent(extract.getSourceVectorType(),
+                                   extract.getStaticPosition());
     ArrayRef<Value> from = wide(b, extract.getSource());
     parts.assign(from.begin() + first,
                  from.begin() + first + componentCount(resultType));
     return;
   }
   if (auto insert = dyn_cast<vector::InsertOp>(op)) {
-    VectorType dest = insert.getDestVectorType();
-    SmallVector<int64_t> strides = computeStrides(dest.getShape());
-    int64_t first = 0;
-    for (auto [position, stride] :
-         llvm::zip(insert.getStaticPosition(), strides))
-      first += position * stride;
+    int64_t first =
+        firstComponent(insert.getDestVectorType(), insert.getStaticPosition());
     SmallVector<Value> into = llvm::to_vector(wide(b, insert.getDest()));
     ArrayRef<Value> from = wide(b, insert.getValueToStore());
     llvm::copy(from, into.begin() + first);

@@ -31,42 +31,55 @@ bool relaxes(int64_t columns, int64_t zeros, int64_t entries) {
          (columns <= 48 && fraction < 0.1) || fraction < 0.05;
 }
 
-/// The adjacency of A + A^T without the diagonal, in the numbering
-/// newIndex. A neighbour may be listed twice (a block and its mirror) and
-/// lists are not sorted: the elimination tree and the row subtrees below
-/// need neither.
+/// The adjacency of A + A^T without the diagonal. A neighbour may be
+/// listed twice (a block and its mirror) and lists are not sorted: the
+/// elimination tree and the row subtrees below need neither. It is built
+/// once and read in any numbering through `Numbering`.
 struct Graph {
-  std::vector<int64_t> start, neighbours;
+  std::vector<int32_t> start, neighbours;
 
-  Graph(int64_t rows, const int32_t *rowptr, const int32_t *colidx,
-        const std::vector<int64_t> &newIndex) {
+  Graph(int64_t rows, const int32_t *rowptr, const int32_t *colidx) {
     start.assign(static_cast<size_t>(rows) + 1, 0);
     for (int64_t r = 0; r < rows; ++r)
       for (int32_t k = rowptr[r]; k < rowptr[r + 1]; ++k)
         if (colidx[k] != r) {
-          ++start[newIndex[r] + 1];
-          ++start[newIndex[colidx[k]] + 1];
+          ++start[r + 1];
+          ++start[colidx[k] + 1];
         }
     std::partial_sum(start.begin(), start.end(), start.begin());
     neighbours.resize(static_cast<size_t>(start[rows]));
-    std::vector<int64_t> fill(start.begin(), start.end() - 1);
-    for (int64_t r = 0; r < rows; ++r)
-      for (int32_t k = rowptr[r]; k < rowptr[r + 1]; ++k)
-        if (colidx[k] != r) {
-          int64_t i = newIndex[r], j = newIndex[colidx[k]];
-          neighbours[fill[i]++] = j;
-          neighbours[fill[j]++] = i;
-        }
+    std::vector<int32_t> fill(start.begin(), start.end() - 1);
+    for (int64_t r = 0; r < rows; ++r) {
+      // The row's own cursor stays in a register; its mirrors' are stored.
+      int32_t own = fill[r];
+      for (int32_t k = rowptr[r]; k < rowptr[r + 1]; ++k) {
+        int32_t c = colidx[k];
+        if (c == r)
+          continue;
+        neighbours[own++] = c;
+        neighbours[fill[c]++] = static_cast<int32_t>(r);
+      }
+      fill[r] = own;
+    }
   }
 };
 
-/// The elimination tree of a graph in its own numbering (Liu's algorithm
-/// with path compression); -1 for roots.
-std::vector<int64_t> eliminationTree(const Graph &graph, int64_t n) {
+/// A numbering of the graph's vertices: vertex[k] is the k-th, index[v]
+/// the number of vertex v.
+struct Numbering {
+  const std::vector<int64_t> &vertex, &index;
+};
+
+/// The elimination tree of a graph in a numbering (Liu's algorithm with
+/// path compression), in that numbering; -1 for roots.
+std::vector<int64_t> eliminationTree(const Graph &graph,
+                                     const Numbering &numbering) {
+  int64_t n = static_cast<int64_t>(numbering.vertex.size());
   std::vector<int64_t> parent(n, -1), ancestor(n, -1);
-  for (int64_t k = 0; k < n; ++k)
-    for (int64_t p = graph.start[k]; p < graph.start[k + 1]; ++p) {
-      int64_t i = graph.neighbours[p];
+  for (int64_t k = 0; k < n; ++k) {
+    int64_t v = numbering.vertex[k];
+    for (int32_t p = graph.start[v]; p < graph.start[v + 1]; ++p) {
+      int64_t i = numbering.index[graph.neighbours[p]];
       while (i < k && i != -1) {
         int64_t next = ancestor[i];
         ancestor[i] = k;
@@ -75,16 +88,28 @@ std::vector<int64_t> eliminationTree(const Graph &graph, int64_t n) {
         i = next;
       }
     }
+  }
   return parent;
 }
 
 /// The vertices in a postorder of the forest in which each vertex's
 /// children come by increasing weight (then index), roots by index: the
 /// child with the most rows comes last, next to its parent, where it can
-/// share its supernode (CHOLMOD's weighted postorder).
+/// share its supernode (CHOLMOD's weighted postorder). Weights lie in
+/// [0, n).
 std::vector<int64_t> postorder(const std::vector<int64_t> &parent,
                                const std::vector<int64_t> &weight) {
   int64_t n = static_cast<int64_t>(parent.size());
+  // The vertices by (weight, index), a counting sort; appended in that
+  // order, each vertex's children come sorted.
+  std::vector<int64_t> byWeightStart(n + 1, 0);
+  for (int64_t v = 0; v < n; ++v)
+    ++byWeightStart[weight[v] + 1];
+  std::partial_sum(byWeightStart.begin(), byWeightStart.end(),
+                   byWeightStart.begin());
+  std::vector<int64_t> byWeight(static_cast<size_t>(n));
+  for (int64_t v = 0; v < n; ++v)
+    byWeight[byWeightStart[weight[v]]++] = v;
   std::vector<int64_t> childStart(n + 1, 0);
   for (int64_t v = 0; v < n; ++v)
     if (parent[v] != -1)
@@ -92,13 +117,9 @@ std::vector<int64_t> postorder(const std::vector<int64_t> &parent,
   std::partial_sum(childStart.begin(), childStart.end(), childStart.begin());
   std::vector<int64_t> children(static_cast<size_t>(childStart[n]));
   std::vector<int64_t> fill(childStart.begin(), childStart.end() - 1);
-  for (int64_t v = 0; v < n; ++v)
+  for (int64_t v : byWeight)
     if (parent[v] != -1)
       children[fill[parent[v]]++] = v;
-  for (int64_t v = 0; v < n; ++v)
-    std::stable_sort(
-        children.begin() + childStart[v], children.begin() + childStart[v + 1],
-        [&](int64_t x, int64_t y) { return weight[x] < weight[y]; });
   std::vector<int64_t> order, stack,
       nextChild(childStart.begin(), childStart.end() - 1);
   order.reserve(n);
@@ -122,17 +143,18 @@ std::vector<int64_t> postorder(const std::vector<int64_t> &parent,
 /// visit(j, i) for every entry (i, j), i > j, of L's block pattern, by
 /// increasing i: row i's entries are the columns up the tree from each of
 /// its neighbours below it, until one already visited for i (its row
-/// subtree). `parent` is the tree in the graph's numbering.
+/// subtree). `parent` is the tree in the numbering's.
 template <typename Visit>
-void rowSubtrees(const Graph &graph, const std::vector<int64_t> &parent,
-                 Visit visit) {
+void rowSubtrees(const Graph &graph, const Numbering &numbering,
+                 const std::vector<int64_t> &parent, Visit visit) {
   int64_t n = static_cast<int64_t>(parent.size());
   std::vector<int64_t> mark(n, -1);
   for (int64_t i = 0; i < n; ++i) {
     mark[i] = i;
-    for (int64_t p = graph.start[i]; p < graph.start[i + 1]; ++p)
-      for (int64_t j = graph.neighbours[p]; j < i && mark[j] != i;
-           j = parent[j]) {
+    int64_t v = numbering.vertex[i];
+    for (int32_t p = graph.start[v]; p < graph.start[v + 1]; ++p)
+      for (int64_t j = numbering.index[graph.neighbours[p]];
+           j < i && mark[j] != i; j = parent[j]) {
         mark[j] = i;
         visit(j, i);
       }
@@ -178,14 +200,16 @@ SupernodalSymbolic direct::analyse(int64_t blockRows, int64_t blockSize,
   // Fill-reducing order, then the elimination tree's postorder, which
   // keeps the fill and makes every supernode's columns consecutive.
   std::vector<int32_t> amd = minimumDegreeOrder(n, rowptr, colidx);
-  std::vector<int64_t> newIndex(n);
+  std::vector<int64_t> amdVertex(amd.begin(), amd.end()), amdIndex(n);
   for (int64_t k = 0; k < n; ++k)
-    newIndex[amd[k]] = k;
-  Graph amdGraph(n, rowptr, colidx, newIndex);
-  std::vector<int64_t> tree = eliminationTree(amdGraph, n);
+    amdIndex[amd[k]] = k;
+  Graph graph(n, rowptr, colidx);
+  Numbering amdNumbering{amdVertex, amdIndex};
+  std::vector<int64_t> tree = eliminationTree(graph, amdNumbering);
   // Rows of L below the diagonal per column, in AMD's numbering.
   std::vector<int64_t> amdCount(n, 0);
-  rowSubtrees(amdGraph, tree, [&](int64_t j, int64_t) { ++amdCount[j]; });
+  rowSubtrees(graph, amdNumbering, tree,
+              [&](int64_t j, int64_t) { ++amdCount[j]; });
   std::vector<int64_t> post = postorder(tree, amdCount);
   std::vector<int64_t> blockOrder(n), positionInPost(n), count(n);
   for (int64_t k = 0; k < n; ++k) {
@@ -197,6 +221,7 @@ SupernodalSymbolic direct::analyse(int64_t blockRows, int64_t blockSize,
   for (int64_t k = 0; k < n; ++k)
     if (tree[post[k]] != -1)
       parent[k] = positionInPost[tree[post[k]]];
+  std::vector<int64_t> newIndex(n);
   for (int64_t k = 0; k < n; ++k)
     newIndex[blockOrder[k]] = k;
 
@@ -206,7 +231,7 @@ SupernodalSymbolic direct::analyse(int64_t blockRows, int64_t blockSize,
   std::partial_sum(count.begin(), count.end(), columnStart.begin() + 1);
   std::vector<int64_t> belowRows(static_cast<size_t>(columnStart[n]));
   std::vector<int64_t> filled(columnStart.begin(), columnStart.end() - 1);
-  rowSubtrees(Graph(n, rowptr, colidx, newIndex), parent,
+  rowSubtrees(graph, Numbering{blockOrder, newIndex}, parent,
               [&](int64_t j, int64_t i) { belowRows[filled[j]++] = i; });
 
   // Fundamental supernodes: a column joins the previous one's supernode
@@ -259,6 +284,13 @@ SupernodalSymbolic direct::analyse(int64_t blockRows, int64_t blockSize,
   for (int64_t k = 0; k < n; ++k)
     for (int64_t c = 0; c < bs; ++c)
       symbolic.permutation[k * bs + c] = blockOrder[k] * bs + c;
+  int64_t panelRows = 0;
+  for (size_t s = 0; s + 1 < merged.size(); ++s)
+    panelRows += merged[s + 1] - merged[s] + count[merged[s + 1] - 1];
+  symbolic.rows.reserve(static_cast<size_t>(panelRows * bs));
+  symbolic.first.reserve(merged.size());
+  symbolic.rowStart.reserve(merged.size());
+  symbolic.valueStart.reserve(merged.size());
   symbolic.first.push_back(0);
   symbolic.rowStart.push_back(0);
   symbolic.valueStart.push_back(0);

@@ -230,8 +230,8 @@ TEST(SolveSession, IndefiniteMatrices) {
 // matrices of scalars and of blocks, on patterns that give it supernodes of
 // every kind: random sparse ones (a few columns wide, updated by the dense
 // loops), a wide band (wide supernodes updating one another through BLAS)
-// and a full matrix (one supernode, factorised by BLAS); against Eigen's
-// dense LL^T.
+// and a full matrix (one supernode, factorised by blocks of columns whose
+// updates go through BLAS); against Eigen's dense LL^T.
 TEST(SolveSession, CholeskyMatchesEigenOnRandomPatterns) {
   constexpr int n = 60;
   enum Pattern { TwoPerRow, EightPerRow, Band, Full };
@@ -320,6 +320,22 @@ TEST(SolveSession, CholeskyNamesTheFailingColumnOfTheMatrix) {
   a(16, 16) = -100;
   EXPECT_THAT(solveError<double>(settingsOf(SolveMethod::Cholesky), a, 3),
               HasSubstr("fails at scalar column 16"));
+}
+
+// A full matrix is one supernode, factorised by column blocks: a pivot
+// that fails in a later block is named by its own column.
+TEST(SolveSession, CholeskyNamesTheFailingColumnInsideAWidePanel) {
+  constexpr int n = 40, b = 3;
+  Eigen::MatrixXd m = Eigen::MatrixXd::Random(n * b, n * b);
+  Eigen::MatrixXd a =
+      m * m.transpose() + Eigen::MatrixXd::Identity(n * b, n * b);
+  a(100, 100) = -1e3;
+  BandSystem<double> system(n, b, a, /*nonzeroBlocks=*/true);
+  SolveSession session(settingsOf(SolveMethod::Cholesky));
+  Eigen::VectorXd rhs = randomVector(n * b, 3);
+  std::vector<double> x(n * b);
+  EXPECT_THAT(errorOf(session.solve(system.view, rhs.data(), x.data(), "t")),
+              HasSubstr("fails at scalar column 100"));
 }
 
 TEST(SolveSession, SingularMatrixIsAnError) {

@@ -20,6 +20,7 @@
 #include "mlir/Interfaces/SideEffectInterfaces.h"
 #include "mlir/Interfaces/ViewLikeInterface.h"
 #include "mlir/Transforms/RegionUtils.h"
+#include "llvm/ADT/MapVector.h"
 
 #include <map>
 
@@ -122,6 +123,16 @@ private:
   Value elementBlockComponent(OpBuilder &b, memref::LoadOp load);
   void gather(OpBuilder &b, memref::LoadOp load);
   void prefetchLanes(OpBuilder &b, memref::PrefetchOp prefetch);
+  /// Where the lane phase finds a value: its components from `offset` on
+  /// in `memref`, [lane][component] when transposed, else
+  /// [component][lane].
+  struct LaneBuffer {
+    Value memref;
+    bool transposed;
+    int64_t offset;
+  };
+  void storeForLanes(OpBuilder &b, ArrayRef<Value> values);
+  void loadForLane(OpOperand &read);
   VectorType laneType(Type component) const {
     return VectorType::get({lanes}, component);
   }
@@ -156,6 +167,11 @@ private:
   std::map<SmallVector<const void *>, Value> gathered;
   /// The blocks of all lanes of an element field (elementBlockComponent()).
   DenseMap<Value, Value> elementBlocks;
+  /// The lane phase: its induction variable, the buffers it reads, and the
+  /// loads of their components already made in each block.
+  Value lane;
+  DenseMap<Value, LaneBuffer> laneBuffers;
+  DenseMap<std::tuple<Block *, Value, int64_t>, Value> laneLoads;
 };
 
 } // namespace
@@ -174,7 +190,8 @@ static Value filledAlloca(Operation *op) {
   auto store = dyn_cast<memref::StoreOp>(fill.getBody()->front());
   if (!store || store.getIndices().size() != 1 ||
       store.getIndices()[0] != fill.getInductionVars()[0] ||
-      fill->isAncestor(store.getValueToStore().getParentBlock()->getParentOp()))
+      fill->isAncestor(
+          store.getValueToStore().getParentBlock()->getParentOp()))
     return {};
   auto alloca = store.getMemRef().getDefiningOp<memref::AllocaOp>();
   if (!alloca || alloca.getType().getRank() != 1)
@@ -230,8 +247,7 @@ void ElementLoopVectorizer::findPromotableAllocas() {
       if (auto load = dyn_cast<vector::LoadOp>(user))
         return isWhole(load.getVectorType(), load.getIndices());
       if (auto store = dyn_cast<vector::StoreOp>(user))
-        return use.getOperandNumber() ==
-                   store.getBaseMutable().getOperandNumber() &&
+        return use.getOperandNumber() == store.getBaseMutable().getOperandNumber() &&
                isWhole(store.getVectorType(), store.getIndices());
       if (auto load = dyn_cast<memref::LoadOp>(user))
         return allConstantIndices(load.getIndices());
@@ -292,17 +308,16 @@ bool ElementLoopVectorizer::canWiden(Operation *op) const {
       !componentType(op->getResult(0).getType()))
     return false;
   if (op->hasTrait<OpTrait::Elementwise>() && isPure(op))
-    return llvm::all_of(op->getOperandTypes(), [](Type type) {
-      return static_cast<bool>(componentType(type));
-    });
+    return llvm::all_of(op->getOperandTypes(),
+                        [](Type type) { return static_cast<bool>(componentType(type)); });
   if (auto extract = dyn_cast<vector::ExtractOp>(op))
     return extract.getDynamicPosition().empty();
   if (auto insert = dyn_cast<vector::InsertOp>(op))
     return insert.getDynamicPosition().empty();
   if (auto broadcast = dyn_cast<vector::BroadcastOp>(op))
     return static_cast<bool>(componentType(broadcast.getSourceType()));
-  return isa<vector::FromElementsOp, vector::ShapeCastOp, vector::TransposeOp>(
-             op) ||
+  return isa<vector::FromElementsOp, vector::ShapeCastOp,
+             vector::TransposeOp>(op) ||
          isReadOnlyLoad(op);
 }
 
@@ -341,7 +356,8 @@ bool ElementLoopVectorizer::classify(Value &demote) {
       continue;
     }
     if (!usesAny(&op, laneValues) && isa<memref::PrefetchOp>(op) &&
-        !loop->isAncestor(op.getOperand(0).getParentBlock()->getParentOp())) {
+        !loop->isAncestor(
+            op.getOperand(0).getParentBlock()->getParentOp())) {
       // Prefetches for all lanes go first, so that their lines arrive while
       // the kernel computes.
       prefetches.insert(&op);
@@ -350,8 +366,8 @@ bool ElementLoopVectorizer::classify(Value &demote) {
     if (!usesAny(&op, laneValues)) {
       // Uniform: computed once, as it was, for every lane.
       bool isUniform = !usesAny(&op, varying);
-      if (isUniform &&
-          (isReadOnlyLoad(&op) || (op.getNumRegions() == 0 && isPure(&op))))
+      if (isUniform && (isReadOnlyLoad(&op) ||
+                        (op.getNumRegions() == 0 && isPure(&op))))
         continue;
       if (!isUniform && canWiden(&op)) {
         varying.insert(op.getResult(0));
@@ -515,16 +531,16 @@ Value ElementLoopVectorizer::elementBlockComponent(OpBuilder &b,
     SmallVector<ReassociationIndices> all(1);
     for (int64_t d = 0; d < type.getRank(); ++d)
       all[0].push_back(d);
-    Value flat =
-        type.getRank() == 1
-            ? memref
-            : memref::CollapseShapeOp::create(b, loc, memref, all).getResult();
-    Value first = blockSize == 1
-                      ? base
-                      : arith::MulIOp::create(
-                            b, loc, base,
-                            arith::ConstantIndexOp::create(b, loc, blockSize))
-                            .getResult();
+    Value flat = type.getRank() == 1
+                     ? memref
+                     : memref::CollapseShapeOp::create(b, loc, memref, all)
+                           .getResult();
+    Value first =
+        blockSize == 1
+            ? base
+            : arith::MulIOp::create(
+                  b, loc, base, arith::ConstantIndexOp::create(b, loc, blockSize))
+                  .getResult();
     blocks = vector::LoadOp::create(
         b, loc, VectorType::get({blockSize * lanes}, type.getElementType()),
         flat, ValueRange{first});
@@ -595,8 +611,8 @@ void ElementLoopVectorizer::widenAllocaAccess(OpBuilder &b, Operation *op,
     state[linearPosition(type.getShape(), store.getIndices())] =
         wide(b, store.getValueToStore())[0];
   } else {
-    auto fill =
-        cast<memref::StoreOp>(cast<scf::ParallelOp>(op).getBody()->front());
+    auto fill = cast<memref::StoreOp>(
+        cast<scf::ParallelOp>(op).getBody()->front());
     Value value = wide(b, fill.getValueToStore())[0];
     state.assign(type.getNumElements(), value);
   }
@@ -697,8 +713,9 @@ void ElementLoopVectorizer::rewrite() {
   Value whole = arith::SubIOp::create(
       b, loc, trips, arith::RemUIOp::create(b, loc, trips, width));
   Value vectorEnd = arith::AddIOp::create(b, loc, lb, whole);
-  auto vectorLoop = scf::ParallelOp::create(
-      b, loc, ValueRange{lb}, ValueRange{vectorEnd}, ValueRange{width});
+  auto vectorLoop = scf::ParallelOp::create(b, loc, ValueRange{lb},
+                                            ValueRange{vectorEnd},
+                                            ValueRange{width});
   // The elements after the last whole vector run the loop as it was.
   loop.getLowerBoundMutable().assign(vectorEnd);
 
@@ -709,8 +726,8 @@ void ElementLoopVectorizer::rewrite() {
     laneNumbers.push_back(b.getIndexAttr(lane));
   Value laneOffsets = arith::ConstantOp::create(
       b, loc, DenseElementsAttr::get(laneType(b.getIndexType()), laneNumbers));
-  components[iv] = {
-      arith::AddIOp::create(b, loc, broadcastScalar(b, base), laneOffsets)};
+  components[iv] = {arith::AddIOp::create(b, loc, broadcastScalar(b, base),
+                                          laneOffsets)};
 
   for (Operation &op : body->without_terminator()) {
     if (laneOps.contains(&op))
@@ -728,54 +745,163 @@ void ElementLoopVectorizer::rewrite() {
       b.clone(op, uniform);
   }
 
-  // What the lane ops read of the vector ops goes through the stack: one
-  // buffer [component][lane] per value (i1 as i8, which memory can hold).
-  SmallVector<Value> buffers;
+  // What the lane ops read of the vector ops goes through the stack:
+  // scalars of one type side by side in one buffer, in the order the lane
+  // ops read them, so that a lane's components of one block lie together
+  // as the scatter reads them; other values in buffers of their own.
+  llvm::MapVector<Type, SmallVector<Value>> scalars;
   for (Value value : needed) {
-    Type component = componentType(value.getType());
-    Type stored = component.isInteger(1) ? b.getI8Type() : component;
-    ArrayRef<Value> parts = wide(b, value);
-    auto buffer = memref::AllocaOp::create(
-        b, loc,
-        MemRefType::get({static_cast<int64_t>(parts.size()), lanes}, stored));
-    for (auto [c, part] : llvm::enumerate(parts)) {
-      Value laneValues = part;
-      if (stored != component)
-        laneValues =
-            arith::ExtUIOp::create(b, loc, laneType(stored), laneValues);
-      vector::StoreOp::create(
-          b, loc, laneValues, buffer,
-          ValueRange{arith::ConstantIndexOp::create(b, loc, c), zero});
-    }
-    buffers.push_back(buffer);
+    if (componentCount(value.getType()) == 1)
+      scalars[componentType(value.getType())].push_back(value);
+    else
+      storeForLanes(b, value);
   }
+  for (auto &[type, values] : scalars)
+    storeForLanes(b, values);
 
   auto laneLoop = scf::ForOp::create(b, loc, zero, width, one);
   b.setInsertionPoint(laneLoop.getBody()->getTerminator());
-  Value lane = laneLoop.getInductionVar();
+  lane = laneLoop.getInductionVar();
   IRMapping mapping = uniform;
   mapping.map(iv, arith::AddIOp::create(b, loc, base, lane));
-  for (auto [value, buffer] : llvm::zip(needed, buffers)) {
-    Type component = componentType(value.getType());
-    SmallVector<Value> parts;
-    for (int64_t c = 0; c < componentCount(value.getType()); ++c) {
-      Value part = memref::LoadOp::create(
-          b, loc, buffer,
-          ValueRange{arith::ConstantIndexOp::create(b, loc, c), lane});
-      if (part.getType() != component)
-        part = arith::TruncIOp::create(b, loc, component, part);
-      parts.push_back(part);
-    }
-    mapping.map(value,
-                isa<VectorType>(value.getType())
-                    ? vector::FromElementsOp::create(
-                          b, loc, cast<VectorType>(value.getType()), parts)
-                          .getResult()
-                    : parts[0]);
+  for (Operation &op : body->without_terminator()) {
+    if (!laneOps.contains(&op))
+      continue;
+    // The clone still reads the buffered values of the original body: each
+    // read becomes a load next to it, in the same block, so that a lane's
+    // scatter of a block reads its components from consecutive slots there.
+    Operation *clone = b.clone(op, mapping);
+    SmallVector<OpOperand *> reads;
+    clone->walk([&](Operation *user) {
+      for (OpOperand &use : user->getOpOperands())
+        if (laneBuffers.contains(use.get()))
+          reads.push_back(&use);
+    });
+    for (OpOperand *read : reads)
+      loadForLane(*read);
   }
-  for (Operation &op : body->without_terminator())
-    if (laneOps.contains(&op))
-      b.clone(op, mapping);
+}
+
+/// Stores the lanes of `values` (of one component type) for the lane
+/// phase in one buffer, their components one after another. Fewer
+/// components than lanes are stored [component][lane] (one vector store
+/// per component); more are transposed in registers and stored
+/// [lane][component], so that the lane phase finds a lane's components
+/// side by side.
+void ElementLoopVectorizer::storeForLanes(OpBuilder &b,
+                                          ArrayRef<Value> values) {
+  Location loc = values.front().getLoc();
+  Type component = componentType(values.front().getType());
+  Type stored = component.isInteger(1) ? b.getI8Type() : component;
+  SmallVector<Value> parts;
+  SmallVector<int64_t> offsets;
+  for (Value value : values) {
+    offsets.push_back(parts.size());
+    llvm::append_range(parts, wide(b, value));
+  }
+  for (Value &part : parts)
+    if (stored != component)
+      part = arith::ExtUIOp::create(b, loc, laneType(stored), part);
+  int64_t count = parts.size();
+  auto index = [&](int64_t i) {
+    return arith::ConstantIndexOp::create(b, loc, i).getResult();
+  };
+  bool transposed = count >= lanes;
+  Value buffer;
+  if (!transposed) {
+    buffer = memref::AllocaOp::create(b, loc,
+                                      MemRefType::get({count, lanes}, stored));
+    for (auto [c, part] : llvm::enumerate(parts))
+      vector::StoreOp::create(b, loc, part, buffer,
+                              ValueRange{index(c), index(0)});
+  } else {
+    int64_t padded = llvm::alignTo(count, lanes);
+    buffer = memref::AllocaOp::create(
+        b, loc, MemRefType::get({lanes, padded}, stored));
+    Value filler = arith::ConstantOp::create(
+        b, loc, laneType(stored),
+        DenseElementsAttr::get(laneType(stored), b.getZeroAttr(stored)));
+    for (int64_t first = 0; first < padded; first += lanes) {
+      SmallVector<Value> rows;
+      for (int64_t r = 0; r < lanes; ++r)
+        rows.push_back(first + r < count ? parts[first + r] : filler);
+      // Butterfly transpose: at each step, rows `step` apart exchange their
+      // alternate runs of `step` components.
+      for (int64_t step = 1; step < lanes; step *= 2) {
+        SmallVector<int64_t> low, high;
+        for (int64_t k = 0; k < lanes; ++k) {
+          low.push_back((k & step) ? lanes + k - step : k);
+          high.push_back((k & step) ? lanes + k : k + step);
+        }
+        for (int64_t r = 0; r < lanes; ++r) {
+          if (r & step)
+            continue;
+          Value a = rows[r], c = rows[r + step];
+          rows[r] = vector::ShuffleOp::create(b, loc, a, c, low);
+          rows[r + step] = vector::ShuffleOp::create(b, loc, a, c, high);
+        }
+      }
+      for (int64_t l = 0; l < lanes; ++l)
+        vector::StoreOp::create(b, loc, rows[l], buffer,
+                                ValueRange{index(l), index(first)});
+    }
+  }
+  for (auto [value, offset] : llvm::zip(values, offsets))
+    laneBuffers[value] = {buffer, transposed, offset};
+}
+
+/// Replaces `read` (a use of a buffered value in the lane phase) with loads
+/// of the lane's components. A vector.extract of components loads only
+/// those.
+void ElementLoopVectorizer::loadForLane(OpOperand &read) {
+  Operation *user = read.getOwner();
+  Value value = read.get();
+  const LaneBuffer &buffer = laneBuffers.find(value)->second;
+  Type component = componentType(value.getType());
+  OpBuilder b(user);
+  Location loc = user->getLoc();
+  auto load = [&](int64_t c) -> Value {
+    Value &known = laneLoads[{user->getBlock(), value, c}];
+    if (known)
+      return known;
+    Value position = arith::ConstantIndexOp::create(b, loc, buffer.offset + c);
+    Value part = memref::LoadOp::create(
+        b, loc, buffer.memref,
+        buffer.transposed ? ValueRange{lane, position}
+                          : ValueRange{position, lane});
+    if (part.getType() != component)
+      part = arith::TruncIOp::create(b, loc, component, part);
+    return known = part;
+  };
+  auto extract = dyn_cast<vector::ExtractOp>(user);
+  if (extract && extract.getDynamicPosition().empty()) {
+    int64_t first = firstComponent(extract.getSourceVectorType(),
+                                   extract.getStaticPosition());
+    Type resultType = extract.getType();
+    Value result;
+    if (!isa<VectorType>(resultType)) {
+      result = load(first);
+    } else {
+      SmallVector<Value> parts;
+      for (int64_t c = 0; c < componentCount(resultType); ++c)
+        parts.push_back(load(first + c));
+      result = vector::FromElementsOp::create(
+          b, loc, cast<VectorType>(resultType), parts);
+    }
+    extract.replaceAllUsesWith(result);
+    extract.erase();
+    return;
+  }
+  Value whole;
+  if (auto vector = dyn_cast<VectorType>(value.getType())) {
+    SmallVector<Value> parts;
+    for (int64_t c = 0; c < vector.getNumElements(); ++c)
+      parts.push_back(load(c));
+    whole = vector::FromElementsOp::create(b, loc, vector, parts);
+  } else {
+    whole = load(0);
+  }
+  read.set(whole);
 }
 
 //===----------------------------------------------------------------------===//

@@ -36,18 +36,21 @@
 // CHECK:       arith.mulf %[[W]], %[[G1]] : vector<8xf64>
 // CHECK:       arith.cmpf ogt, {{.*}} : vector<8xf64>
 // CHECK-NOT:   memref.alloca() : memref<3xf64>
-// CHECK-DAG:   %[[FLAGS:.*]] = memref.alloca() : memref<1x8xi8>
-// CHECK-DAG:   arith.extui %{{.*}} : vector<8xi1> to vector<8xi8>
+// Values of fewer components than lanes are buffered [component][lane];
+// the endpoints' indices share one buffer.
 // CHECK-DAG:   %[[BUF:.*]] = memref.alloca() : memref<3x8xf64>
 // CHECK-DAG:   vector.store %{{.*}}, %[[BUF]][%{{.*}}, %{{.*}}] : memref<3x8xf64>, vector<8xf64>
-// CHECK-DAG:   %[[ENDBUF:.*]] = memref.alloca() : memref<1x8xindex>
+// CHECK-DAG:   %[[FLAGS:.*]] = memref.alloca() : memref<1x8xi8>
+// CHECK-DAG:   arith.extui %{{.*}} : vector<8xi1> to vector<8xi8>
+// CHECK-DAG:   %[[ENDBUF:.*]] = memref.alloca() : memref<2x8xindex>
 // CHECK:       scf.for %[[LANE:.*]] = %{{.*}} to %[[C8]] step
 // CHECK:         %[[FLAG:.*]] = memref.load %[[FLAGS]][%{{.*}}, %[[LANE]]] : memref<1x8xi8>
 // CHECK:         %[[COND:.*]] = arith.trunci %[[FLAG]] : i8 to i1
-// CHECK:         %[[A:.*]] = memref.load %[[ENDBUF]][%{{.*}}, %[[LANE]]] : memref<1x8xindex>
-// CHECK:         memref.load %[[BUF]][%{{.*}}, %[[LANE]]] : memref<3x8xf64>
 // CHECK:         scf.if %[[COND]] {
+// Each read of a buffered value is a load next to it.
+// CHECK:           %[[A:.*]] = memref.load %[[ENDBUF]][%{{.*}}, %[[LANE]]] : memref<2x8xindex>
 // CHECK:           memref.load %{{.*}}[%[[A]], %{{.*}}] : memref<?x3xf64>
+// CHECK:           memref.load %[[BUF]][%{{.*}}, %[[LANE]]] : memref<3x8xf64>
 // CHECK:           memref.store %{{.*}}[%[[A]], %{{.*}}] : memref<?x3xf64>
 // CHECK:     scf.parallel (%{{.*}}) = (%[[END]]) to (%[[UB]]) step (%{{.*}}) {
 // CHECK:       memref.alloca() : memref<3xf64>
@@ -110,6 +113,58 @@ func.func @kernel(%lb : index, %ub : index, %ends : memref<?x2xi32>,
       memref.store %n0, %f[%a, %c0] : memref<?x3xf64>
       %g2 = vector.extract %sq[2] : f64 from vector<3xf64>
       memref.store %g2, %f[%b, %c2] : memref<?x3xf64>
+    }
+    scf.reduce
+  }
+  return
+}
+
+// A value of at least as many components as lanes (a 3x3 block) is
+// transposed in registers (butterfly shuffles) and buffered
+// [lane][component], so that a lane's scatter reads the components of its
+// block side by side; the scalars the lane phase reads share one buffer, in
+// the order it reads them. Each read loads only the components it uses.
+// CHECK-LABEL: func.func @block_scatter(
+// CHECK:       scf.parallel
+// CHECK:         arith.mulf {{.*}} : vector<8xf64>
+// CHECK:         %[[BLOCKS:.*]] = memref.alloca() : memref<8x16xf64>
+// CHECK-COUNT-24: vector.shuffle {{.*}} : vector<8xf64>, vector<8xf64>
+// CHECK-COUNT-8: vector.store %{{.*}}, %[[BLOCKS]][%{{.*}}, %{{.*}}] : memref<8x16xf64>, vector<8xf64>
+// CHECK-COUNT-24: vector.shuffle {{.*}} : vector<8xf64>, vector<8xf64>
+// CHECK-COUNT-8: vector.store %{{.*}}, %[[BLOCKS]][%{{.*}}, %{{.*}}] : memref<8x16xf64>, vector<8xf64>
+// CHECK:         %[[SCALARS:.*]] = memref.alloca() : memref<2x8xf64>
+// CHECK:         scf.for %[[LANE:.*]] =
+// CHECK:           scf.if
+// CHECK:             %[[FIRST:.*]] = arith.constant 0 : index
+// CHECK:             %[[K0:.*]] = memref.load %[[SCALARS]][%[[FIRST]], %[[LANE]]] : memref<2x8xf64>
+// CHECK:             memref.store %[[K0]]
+// CHECK:             %[[SECOND:.*]] = arith.constant 1 : index
+// CHECK:             %[[K4:.*]] = memref.load %[[SCALARS]][%[[SECOND]], %[[LANE]]] : memref<2x8xf64>
+// CHECK:             memref.store %[[K4]]
+// CHECK:             %[[C4:.*]] = arith.constant 4 : index
+// CHECK:             %[[MIDDLE:.*]] = memref.load %[[BLOCKS]][%[[LANE]], %[[C4]]] : memref<8x16xf64>
+// CHECK:             memref.store %[[MIDDLE]]
+// AVX-LABEL: func.func @block_scatter(
+// AVX: memref.alloca() : memref<4x12xf64>
+func.func @block_scatter(%lb : index, %ub : index, %x : memref<?x9xf64>,
+                         %k : memref<?x9xf64>, %h : memref<f64>) {
+  %c0 = arith.constant 0 : index
+  %c1 = arith.constant 1 : index
+  %hv = memref.load %h[] : memref<f64>
+  scf.parallel (%e) = (%lb) to (%ub) step (%c1) {
+    %x0 = memref.load %x[%e, %c0] : memref<?x9xf64>
+    %xe = vector.broadcast %x0 : f64 to vector<9xf64>
+    %hs = vector.broadcast %hv : f64 to vector<9xf64>
+    %ke = arith.mulf %xe, %hs : vector<9xf64>
+    %k4 = vector.extract %ke[4] : f64 from vector<9xf64>
+    %k0 = vector.extract %ke[0] : f64 from vector<9xf64>
+    %positive = arith.cmpf ogt, %k4, %k0 : f64
+    scf.if %positive {
+      memref.store %k0, %k[%e, %c0] : memref<?x9xf64>
+      memref.store %k4, %k[%e, %c1] : memref<?x9xf64>
+      %middle = vector.extract %ke[4] : f64 from vector<9xf64>
+      %c2 = arith.constant 2 : index
+      memref.store %middle, %k[%e, %c2] : memref<?x9xf64>
     }
     scf.reduce
   }

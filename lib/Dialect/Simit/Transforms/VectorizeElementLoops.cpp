@@ -190,8 +190,7 @@ static Value filledAlloca(Operation *op) {
   auto store = dyn_cast<memref::StoreOp>(fill.getBody()->front());
   if (!store || store.getIndices().size() != 1 ||
       store.getIndices()[0] != fill.getInductionVars()[0] ||
-      fill->isAncestor(
-          store.getValueToStore().getParentBlock()->getParentOp()))
+      fill->isAncestor(store.getValueToStore().getParentBlock()->getParentOp()))
     return {};
   auto alloca = store.getMemRef().getDefiningOp<memref::AllocaOp>();
   if (!alloca || alloca.getType().getRank() != 1)
@@ -247,7 +246,8 @@ void ElementLoopVectorizer::findPromotableAllocas() {
       if (auto load = dyn_cast<vector::LoadOp>(user))
         return isWhole(load.getVectorType(), load.getIndices());
       if (auto store = dyn_cast<vector::StoreOp>(user))
-        return use.getOperandNumber() == store.getBaseMutable().getOperandNumber() &&
+        return use.getOperandNumber() ==
+                   store.getBaseMutable().getOperandNumber() &&
                isWhole(store.getVectorType(), store.getIndices());
       if (auto load = dyn_cast<memref::LoadOp>(user))
         return allConstantIndices(load.getIndices());
@@ -308,16 +308,17 @@ bool ElementLoopVectorizer::canWiden(Operation *op) const {
       !componentType(op->getResult(0).getType()))
     return false;
   if (op->hasTrait<OpTrait::Elementwise>() && isPure(op))
-    return llvm::all_of(op->getOperandTypes(),
-                        [](Type type) { return static_cast<bool>(componentType(type)); });
+    return llvm::all_of(op->getOperandTypes(), [](Type type) {
+      return static_cast<bool>(componentType(type));
+    });
   if (auto extract = dyn_cast<vector::ExtractOp>(op))
     return extract.getDynamicPosition().empty();
   if (auto insert = dyn_cast<vector::InsertOp>(op))
     return insert.getDynamicPosition().empty();
   if (auto broadcast = dyn_cast<vector::BroadcastOp>(op))
     return static_cast<bool>(componentType(broadcast.getSourceType()));
-  return isa<vector::FromElementsOp, vector::ShapeCastOp,
-             vector::TransposeOp>(op) ||
+  return isa<vector::FromElementsOp, vector::ShapeCastOp, vector::TransposeOp>(
+             op) ||
          isReadOnlyLoad(op);
 }
 
@@ -356,8 +357,7 @@ bool ElementLoopVectorizer::classify(Value &demote) {
       continue;
     }
     if (!usesAny(&op, laneValues) && isa<memref::PrefetchOp>(op) &&
-        !loop->isAncestor(
-            op.getOperand(0).getParentBlock()->getParentOp())) {
+        !loop->isAncestor(op.getOperand(0).getParentBlock()->getParentOp())) {
       // Prefetches for all lanes go first, so that their lines arrive while
       // the kernel computes.
       prefetches.insert(&op);
@@ -366,8 +366,8 @@ bool ElementLoopVectorizer::classify(Value &demote) {
     if (!usesAny(&op, laneValues)) {
       // Uniform: computed once, as it was, for every lane.
       bool isUniform = !usesAny(&op, varying);
-      if (isUniform && (isReadOnlyLoad(&op) ||
-                        (op.getNumRegions() == 0 && isPure(&op))))
+      if (isUniform &&
+          (isReadOnlyLoad(&op) || (op.getNumRegions() == 0 && isPure(&op))))
         continue;
       if (!isUniform && canWiden(&op)) {
         varying.insert(op.getResult(0));
@@ -531,16 +531,16 @@ Value ElementLoopVectorizer::elementBlockComponent(OpBuilder &b,
     SmallVector<ReassociationIndices> all(1);
     for (int64_t d = 0; d < type.getRank(); ++d)
       all[0].push_back(d);
-    Value flat = type.getRank() == 1
-                     ? memref
-                     : memref::CollapseShapeOp::create(b, loc, memref, all)
-                           .getResult();
-    Value first =
-        blockSize == 1
-            ? base
-            : arith::MulIOp::create(
-                  b, loc, base, arith::ConstantIndexOp::create(b, loc, blockSize))
-                  .getResult();
+    Value flat =
+        type.getRank() == 1
+            ? memref
+            : memref::CollapseShapeOp::create(b, loc, memref, all).getResult();
+    Value first = blockSize == 1
+                      ? base
+                      : arith::MulIOp::create(
+                            b, loc, base,
+                            arith::ConstantIndexOp::create(b, loc, blockSize))
+                            .getResult();
     blocks = vector::LoadOp::create(
         b, loc, VectorType::get({blockSize * lanes}, type.getElementType()),
         flat, ValueRange{first});
@@ -611,8 +611,8 @@ void ElementLoopVectorizer::widenAllocaAccess(OpBuilder &b, Operation *op,
     state[linearPosition(type.getShape(), store.getIndices())] =
         wide(b, store.getValueToStore())[0];
   } else {
-    auto fill = cast<memref::StoreOp>(
-        cast<scf::ParallelOp>(op).getBody()->front());
+    auto fill =
+        cast<memref::StoreOp>(cast<scf::ParallelOp>(op).getBody()->front());
     Value value = wide(b, fill.getValueToStore())[0];
     state.assign(type.getNumElements(), value);
   }
@@ -713,9 +713,8 @@ void ElementLoopVectorizer::rewrite() {
   Value whole = arith::SubIOp::create(
       b, loc, trips, arith::RemUIOp::create(b, loc, trips, width));
   Value vectorEnd = arith::AddIOp::create(b, loc, lb, whole);
-  auto vectorLoop = scf::ParallelOp::create(b, loc, ValueRange{lb},
-                                            ValueRange{vectorEnd},
-                                            ValueRange{width});
+  auto vectorLoop = scf::ParallelOp::create(
+      b, loc, ValueRange{lb}, ValueRange{vectorEnd}, ValueRange{width});
   // The elements after the last whole vector run the loop as it was.
   loop.getLowerBoundMutable().assign(vectorEnd);
 
@@ -726,8 +725,8 @@ void ElementLoopVectorizer::rewrite() {
     laneNumbers.push_back(b.getIndexAttr(lane));
   Value laneOffsets = arith::ConstantOp::create(
       b, loc, DenseElementsAttr::get(laneType(b.getIndexType()), laneNumbers));
-  components[iv] = {arith::AddIOp::create(b, loc, broadcastScalar(b, base),
-                                          laneOffsets)};
+  components[iv] = {
+      arith::AddIOp::create(b, loc, broadcastScalar(b, base), laneOffsets)};
 
   for (Operation &op : body->without_terminator()) {
     if (laneOps.contains(&op))
@@ -816,8 +815,8 @@ void ElementLoopVectorizer::storeForLanes(OpBuilder &b,
                               ValueRange{index(c), index(0)});
   } else {
     int64_t padded = llvm::alignTo(count, lanes);
-    buffer = memref::AllocaOp::create(
-        b, loc, MemRefType::get({lanes, padded}, stored));
+    buffer = memref::AllocaOp::create(b, loc,
+                                      MemRefType::get({lanes, padded}, stored));
     Value filler = arith::ConstantOp::create(
         b, loc, laneType(stored),
         DenseElementsAttr::get(laneType(stored), b.getZeroAttr(stored)));
@@ -865,10 +864,10 @@ void ElementLoopVectorizer::loadForLane(OpOperand &read) {
     if (known)
       return known;
     Value position = arith::ConstantIndexOp::create(b, loc, buffer.offset + c);
-    Value part = memref::LoadOp::create(
-        b, loc, buffer.memref,
-        buffer.transposed ? ValueRange{lane, position}
-                          : ValueRange{position, lane});
+    Value part =
+        memref::LoadOp::create(b, loc, buffer.memref,
+                               buffer.transposed ? ValueRange{lane, position}
+                                                 : ValueRange{position, lane});
     if (part.getType() != component)
       part = arith::TruncIOp::create(b, loc, component, part);
     return known = part;

@@ -284,13 +284,6 @@ SupernodalSymbolic direct::analyse(int64_t blockRows, int64_t blockSize,
   for (int64_t k = 0; k < n; ++k)
     for (int64_t c = 0; c < bs; ++c)
       symbolic.permutation[k * bs + c] = blockOrder[k] * bs + c;
-  int64_t panelRows = 0;
-  for (size_t s = 0; s + 1 < merged.size(); ++s)
-    panelRows += merged[s + 1] - merged[s] + count[merged[s + 1] - 1];
-  symbolic.rows.reserve(static_cast<size_t>(panelRows * bs));
-  symbolic.first.reserve(merged.size());
-  symbolic.rowStart.reserve(merged.size());
-  symbolic.valueStart.reserve(merged.size());
   symbolic.first.push_back(0);
   symbolic.rowStart.push_back(0);
   symbolic.valueStart.push_back(0);

@@ -298,7 +298,8 @@ int64_t direct::factorise(const SupernodeLayout &layout, double *values) {
   std::vector<int64_t> head(supernodes, -1), next(supernodes, -1),
       nextRow(supernodes, 0), indexInPanel(n, 0);
   // An update is at most (rows below a panel's columns) x (columns of the
-  // panel it reaches); its buffer is written before it is read.
+  // panel it reaches), a panel's own at most its height x kPanelBlock; the
+  // two take turns in one buffer, written before it is read.
   int64_t widest = 0, deepest = 0;
   for (int64_t s = 0; s < supernodes; ++s) {
     int64_t columns = layout.first[s + 1] - layout.first[s];
@@ -306,10 +307,8 @@ int64_t direct::factorise(const SupernodeLayout &layout, double *values) {
     deepest = std::max(deepest,
                        layout.rowStart[s + 1] - layout.rowStart[s] - columns);
   }
-  std::unique_ptr<double[]> update(
-      new double[static_cast<size_t>(deepest * std::min(widest, deepest))]);
-  std::unique_ptr<double[]> panelScratch(
-      new double[static_cast<size_t>((widest + deepest) * kPanelBlock)]);
+  std::unique_ptr<double[]> update(new double[static_cast<size_t>(std::max(
+      deepest * std::min(widest, deepest), (widest + deepest) * kPanelBlock))]);
   // Where the rows of an update lie in the panel it is subtracted from.
   std::vector<int64_t> rowInPanel(static_cast<size_t>(deepest));
 
@@ -349,7 +348,7 @@ int64_t direct::factorise(const SupernodeLayout &layout, double *values) {
     }
 
     int64_t columns = k2 - k1;
-    int64_t failed = factorisePanel(panel, height, columns, panelScratch.get());
+    int64_t failed = factorisePanel(panel, height, columns, update.get());
     if (failed < columns)
       return k1 + failed;
     nextRow[s] = columns;

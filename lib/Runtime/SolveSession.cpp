@@ -213,11 +213,10 @@ void SolveSession::record(SolveStatementStats &stats,
 
 template <typename T>
 llvm::Expected<SolveReport>
-SolveSession::direct(FactorKind kind, const SquareBCSRView<T> &a, const T *b,
-                     T *x) {
-  auto lookup = cache->factorise(kind, a);
+SolveSession::direct(llvm::Expected<FactorLookup> lookup, const T *b, T *x) {
   if (!lookup)
     return lookup.takeError();
+  FactorKind kind = lookup->factor->kind();
   SolveReport report;
   report.method = kind == FactorKind::Cholesky ? SolveMethod::Cholesky
                   : kind == FactorKind::LDLT   ? SolveMethod::LDLT
@@ -228,7 +227,7 @@ SolveSession::direct(FactorKind kind, const SquareBCSRView<T> &a, const T *b,
   report.analysisMs = lookup->analysisMs;
   report.factorisationMs = lookup->factorisationMs;
   Clock::time_point start = Clock::now();
-  int64_t n = a.size();
+  int64_t n = lookup->factor->size();
   std::vector<double> rhs(b, b + n), solution(static_cast<size_t>(n));
   if (llvm::Error err = lookup->factor->solve(rhs.data(), solution.data()))
     return std::move(err);
@@ -397,11 +396,15 @@ SolveSession::solveRecorded(const SquareBCSRView<T> &a, const T *b, T *x,
                          method != SolveMethod::LU;
   // A symmetric kind's factorisation of these very values was made after
   // they passed this check (at this tolerance): a Newton step's solves
-  // with one matrix check it once.
+  // with one matrix check it once, and find the factorisation once.
   std::optional<FactorKind> kind = factorKindOf(method);
-  bool symmetric =
-      (kind && *kind != FactorKind::LU && cache->holdsFactorOf(*kind, a)) ||
-      isSymmetric(a, Tolerances<T>::symmetric, mirrorsOf(stats));
+  std::optional<FactorLookup> reused;
+  if (kind)
+    reused = cache->reuse(*kind, a);
+  bool symmetric = false;
+  if (symmetricMethod || method == SolveMethod::Auto)
+    symmetric = (reused && *kind != FactorKind::LU) ||
+                isSymmetric(a, Tolerances<T>::symmetric, mirrorsOf(stats));
   if (symmetricMethod && !symmetric)
     return llvm::createStringError(
         "the matrix is not symmetric, and " + solveMethodName(method) +
@@ -409,7 +412,8 @@ SolveSession::solveRecorded(const SquareBCSRView<T> &a, const T *b, T *x,
 
   std::optional<SolveReport> report;
   if (kind) {
-    auto solved = direct(*kind, a, b, x);
+    auto solved = direct(
+        reused ? std::move(*reused) : cache->factoriseAnew(*kind, a), b, x);
     if (!solved)
       return solved.takeError();
     report = *solved;
@@ -428,7 +432,7 @@ SolveSession::solveRecorded(const SquareBCSRView<T> &a, const T *b, T *x,
     // `auto` on a non-symmetric matrix, or after CG failed.
     attempted = SolveMethod::LU;
     std::fill(x, x + n, T(0));
-    auto solved = direct(FactorKind::LU, a, b, x);
+    auto solved = direct(cache->factorise(FactorKind::LU, a), b, x);
     if (!solved)
       return solved.takeError();
     report = *solved;
@@ -582,8 +586,8 @@ llvm::Expected<SolveReport> SolveSession::woodburyRecorded(
     BorderedMatrix<T> bordered(a, u, v);
     std::vector<T> rhs(b, b + n), solution(static_cast<size_t>(n + k));
     rhs.resize(n + k, T(0));
-    auto solved = direct(FactorKind::LU, bordered.view, rhs.data(),
-                         solution.data());
+    auto solved = direct(cache->factorise(FactorKind::LU, bordered.view),
+                         rhs.data(), solution.data());
     if (!solved)
       return solved.takeError();
     report = *solved;

@@ -355,8 +355,31 @@ FactorCache::FactorCache() : common(std::make_shared<direct::Common>()) {}
 FactorCache::~FactorCache() = default;
 
 template <typename T>
+std::optional<FactorLookup> FactorCache::reuse(FactorKind kind,
+                                               const SquareBCSRView<T> &a) {
+  auto entry = llvm::find_if(entries, [&](const Entry &entry) {
+    return entry.analysis->matches(kind, a);
+  });
+  if (entry == entries.end() || !entry->latest || !entry->latest->holds(a))
+    return std::nullopt;
+  entries.splice(entries.begin(), entries, entry);
+  ++total.reuses;
+  FactorLookup lookup;
+  lookup.factor = entry->latest;
+  return lookup;
+}
+
+template <typename T>
 llvm::Expected<FactorLookup>
 FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
+  if (std::optional<FactorLookup> reused = reuse(kind, a))
+    return std::move(*reused);
+  return factoriseAnew(kind, a);
+}
+
+template <typename T>
+llvm::Expected<FactorLookup>
+FactorCache::factoriseAnew(FactorKind kind, const SquareBCSRView<T> &a) {
   FactorLookup lookup;
   auto entry = entries.begin();
   while (entry != entries.end() && !entry->analysis->matches(kind, a))
@@ -413,12 +436,6 @@ FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
     lookup.analysed = true;
     lookup.analysisMs = millisecondsSince(start);
     ++total.analyses;
-  }
-
-  if (entry->latest && entry->latest->holds(a)) {
-    ++total.reuses;
-    lookup.factor = entry->latest;
-    return lookup;
   }
 
   Clock::time_point start = Clock::now();
@@ -501,20 +518,13 @@ FactorCache::factorise(FactorKind kind, const SquareBCSRView<T> &a) {
   return lookup;
 }
 
-template <typename T>
-bool FactorCache::holdsFactorOf(FactorKind kind,
-                                const SquareBCSRView<T> &a) const {
-  return llvm::any_of(entries, [&](const Entry &entry) {
-    return entry.analysis->matches(kind, a) && entry.latest &&
-           entry.latest->holds(a);
-  });
-}
-
-template bool FactorCache::holdsFactorOf(FactorKind,
-                                         const SquareBCSRView<double> &) const;
-template bool FactorCache::holdsFactorOf(FactorKind,
-                                         const SquareBCSRView<float> &) const;
-template llvm::Expected<FactorLookup>
-FactorCache::factorise(FactorKind, const SquareBCSRView<double> &);
-template llvm::Expected<FactorLookup>
-FactorCache::factorise(FactorKind, const SquareBCSRView<float> &);
+#define SIMIT_FACTOR_CACHE_INSTANTIATE(T)                                      \
+  template std::optional<FactorLookup> FactorCache::reuse(                     \
+      FactorKind, const SquareBCSRView<T> &);                                  \
+  template llvm::Expected<FactorLookup> FactorCache::factorise(                \
+      FactorKind, const SquareBCSRView<T> &);                                  \
+  template llvm::Expected<FactorLookup> FactorCache::factoriseAnew(            \
+      FactorKind, const SquareBCSRView<T> &);
+SIMIT_FACTOR_CACHE_INSTANTIATE(double)
+SIMIT_FACTOR_CACHE_INSTANTIATE(float)
+#undef SIMIT_FACTOR_CACHE_INSTANTIATE

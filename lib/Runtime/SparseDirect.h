@@ -24,6 +24,7 @@
 #include <list>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 namespace simit {
@@ -107,10 +108,18 @@ public:
   llvm::Expected<FactorLookup> factorise(FactorKind kind,
                                          const SquareBCSRView<T> &a);
 
-  /// Whether the latest factorisation by `kind` of a's pattern is of a's
-  /// values (factorise would reuse it).
+  /// factorise() for values that reuse() has just not found.
   template <typename T>
-  bool holdsFactorOf(FactorKind kind, const SquareBCSRView<T> &a) const;
+  llvm::Expected<FactorLookup> factoriseAnew(FactorKind kind,
+                                             const SquareBCSRView<T> &a);
+
+  /// The latest factorisation by `kind` of a's pattern when it is of a's
+  /// values (what factorise would reuse, counted as a reuse), else none.
+  /// A caller that checks something only of new values (symmetry) asks
+  /// this first and hands the answer to factorise.
+  template <typename T>
+  std::optional<FactorLookup> reuse(FactorKind kind,
+                                    const SquareBCSRView<T> &a);
 
   /// Analyses and numeric factorisations done, and numeric ones saved by
   /// finding the same matrix value.

@@ -206,10 +206,14 @@ SupernodalSymbolic direct::analyse(int64_t blockRows, int64_t blockSize,
   Graph graph(n, rowptr, colidx);
   Numbering amdNumbering{amdVertex, amdIndex};
   std::vector<int64_t> tree = eliminationTree(graph, amdNumbering);
-  // Rows of L below the diagonal per column, in AMD's numbering.
+  // L's entries below the diagonal in AMD's numbering, row by row, and
+  // their count per column.
+  std::vector<std::pair<int32_t, int32_t>> entriesBelow; // (column, row)
   std::vector<int64_t> amdCount(n, 0);
-  rowSubtrees(graph, amdNumbering, tree,
-              [&](int64_t j, int64_t) { ++amdCount[j]; });
+  rowSubtrees(graph, amdNumbering, tree, [&](int64_t j, int64_t i) {
+    entriesBelow.emplace_back(j, i);
+    ++amdCount[j];
+  });
   std::vector<int64_t> post = postorder(tree, amdCount);
   std::vector<int64_t> blockOrder(n), positionInPost(n), count(n);
   for (int64_t k = 0; k < n; ++k) {
@@ -221,18 +225,16 @@ SupernodalSymbolic direct::analyse(int64_t blockRows, int64_t blockSize,
   for (int64_t k = 0; k < n; ++k)
     if (tree[post[k]] != -1)
       parent[k] = positionInPost[tree[post[k]]];
-  std::vector<int64_t> newIndex(n);
-  for (int64_t k = 0; k < n; ++k)
-    newIndex[blockOrder[k]] = k;
 
-  // The rows below the diagonal of each column, sorted (rows are visited
-  // in order).
+  // The rows below the diagonal of each column in the postorder, sorted:
+  // a column's rows are its ancestors in the tree, which come in the same
+  // order in both numberings, and were visited in AMD's.
   std::vector<int64_t> columnStart(n + 1, 0);
   std::partial_sum(count.begin(), count.end(), columnStart.begin() + 1);
   std::vector<int64_t> belowRows(static_cast<size_t>(columnStart[n]));
   std::vector<int64_t> filled(columnStart.begin(), columnStart.end() - 1);
-  rowSubtrees(graph, Numbering{blockOrder, newIndex}, parent,
-              [&](int64_t j, int64_t i) { belowRows[filled[j]++] = i; });
+  for (auto [j, i] : entriesBelow)
+    belowRows[filled[positionInPost[j]]++] = positionInPost[i];
 
   // Fundamental supernodes: a column joins the previous one's supernode
   // when it is that column's parent, its only child, and has one row less.

@@ -132,6 +132,7 @@ struct SolveStatementStats {
 };
 
 class FactorCache;
+struct FactorLookup;
 class SparseFactorisation;
 
 /// A system `(A + u v^T) x = b` as the Sherman–Morrison rewrite hands it to
@@ -251,10 +252,10 @@ private:
   factorPreconditioned(const SquareBCSRView<T> &a, const T *b, T *x,
                        SolverOptions options, llvm::StringRef statement,
                        SolveReport &report);
+  /// Solves with the factorisation `lookup` found or made.
   template <typename T>
-  llvm::Expected<SolveReport> direct(FactorKind kind,
-                                     const SquareBCSRView<T> &a, const T *b,
-                                     T *x);
+  llvm::Expected<SolveReport> direct(llvm::Expected<FactorLookup> lookup,
+                                     const T *b, T *x);
 
   SolveSettings current;
   std::unique_ptr<FactorCache> cache;

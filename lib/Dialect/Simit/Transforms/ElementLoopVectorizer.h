@@ -68,6 +68,8 @@ private:
   Value laneScalar(OpBuilder &b, Value value, int64_t lane);
   SmallVector<Value> laneIndices(OpBuilder &b, ValueRange indices,
                                  int64_t lane);
+  std::pair<Value, Value> blocksSource(OpBuilder &b, Value memref,
+                                       int64_t blockSize);
   Value elementBlockComponent(OpBuilder &b, memref::LoadOp load);
   void gather(OpBuilder &b, memref::LoadOp load);
   void prefetchLanes(OpBuilder &b, memref::PrefetchOp prefetch);
@@ -107,8 +109,9 @@ private:
   IRMapping uniform;
   DenseMap<Value, SmallVector<Value>> components;
   DenseMap<Value, SmallVector<Value>> allocaState;
-  /// The first index of the vector loop's lanes.
-  Value base;
+  /// The element of the vector loop's first lane, the set's last element
+  /// (lanes past it repeat it), and how many lanes hold elements.
+  Value base, lastElement, elementsInLanes;
   /// Scalars of varying index values, per lane (laneScalar()).
   DenseMap<Value, SmallVector<Value>> laneScalars;
   /// Loads already made, by memref and indices.

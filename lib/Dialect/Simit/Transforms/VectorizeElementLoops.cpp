@@ -351,17 +351,17 @@ struct VectorizeElementLoops
           !loop->hasAttr(kParallelLoopAttr))
         candidates.push_back(loop);
     });
-    SmallVector<Operation *> vectorised;
+    // The rewrite replaces a loop, with the loops inside it.
+    DenseSet<Operation *> replaced;
     for (scf::ParallelOp loop : candidates) {
-      if (llvm::any_of(vectorised, [&](Operation *outer) {
-            return outer->isProperAncestor(loop);
-          }))
+      if (replaced.contains(loop))
         continue;
       ElementLoopVectorizer vectorizer(loop, vectorBits, minVectorOps);
       if (!vectorizer.plan())
         continue;
+      loop.getBody()->walk(
+          [&](scf::ParallelOp inner) { replaced.insert(inner); });
       vectorizer.rewrite();
-      vectorised.push_back(loop);
     }
   }
 };

@@ -6,17 +6,37 @@
 // tensor held in a stack slot, a uniform extern, and a conditional scatter.
 // The arithmetic runs on vector<8xf64> (one element per lane); the scatter
 // runs for each element in order, reading the kernel's values from stack
-// buffers; the elements after the last whole vector run the loop as it was.
+// buffers. There is no scalar remainder loop: the last step computes the 8
+// elements before the end and scatters only its own.
 // CHECK-LABEL: func.func @kernel(
 // CHECK-SAME: %[[LB:[^:]*]]: index, %[[UB:[^:]*]]: index
-// CHECK:     %[[TRIPS:.*]] = arith.subi %[[UB]], %[[LB]]
-// CHECK:     %[[POS:.*]] = arith.maxsi %[[TRIPS]]
-// CHECK:     %[[REM:.*]] = arith.remui %[[POS]], %[[C8:.*]] :
-// CHECK:     %[[WHOLE:.*]] = arith.subi %[[POS]], %[[REM]]
-// CHECK:     %[[END:.*]] = arith.addi %[[LB]], %[[WHOLE]]
-// CHECK:     scf.parallel (%[[BASE:.*]]) = (%[[LB]]) to (%[[END]]) step (%[[C8]]) {
+// CHECK-SAME: %[[W1:[^:]*]]: memref<?xf64>, %[[G2:[^:]*]]: memref<?x2xf64>
+// Fields of the elements themselves are read from the field, or, for a set
+// of fewer than 8 elements, from a zero-padded copy; chosen before the loop.
+// CHECK:     %[[WPAD:.*]] = memref.alloca() : memref<8xf64>
+// CHECK:     %[[N:.*]] = arith.subi %[[UB]], %[[LB]]
+// CHECK:     %[[LARGE:.*]] = arith.cmpi sge, %[[N]], %{{.*}} :
+// CHECK:     scf.if %[[LARGE]] {
+// CHECK-NEXT: } else {
+// CHECK:       scf.for
+// CHECK:         memref.load %[[W1]]
+// CHECK:         memref.store %{{.*}}, %[[WPAD]]
+// CHECK:     %[[WCAST:.*]] = memref.cast %[[WPAD]]
+// CHECK:     %[[WSRC:.*]] = arith.select %[[LARGE]], %[[W1]], %[[WCAST]] : memref<?xf64>
+// CHECK:     %[[G:.*]] = memref.collapse_shape %[[G2]] {{\[\[}}0, 1]] : memref<?x2xf64> into memref<?xf64>
+// CHECK:     %[[GSRC:.*]] = arith.select %{{.*}}, %[[G]], %{{.*}} : memref<?xf64>
+// CHECK:     %[[GAT:.*]] = arith.select
+// CHECK:     scf.parallel (%[[START:.*]]) = (%[[LB]]) to (%[[UB]]) step (%[[C8:.*]]) {
+// CHECK:       %[[LAST8:.*]] = arith.subi %[[UB]], %[[C8]]
+// CHECK:       %[[SHIFTED:.*]] = arith.minsi %[[START]], %[[LAST8]]
+// CHECK:       %[[BASE:.*]] = arith.maxsi %[[SHIFTED]], %[[LB]]
+// CHECK:       %[[LAST:.*]] = arith.subi %[[UB]], %{{.*}}
+// CHECK:       %[[LEFT:.*]] = arith.subi %[[UB]], %[[BASE]]
+// CHECK:       %[[OWNED:.*]] = arith.minsi %[[LEFT]], %[[C8]]
 // CHECK:       %[[IOTA:.*]] = arith.constant dense<[0, 1, 2, 3, 4, 5, 6, 7]> : vector<8xindex>
+// Lanes past the set's last element repeat it.
 // CHECK:       %[[E:.*]] = arith.addi %{{.*}}, %[[IOTA]] : vector<8xindex>
+// CHECK:       arith.minsi %[[E]], %{{.*}} : vector<8xindex>
 // Endpoints are loaded lane by lane, and each lane's index computed as a
 // scalar; a float field of the elements themselves is read with one vector
 // load of all lanes' blocks.
@@ -28,10 +48,8 @@
 // CHECK-COUNT-8: memref.load %{{.*}} : memref<?x3xf64>
 // CHECK:       arith.subf {{.*}} : vector<8xf64>
 // CHECK:       arith.mulf {{.*}} : vector<8xf64>
-// CHECK:       %[[W:.*]] = vector.load %{{.*}}[%[[BASE]]] : memref<?xf64>, vector<8xf64>
-// CHECK:       %[[G:.*]] = memref.collapse_shape %{{.*}} {{\[\[}}0, 1]] : memref<?x2xf64> into memref<?xf64>
-// CHECK:       %[[FIRST:.*]] = arith.muli %[[BASE]], %{{.*}} : index
-// CHECK:       %[[GS:.*]] = vector.load %[[G]][%[[FIRST]]] : memref<?xf64>, vector<16xf64>
+// CHECK:       %[[W:.*]] = vector.load %[[WSRC]][%{{.*}}] : memref<?xf64>, vector<8xf64>
+// CHECK:       %[[GS:.*]] = vector.load %[[GSRC]][%{{.*}}] : memref<?xf64>, vector<16xf64>
 // CHECK:       %[[G1:.*]] = vector.shuffle %[[GS]], %[[GS]] [1, 3, 5, 7, 9, 11, 13, 15]
 // CHECK:       arith.mulf %[[W]], %[[G1]] : vector<8xf64>
 // CHECK:       arith.cmpf ogt, {{.*}} : vector<8xf64>
@@ -43,7 +61,12 @@
 // CHECK-DAG:   %[[FLAGS:.*]] = memref.alloca() : memref<1x8xi8>
 // CHECK-DAG:   arith.extui %{{.*}} : vector<8xi1> to vector<8xi8>
 // CHECK-DAG:   %[[ENDBUF:.*]] = memref.alloca() : memref<2x8xindex>
+// The lane phase runs the lanes from the step's start to the end.
+// CHECK:       %[[FIRSTLANE:.*]] = arith.subi %[[START]], %[[BASE]]
 // CHECK:       scf.for %[[LANE:.*]] = %{{.*}} to %[[C8]] step
+// CHECK-DAG:     arith.cmpi slt, %[[LANE]], %[[OWNED]]
+// CHECK-DAG:     arith.cmpi sge, %[[LANE]], %[[FIRSTLANE]]
+// CHECK:         scf.if
 // CHECK:         %[[FLAG:.*]] = memref.load %[[FLAGS]][%{{.*}}, %[[LANE]]] : memref<1x8xi8>
 // CHECK:         %[[COND:.*]] = arith.trunci %[[FLAG]] : i8 to i1
 // CHECK:         scf.if %[[COND]] {
@@ -52,9 +75,8 @@
 // CHECK:           memref.load %{{.*}}[%[[A]], %{{.*}}] : memref<?x3xf64>
 // CHECK:           memref.load %[[BUF]][%{{.*}}, %[[LANE]]] : memref<3x8xf64>
 // CHECK:           memref.store %{{.*}}[%[[A]], %{{.*}}] : memref<?x3xf64>
-// CHECK:     scf.parallel (%{{.*}}) = (%[[END]]) to (%[[UB]]) step (%{{.*}}) {
-// CHECK:       memref.alloca() : memref<3xf64>
-// CHECK:       arith.mulf {{.*}} : f64
+// CHECK-NOT:   scf.parallel
+// CHECK:       return
 
 // With 256-bit vectors, four f64 lanes.
 // AVX-LABEL: func.func @kernel(
@@ -63,7 +85,7 @@
 
 // Too few operations: the loop stays as it was.
 // SMALL-LABEL: func.func @kernel(
-// SMALL-NOT: arith.remui
+// SMALL-NOT: arith.minsi
 // SMALL-NOT: vector<8x
 // SMALL: return
 func.func @kernel(%lb : index, %ub : index, %ends : memref<?x2xi32>,
@@ -134,6 +156,7 @@ func.func @kernel(%lb : index, %ub : index, %ends : memref<?x2xi32>,
 // CHECK-COUNT-8: vector.store %{{.*}}, %[[BLOCKS]][%{{.*}}, %{{.*}}] : memref<8x16xf64>, vector<8xf64>
 // CHECK:         %[[SCALARS:.*]] = memref.alloca() : memref<2x8xf64>
 // CHECK:         scf.for %[[LANE:.*]] =
+// CHECK:           scf.if
 // CHECK:           scf.if
 // CHECK:             %[[FIRST:.*]] = arith.constant 0 : index
 // CHECK:             %[[K0:.*]] = memref.load %[[SCALARS]][%[[FIRST]], %[[LANE]]] : memref<2x8xf64>

@@ -11,6 +11,7 @@
 #include "mlir/Dialect/Utils/IndexingUtils.h"
 #include "mlir/Dialect/Utils/StaticValueUtils.h"
 #include "mlir/Dialect/Vector/IR/VectorOps.h"
+#include "mlir/Interfaces/FunctionInterfaces.h"
 
 using namespace mlir;
 using namespace mlir::simit::element_vectorize;
@@ -119,8 +120,17 @@ std::pair<Value, Value> ElementLoopVectorizer::blocksSource(OpBuilder &b,
   auto flatType = cast<MemRefType>(flat.getType());
   Type element = flatType.getElementType();
   auto vectorType = VectorType::get({blockSize * lanes}, element);
-  Value padded = memref::AllocaOp::create(
-      b, loc, MemRefType::get({blockSize * lanes}, element));
+  // At the function's entry: a slot made where the loop is would grow the
+  // stack in every iteration of a loop around it.
+  Value padded;
+  {
+    OpBuilder::InsertionGuard entry(b);
+    b.setInsertionPointToStart(&loop->getParentOfType<FunctionOpInterface>()
+                                    .getFunctionBody()
+                                    .front());
+    padded = memref::AllocaOp::create(
+        b, loc, MemRefType::get({blockSize * lanes}, element));
+  }
   Value lb = loop.getLowerBound()[0], ub = loop.getUpperBound()[0];
   Value zero = arith::ConstantIndexOp::create(b, loc, 0);
   Value bs = arith::ConstantIndexOp::create(b, loc, blockSize);

@@ -193,3 +193,29 @@ func.func @block_scatter(%lb : index, %ub : index, %x : memref<?x9xf64>,
   }
   return
 }
+
+// An element loop inside another loop (a map in a `while`): the padded copy
+// of a small set's field is a slot at the function's entry, not one more
+// stack slot in every iteration of the outer loop.
+// CHECK-LABEL: func.func @repeated(
+// CHECK-NEXT:    memref.alloca() : memref<8xf64>
+// CHECK:         scf.for
+// CHECK-NOT:       memref.alloca() : memref<8xf64>
+// CHECK:           scf.parallel
+func.func @repeated(%n : index, %w : memref<?xf64>, %out : memref<?xf64>) {
+  %c0 = arith.constant 0 : index
+  %c1 = arith.constant 1 : index
+  %c10 = arith.constant 10 : index
+  scf.for %t = %c0 to %c10 step %c1 {
+    scf.parallel (%e) = (%c0) to (%n) step (%c1) {
+      %we = memref.load %w[%e] : memref<?xf64>
+      %a = arith.mulf %we, %we : f64
+      %b = arith.mulf %a, %we : f64
+      %c = arith.mulf %b, %a : f64
+      %d = arith.addf %c, %b : f64
+      memref.store %d, %out[%e] : memref<?xf64>
+      scf.reduce
+    }
+  }
+  return
+}

@@ -115,8 +115,8 @@ public:
 
   /// The latest factorisation by `kind` of a's pattern when it is of a's
   /// values (what factorise would reuse, counted as a reuse), else none.
-  /// A caller that checks something only of new values (symmetry) asks
-  /// this first and hands the answer to factorise.
+  /// A caller that checks new values first (symmetry) asks this, then
+  /// calls factoriseAnew when there is none.
   template <typename T>
   std::optional<FactorLookup> reuse(FactorKind kind,
                                     const SquareBCSRView<T> &a);

@@ -33,8 +33,8 @@ bool relaxes(int64_t columns, int64_t zeros, int64_t entries) {
 
 /// The adjacency of A + A^T without the diagonal. A neighbour may be
 /// listed twice (a block and its mirror) and lists are not sorted: the
-/// elimination tree and the row subtrees below need neither. It is built
-/// once and read in any numbering through `Numbering`.
+/// elimination tree and the row subtrees below need neither. It is read in
+/// AMD's numbering through `Numbering`, without being renumbered.
 struct Graph {
   std::vector<int32_t> start, neighbours;
 

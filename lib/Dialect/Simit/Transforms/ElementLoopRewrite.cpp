@@ -97,12 +97,13 @@ void ElementLoopVectorizer::prefetchLanes(OpBuilder &b,
 }
 
 /// The memref from which one vector load reads all lanes' blocks of a field
-/// (`memref`, defined outside the loop), flattened, and the position of
-/// element `lb`'s first component in it. When the set has at least `lanes`
-/// elements, every step's lanes hold elements: the field itself, at
-/// `lb * blockSize`. A smaller set is copied, padded with zeros, into a
-/// stack buffer, at 0. Chosen once before the loop: a choice per step (or
-/// a masked load) cost fem-dragon's assembly 3-7 %.
+/// (`memref`, defined outside the loop), flattened, and the shift of its
+/// positions: element e's first component is at e * blockSize - shift.
+/// When the set has at least `lanes` elements, every step's lanes hold
+/// elements: the field itself, shift 0. A smaller set is copied, padded
+/// with zeros, into a stack buffer, shift lb * blockSize. Chosen once
+/// before the loop: a choice per step (or a masked load) cost fem-dragon's
+/// assembly 3-7 %.
 std::pair<Value, Value> ElementLoopVectorizer::blocksSource(OpBuilder &b,
                                                             Value memref,
                                                             int64_t blockSize) {
@@ -135,12 +136,12 @@ std::pair<Value, Value> ElementLoopVectorizer::blocksSource(OpBuilder &b,
   Value zero = arith::ConstantIndexOp::create(b, loc, 0);
   Value bs = arith::ConstantIndexOp::create(b, loc, blockSize);
   Value elements = arith::SubIOp::create(b, loc, ub, lb);
-  Value large =
-      arith::CmpIOp::create(b, loc, arith::CmpIPredicate::sge, elements,
+  Value small =
+      arith::CmpIOp::create(b, loc, arith::CmpIPredicate::slt, elements,
                             arith::ConstantIndexOp::create(b, loc, lanes));
   Value start = arith::MulIOp::create(b, loc, lb, bs);
-  auto copy = scf::IfOp::create(b, loc, large, /*withElseRegion=*/true);
-  b.setInsertionPointToStart(copy.elseBlock());
+  auto copy = scf::IfOp::create(b, loc, small, /*withElseRegion=*/false);
+  b.setInsertionPointToStart(copy.thenBlock());
   vector::StoreOp::create(
       b, loc,
       arith::ConstantOp::create(
@@ -160,10 +161,10 @@ std::pair<Value, Value> ElementLoopVectorizer::blocksSource(OpBuilder &b,
           b, loc, flat, ValueRange{arith::AddIOp::create(b, loc, start, c)}),
       padded, ValueRange{c});
   b.setInsertionPointAfter(copy);
-  return {
-      arith::SelectOp::create(b, loc, large, flat,
-                              memref::CastOp::create(b, loc, flatType, padded)),
-      arith::SelectOp::create(b, loc, large, start, zero)};
+  return {arith::SelectOp::create(
+              b, loc, small, memref::CastOp::create(b, loc, flatType, padded),
+              flat),
+          arith::SelectOp::create(b, loc, small, start, zero)};
 }
 
 /// The components of a field of the loop's own elements, `memref[iv, c...]`
@@ -189,14 +190,12 @@ Value ElementLoopVectorizer::elementBlockComponent(OpBuilder &b,
   Location loc = load.getLoc();
   Value &blocks = elementBlocks[load.getMemRef()];
   if (!blocks) {
-    auto [source, lbAt] = blocksSource(b, load.getMemRef(), blockSize);
-    // Lane 0's first component: base's, counted from lb's.
-    Value at = arith::AddIOp::create(
-        b, loc, lbAt,
+    auto [source, shift] = blocksSource(b, load.getMemRef(), blockSize);
+    Value at = arith::SubIOp::create(
+        b, loc,
         arith::MulIOp::create(
-            b, loc,
-            arith::SubIOp::create(b, loc, base, loop.getLowerBound()[0]),
-            arith::ConstantIndexOp::create(b, loc, blockSize)));
+            b, loc, base, arith::ConstantIndexOp::create(b, loc, blockSize)),
+        shift);
     blocks = vector::LoadOp::create(
         b, loc, VectorType::get({blockSize * lanes}, type.getElementType()),
         source, ValueRange{at});

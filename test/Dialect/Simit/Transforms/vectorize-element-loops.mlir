@@ -15,16 +15,15 @@
 // of fewer than 8 elements, from a zero-padded copy; chosen before the loop.
 // CHECK:     %[[WPAD:.*]] = memref.alloca() : memref<8xf64>
 // CHECK:     %[[N:.*]] = arith.subi %[[UB]], %[[LB]]
-// CHECK:     %[[LARGE:.*]] = arith.cmpi sge, %[[N]], %{{.*}} :
-// CHECK:     scf.if %[[LARGE]] {
-// CHECK-NEXT: } else {
+// CHECK:     %[[TINY:.*]] = arith.cmpi slt, %[[N]], %{{.*}} :
+// CHECK:     scf.if %[[TINY]] {
 // CHECK:       scf.for
 // CHECK:         memref.load %[[W1]]
 // CHECK:         memref.store %{{.*}}, %[[WPAD]]
 // CHECK:     %[[WCAST:.*]] = memref.cast %[[WPAD]]
-// CHECK:     %[[WSRC:.*]] = arith.select %[[LARGE]], %[[W1]], %[[WCAST]] : memref<?xf64>
+// CHECK:     %[[WSRC:.*]] = arith.select %[[TINY]], %[[WCAST]], %[[W1]] : memref<?xf64>
 // CHECK:     %[[G:.*]] = memref.collapse_shape %[[G2]] {{\[\[}}0, 1]] : memref<?x2xf64> into memref<?xf64>
-// CHECK:     %[[GSRC:.*]] = arith.select %{{.*}}, %[[G]], %{{.*}} : memref<?xf64>
+// CHECK:     %[[GSRC:.*]] = arith.select %{{.*}}, %{{.*}}, %[[G]] : memref<?xf64>
 // CHECK:     %[[GAT:.*]] = arith.select
 // CHECK:     scf.parallel (%[[START:.*]]) = (%[[LB]]) to (%[[UB]]) step (%[[C8:.*]]) {
 // CHECK:       %[[LAST8:.*]] = arith.subi %[[UB]], %[[C8]]

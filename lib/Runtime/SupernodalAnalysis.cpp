@@ -31,12 +31,13 @@ bool relaxes(int64_t columns, int64_t zeros, int64_t entries) {
          (columns <= 48 && fraction < 0.1) || fraction < 0.05;
 }
 
-/// The adjacency of A + A^T without the diagonal. A neighbour may be
-/// listed twice (a block and its mirror) and lists are not sorted: the
-/// elimination tree and the row subtrees below need neither. It is read in
+/// The adjacency of A + A^T without the diagonal, each neighbour once (as
+/// AMD needs), in lists that are not sorted: nothing below needs them
+/// sorted. Vertex v's list is neighbours[start[v] .. start[v] + length[v]),
+/// with gaps where a block and its mirror were both stored. It is read in
 /// AMD's numbering through `Numbering`, without being renumbered.
 struct Graph {
-  std::vector<int32_t> start, neighbours;
+  std::vector<int32_t> start, length, neighbours;
 
   Graph(int64_t rows, const int32_t *rowptr, const int32_t *colidx) {
     start.assign(static_cast<size_t>(rows) + 1, 0);
@@ -61,8 +62,52 @@ struct Graph {
       }
       fill[r] = own;
     }
+    // Each list keeps the first of its duplicates, in place.
+    length.resize(static_cast<size_t>(rows));
+    std::vector<int32_t> seenBy(static_cast<size_t>(rows), -1);
+    for (int64_t v = 0; v < rows; ++v) {
+      int32_t kept = start[v];
+      for (int32_t p = start[v]; p < start[v + 1]; ++p) {
+        int32_t c = neighbours[p];
+        if (seenBy[c] != v) {
+          seenBy[c] = static_cast<int32_t>(v);
+          neighbours[kept++] = c;
+        }
+      }
+      length[v] = kept - start[v];
+    }
   }
+
+  int64_t size() const { return static_cast<int64_t>(length.size()); }
+  int32_t end(int64_t v) const { return start[v] + length[v]; }
 };
+
+/// AMD's fill-reducing order of the graph's vertices (order[k] is the one
+/// eliminated k-th), from amd_2 on a copy of the lists: amd_order would
+/// check the pattern, build A + A^T and allocate its workspace again,
+/// which costs more than the ordering itself on the graphs of small
+/// Newton systems (a few hundred blocks).
+std::vector<int32_t> minimumDegreeOrder(const Graph &graph) {
+  int32_t n = static_cast<int32_t>(graph.size());
+  std::vector<int32_t> order(static_cast<size_t>(n));
+  if (n == 0)
+    return order;
+  // The lists, with the elbow room amd_order gives: an fifth of their
+  // length and one entry per vertex.
+  int32_t used = graph.start[n];
+  int32_t room = used + used / 5 + n;
+  std::vector<int32_t> iw(static_cast<size_t>(room)),
+      pe(graph.start.begin(), graph.start.end() - 1), len(graph.length),
+      work(static_cast<size_t>(n) * 6);
+  std::copy(graph.neighbours.begin(), graph.neighbours.end(), iw.begin());
+  int32_t *nv = work.data(), *next = nv + n, *head = next + n, *elen = head + n,
+          *degree = elen + n, *w = degree + n;
+  double control[AMD_CONTROL], info[AMD_INFO];
+  amd_defaults(control);
+  amd_2(n, pe.data(), iw.data(), len.data(), room, used, nv, next, order.data(),
+        head, elen, degree, w, control, info);
+  return order;
+}
 
 /// A numbering of the graph's vertices: vertex[k] is the k-th, index[v]
 /// the number of vertex v.
@@ -78,7 +123,7 @@ std::vector<int64_t> eliminationTree(const Graph &graph,
   std::vector<int64_t> parent(n, -1), ancestor(n, -1);
   for (int64_t k = 0; k < n; ++k) {
     int64_t v = numbering.vertex[k];
-    for (int32_t p = graph.start[v]; p < graph.start[v + 1]; ++p) {
+    for (int32_t p = graph.start[v]; p < graph.end(v); ++p) {
       int64_t i = numbering.index[graph.neighbours[p]];
       while (i < k && i != -1) {
         int64_t next = ancestor[i];
@@ -152,7 +197,7 @@ void rowSubtrees(const Graph &graph, const Numbering &numbering,
   for (int64_t i = 0; i < n; ++i) {
     mark[i] = i;
     int64_t v = numbering.vertex[i];
-    for (int32_t p = graph.start[v]; p < graph.start[v + 1]; ++p)
+    for (int32_t p = graph.start[v]; p < graph.end(v); ++p)
       for (int64_t j = numbering.index[graph.neighbours[p]];
            j < i && mark[j] != i; j = parent[j]) {
         mark[j] = i;
@@ -166,16 +211,7 @@ void rowSubtrees(const Graph &graph, const Numbering &numbering,
 std::vector<int32_t> direct::minimumDegreeOrder(int64_t rows,
                                                 const int32_t *rowptr,
                                                 const int32_t *colidx) {
-  std::vector<int32_t> order(static_cast<size_t>(rows));
-  double control[AMD_CONTROL], info[AMD_INFO];
-  amd_defaults(control);
-  int status = amd_order(static_cast<int>(rows), rowptr, colidx, order.data(),
-                         control, info);
-  // AMD_OUT_OF_MEMORY (the pattern is valid): the natural order is still a
-  // correct one.
-  if (status != AMD_OK && status != AMD_OK_BUT_JUMBLED)
-    std::iota(order.begin(), order.end(), 0);
-  return order;
+  return ::minimumDegreeOrder(Graph(rows, rowptr, colidx));
 }
 
 SupernodeLayout SupernodalSymbolic::layout() const {
@@ -199,11 +235,11 @@ SupernodalSymbolic direct::analyse(int64_t blockRows, int64_t blockSize,
   }
   // Fill-reducing order, then the elimination tree's postorder, which
   // keeps the fill and makes every supernode's columns consecutive.
-  std::vector<int32_t> amd = minimumDegreeOrder(n, rowptr, colidx);
+  Graph graph(n, rowptr, colidx);
+  std::vector<int32_t> amd = ::minimumDegreeOrder(graph);
   std::vector<int64_t> amdVertex(amd.begin(), amd.end()), amdIndex(n);
   for (int64_t k = 0; k < n; ++k)
     amdIndex[amd[k]] = k;
-  Graph graph(n, rowptr, colidx);
   Numbering amdNumbering{amdVertex, amdIndex};
   std::vector<int64_t> tree = eliminationTree(graph, amdNumbering);
   // L's entries below the diagonal in AMD's numbering, row by row, and

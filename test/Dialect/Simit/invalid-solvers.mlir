@@ -69,7 +69,19 @@ func.func @f(%A : !A, %b : !V, %u : !V) {
 !A = !simit.tensor<["p", "p"] x f64>
 !V = !simit.tensor<["p"] x f64>
 func.func @f(%A : !A, %b : !V, %u : !simit.tensor<["p"] x f32>) {
-  // expected-error @+1 {{every vector must have the right-hand side's type '!simit.tensor<["p"] x f64>'}}
+  // expected-error @+1 {{every u must have the right-hand side's type '!simit.tensor<["p"] x f64>'}}
   %x = "simit.woodbury"(%A, %b, %b, %u, %b, %b) {operandSegmentSizes = array<i32: 1, 1, 1, 1, 1, 1>} : (!A, !V, !V, !simit.tensor<["p"] x f32>, !V, !V) -> !V
+  return
+}
+
+// -----
+
+// Over (p, q), v is over the columns q: one over the rows p is wrong.
+!A = !simit.tensor<["p", "q"] x f64>
+!P = !simit.tensor<["p"] x f64>
+!Q = !simit.tensor<["q"] x f64>
+func.func @f(%A : !A, %b : !P, %c : !Q, %u : !P, %w : !Q) {
+  // expected-error @+1 {{c and every v and w must have the result's type '!simit.tensor<["q"] x f64>'}}
+  %x = "simit.woodbury"(%A, %b, %c, %u, %u, %w) {operandSegmentSizes = array<i32: 1, 1, 1, 1, 1, 1>} : (!A, !P, !Q, !P, !P, !Q) -> !Q
   return
 }

@@ -19,6 +19,20 @@ func.func @system(%K : !K, %b : !F, %u : !F, %v : !F) -> !F {
   return %w : !F
 }
 
+// A matrix over two sets: b and u over its rows, c, v, w and x over its
+// columns.
+// CHECK-LABEL: func.func @two_sets
+func.func @two_sets(%A : !simit.tensor<["q", "v"] x f64>,
+                    %b : !simit.tensor<["q"] x f64>,
+                    %v : !simit.tensor<["v"] x f64>)
+    -> !simit.tensor<["v"] x f64> {
+  // CHECK: simit.woodbury %{{.*}}, %{{.*}}, %{{.*}}, u[%{{.*}}], v[%{{.*}}], w[%{{.*}}] : !simit.tensor<["q", "v"] x f64>, !simit.tensor<["q"] x f64> -> !simit.tensor<["v"] x f64>
+  %x = simit.woodbury %A, %b, %v, u[%b], v[%v], w[%v]
+      : !simit.tensor<["q", "v"] x f64>, !simit.tensor<["q"] x f64>
+        -> !simit.tensor<["v"] x f64>
+  return %x : !simit.tensor<["v"] x f64>
+}
+
 // CHECK-LABEL: func.func @local
 func.func @local(%m : tensor<3x3xf64>, %b : tensor<3x2xf64>) -> tensor<3x2xf64> {
   // CHECK: %[[H:.*]] = simit.factorize lu %{{.*}} : tensor<3x3xf64>

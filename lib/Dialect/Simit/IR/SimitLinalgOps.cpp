@@ -233,8 +233,8 @@ LogicalResult FactorSolveOp::verify() {
 }
 
 LogicalResult WoodburyOp::verify() {
-  Type b = getRhs().getType();
-  if (failed(verifyLinearSystem(*this, getMatrix().getType(), b, b)) ||
+  Type b = getRhs().getType(), x = getType();
+  if (failed(verifyLinearSystem(*this, getMatrix().getType(), b, x)) ||
       failed(verifyFloat(*this, b)))
     return failure();
   if (getUs().empty() || getVs().size() != getUs().size() ||
@@ -242,12 +242,16 @@ LogicalResult WoodburyOp::verify() {
     return emitOpError() << "needs k >= 1 vectors each of u, v and w, got "
                          << getUs().size() << ", " << getVs().size() << " and "
                          << getWs().size();
-  auto differs = [&](Value v) { return v.getType() != b; };
-  if (differs(getSolution()) || getType() != b ||
-      llvm::any_of(getUs(), differs) || llvm::any_of(getVs(), differs) ||
-      llvm::any_of(getWs(), differs))
-    return emitOpError() << "every vector must have the right-hand side's type "
+  auto isNot = [](Type type) {
+    return [type](Value v) { return v.getType() != type; };
+  };
+  if (llvm::any_of(getUs(), isNot(b)))
+    return emitOpError() << "every u must have the right-hand side's type "
                          << b;
+  if (getSolution().getType() != x || llvm::any_of(getVs(), isNot(x)) ||
+      llvm::any_of(getWs(), isNot(x)))
+    return emitOpError() << "c and every v and w must have the result's type "
+                         << x;
   return success();
 }
 

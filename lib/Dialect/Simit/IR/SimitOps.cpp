@@ -52,27 +52,35 @@ static void printSliceIndices(OpAsmPrinter &printer, SliceOp,
   });
 }
 
-/// Parses the one type of simit.woodbury's vectors: b, c, the k u's, v's
-/// and w's (k from the parsed u operands) and the result.
+/// Parses the types of simit.woodbury's vectors: one type, or `row ->
+/// column` when A's rows and columns are different sets. b and the k u's
+/// are over A's rows; c, the k v's and w's and the result over its
+/// columns (k from the parsed u operands).
 static ParseResult
 parseVectorTypes(OpAsmParser &parser, Type &rhs, Type &solution,
                  SmallVectorImpl<Type> &us, SmallVectorImpl<Type> &vs,
                  SmallVectorImpl<Type> &ws, Type &result,
                  ArrayRef<OpAsmParser::UnresolvedOperand> uOperands) {
-  Type type;
-  if (parser.parseType(type))
+  Type row, column;
+  if (parser.parseType(row))
     return failure();
-  rhs = solution = result = type;
-  us.assign(uOperands.size(), type);
-  vs.assign(uOperands.size(), type);
-  ws.assign(uOperands.size(), type);
+  column = row;
+  if (succeeded(parser.parseOptionalArrow()) && parser.parseType(column))
+    return failure();
+  rhs = row;
+  solution = result = column;
+  us.assign(uOperands.size(), row);
+  vs.assign(uOperands.size(), column);
+  ws.assign(uOperands.size(), column);
   return success();
 }
 
-static void printVectorTypes(OpAsmPrinter &printer, WoodburyOp, Type rhs,
-                             Type, TypeRange, TypeRange, TypeRange, Type,
+static void printVectorTypes(OpAsmPrinter &printer, WoodburyOp, Type rhs, Type,
+                             TypeRange, TypeRange, TypeRange, Type result,
                              OperandRange) {
   printer << rhs;
+  if (result != rhs)
+    printer << " -> " << result;
 }
 
 #define GET_OP_CLASSES

@@ -377,6 +377,9 @@ public:
   /// stencil its bind-time pattern and a copy of its blocks on it.
   std::array<Value, 3> bcsrArrays(Location loc, const Storage &storage,
                                   Value matrix);
+  /// Asserts, at run time, that a matrix stored as `storage` over two sets
+  /// (a solve's or factorisation's, `what`) is square; nothing over one.
+  void assertSquare(Operation *op, const Storage &storage, StringRef what);
   /// An empty memref<?xi32> for runtime functions whose index arrays a
   /// layout does not use.
   Value emptyIndexArray();

@@ -135,9 +135,27 @@ FunctionLowering::bcsrIndexArrays(Location loc, const Storage &storage) {
 }
 
 /// Whether the runtime's sparse solvers take a matrix stored as `s` (a
-/// stencil through its bind-time BCSR pattern).
+/// stencil through its bind-time BCSR pattern): square over one set, or a
+/// BCSR matrix over two sets (`matrix[Q,V]`) whose sizes assertSquare
+/// compares at run time.
 static bool isSparseSquare(const Storage &s) {
-  return hasBCSRView(s) && s.rows == s.cols;
+  return hasBCSRView(s) && (s.rows == s.cols || s.isBCSR());
+}
+
+void FunctionLowering::assertSquare(Operation *op, const Storage &storage,
+                                    StringRef what) {
+  if (storage.rows == storage.cols)
+    return;
+  Location loc = op->getLoc();
+  Value same =
+      arith::CmpIOp::create(b, loc, arith::CmpIPredicate::eq,
+                            getSetSize(storage.rows), getSetSize(storage.cols));
+  cf::AssertOp::create(
+      b, loc, same,
+      (what + ": the matrix over ('" + storage.rows.getValue() + "', '" +
+       storage.cols.getValue() + "') is not square (its sets differ in size)" +
+       sourcePositionSuffix(op))
+          .str());
 }
 
 bool mlir::simit::loops::hasBCSRView(const Storage &s) {
@@ -181,6 +199,7 @@ LogicalResult FunctionLowering::lowerSystemSolve(Operation *op, Value matrix,
     return op->emitError("solves are supported for square matrices "
                          "assembled from a set; this matrix is stored as ")
            << storage.describe();
+  assertSquare(op, storage, what);
   SmallVector<int64_t> block = matrixType.getBlockShape();
   // Scalar blocks are 1x1 blocks to the runtime.
   if (block.empty())
@@ -350,6 +369,7 @@ LogicalResult FunctionLowering::lowerSystemFactorisation(Operation *op) {
   // factorisation or solve fails, and names the statement in statistics.
   Value where = stringConstant(loc, name + sourcePositionSuffix(op));
   if (factorize) {
+    assertSquare(op, storage, name);
     auto type =
         FunctionType::get(ctx, {indexArray, indexArray, values, ptr}, {ptr});
     func::FuncOp callee = declareRuntime(loc, runtimeName, type);

@@ -105,15 +105,16 @@ struct RewriteLowRankSolve : OpRewritePattern<SolveOp> {
     unsigned rank = split->terms.size();
     if (rank > WoodburyOp::kMaxRank)
       return rewriter.notifyMatchFailure(solve, "more than 4 outer products");
-    auto isVectorLikeB = [&](Value v) { return v.getType() == b.getType(); };
-    if (!isSystemVector(b.getType()) ||
-        solve.getResult().getType() != b.getType() ||
+    // u and b are over A's rows, v and x over its columns.
+    Type rowVector = b.getType(), columnVector = solve.getType();
+    if (!isSystemVector(rowVector) || !isSystemVector(columnVector) ||
         !llvm::all_of(split->terms, [&](RankOneSum t) {
-          return isVectorLikeB(t.outer.getLhs()) &&
-                 isVectorLikeB(t.outer.getRhs());
+          return t.outer.getLhs().getType() == rowVector &&
+                 t.outer.getRhs().getType() == columnVector;
         }))
       return rewriter.notifyMatchFailure(
-          solve, "the u, v and b are not system vectors of one type");
+          solve, "the u and b, or the v and x, are not system vectors of "
+                 "one type");
     Type component = matrixType.getComponentType();
     if (!component.isF64() && !component.isF32())
       return rewriter.notifyMatchFailure(solve, "not a float matrix");
@@ -121,7 +122,7 @@ struct RewriteLowRankSolve : OpRewritePattern<SolveOp> {
     Location loc = solve.getLoc();
     std::string form = rank == 1 ? "Sherman-Morrison" : "Woodbury";
     auto solveWithA = [&](Value rhs, const Twine &what) {
-      auto op = SolveOp::create(rewriter, loc, b.getType(), a, rhs);
+      auto op = SolveOp::create(rewriter, loc, columnVector, a, rhs);
       op->setAttr("simit.solve_note",
                   rewriter.getStringAttr(form + " A^-1 " + what));
       return op.getResult();
@@ -138,7 +139,7 @@ struct RewriteLowRankSolve : OpRewritePattern<SolveOp> {
           u, rank == 1 ? Twine("u") : "u" + Twine(i + 1)));
     }
     Value c = solveWithA(b, "b");
-    rewriter.replaceOpWithNewOp<WoodburyOp>(solve, b.getType(), a, b, c, us,
+    rewriter.replaceOpWithNewOp<WoodburyOp>(solve, columnVector, a, b, c, us,
                                             vs, ws);
     return success();
   }

@@ -121,8 +121,10 @@ def Simit_WoodburyOp : Simit_Op<"woodbury", [Pure, AttrSizedOperandSegments]> {
     `x = c - W (I + V^T W)^-1 V^T c` (Sherman-Morrison for k = 1, Woodbury
     otherwise). When the k x k system is near singular relative to its
     terms, the runtime solves the bordered system `[A U; V^T -I]` instead,
-    which is why `A` is an operand. All vectors have `b`'s type, written
-    once.
+    which is why `A` is an operand. `b` and the `u_i` are over A's rows;
+    `c`, the `v_i`, the `w_i` and `x` over its columns. Their types are
+    written once when they are one (A's rows and columns are one set),
+    else as `rows -> columns`.
 
     ```mlir
     %x = simit.woodbury %A, %b, %c, u[%u], v[%v], w[%w]

@@ -188,9 +188,14 @@ FunctionType IRGenerator::functionType(const FuncDecl &func) {
 }
 
 void IRGenerator::genFunction(const FuncDecl &func,
-                              ArrayRef<unsigned> inoutResults) {
+                              ArrayRef<unsigned> inoutResults,
+                              bool accumulateResults) {
   currentFunc = &func;
   bindings.clear();
+  accumulatedResults.clear();
+  if (accumulateResults)
+    for (const auto &result : func.results)
+      accumulatedResults.insert(result.get());
   FunctionType type = functionType(func);
   std::string symbol = symbolOf(func);
   if (!inoutResults.empty()) {
@@ -203,7 +208,7 @@ void IRGenerator::genFunction(const FuncDecl &func,
     }
     llvm::append_range(results, type.getResults());
     type = builder.getFunctionType(inputs, results);
-    symbol = inoutVariantOf(func);
+    symbol = inoutVariantOf(func, accumulateResults);
   }
   auto function = func::FuncOp::create(builder, loc(func.loc), symbol, type);
   if (func.isExport && inoutResults.empty())
@@ -238,10 +243,21 @@ void IRGenerator::genFunction(const FuncDecl &func,
     loadResult(*result);
   func::ReturnOp::create(builder, loc(end), results);
   currentFunc = nullptr;
+  accumulatedResults.clear();
 }
 
-std::string IRGenerator::inoutVariantOf(const FuncDecl &func) const {
-  return symbolOf(func) + ".inout";
+std::string IRGenerator::inoutVariantOf(const FuncDecl &func,
+                                        bool reduce) const {
+  return symbolOf(func) + (reduce ? ".inout.reduce" : ".inout");
+}
+
+const VarDecl *IRGenerator::accumulatedResultOf(const Expr &target) const {
+  const Expr *root = &target;
+  while (auto *read = dyn_cast<ReadExpr>(root))
+    root = read->base.get();
+  auto *name = dyn_cast<NameExpr>(root);
+  auto *var = name ? dyn_cast<VarDecl>(name->decl) : nullptr;
+  return var && accumulatedResults.count(var) ? var : nullptr;
 }
 
 func::FuncOp IRGenerator::declareRuntimeFunction(llvm::StringRef base,

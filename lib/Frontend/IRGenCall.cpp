@@ -120,6 +120,11 @@ SmallVector<Value> IRGenerator::genUserCall(const CallExpr &e) {
       args.push_back(genExpr(*arg));
       continue;
     }
+    if (accumulatedResultOf(*arg))
+      return {unsupported(arg->loc,
+                          "a result passed as an inout argument in a "
+                          "function mapped with reduce and inout extra "
+                          "arguments")};
     // Pass a variable's own slot; anything else through a temporary.
     if (auto *name = dyn_cast<NameExpr>(arg.get())) {
       auto *var = dyn_cast<VarDecl>(name->decl);
@@ -281,11 +286,13 @@ SmallVector<Value> IRGenerator::genMap(const MapExpr &e) {
       inoutExtras.push_back(i);
     extras.push_back(genExpr(*arg));
   }
+  // With `reduce +` too, the variant adds at every write to its own
+  // results, so that a map that stores (in set order, as the inout
+  // arguments need) reduces them.
+  bool reduces = e.reduce && !callee.results.empty();
   if (!inoutExtras.empty()) {
-    if (e.reduce)
-      return {unsupported(e.args[inoutExtras.front()]->loc,
-                          "an inout extra argument of a map with reduce")};
-    function = module.lookupSymbol<func::FuncOp>(inoutVariantOf(callee));
+    function =
+        module.lookupSymbol<func::FuncOp>(inoutVariantOf(callee, reduces));
     if (!function) {
       // Generated once, where the generation of the current function can
       // resume afterwards.
@@ -293,10 +300,13 @@ SmallVector<Value> IRGenerator::genMap(const MapExpr &e) {
       const FuncDecl *savedFunc = currentFunc;
       OpBuilder::InsertionGuard guard(builder);
       builder.setInsertionPointToEnd(module.getBody());
-      genFunction(callee, inoutExtras);
+      auto savedAccumulated = std::move(accumulatedResults);
+      genFunction(callee, inoutExtras, reduces);
       bindings = std::move(savedBindings);
       currentFunc = savedFunc;
-      function = module.lookupSymbol<func::FuncOp>(inoutVariantOf(callee));
+      accumulatedResults = std::move(savedAccumulated);
+      function =
+          module.lookupSymbol<func::FuncOp>(inoutVariantOf(callee, reduces));
     }
   }
   Value set = genSet(e.targetSet, e.targetLoc);
@@ -305,7 +315,7 @@ SmallVector<Value> IRGenerator::genMap(const MapExpr &e) {
   Location l = loc(e.loc);
   // `reduce +` of a function without results (mapped as a statement) has
   // nothing to reduce: the map runs it for its effects.
-  if (e.reduce && !results.empty())
+  if (e.reduce && !results.empty() && inoutExtras.empty())
     return SmallVector<Value>(
         dialect::AssembleOp::create(builder, l, results, function.getSymName(),
                                     extras, set, grid,

@@ -18,6 +18,7 @@
 #include "mlir/Dialect/Func/IR/FuncOps.h"
 #include "mlir/IR/Builders.h"
 #include "llvm/ADT/DenseMap.h"
+#include "llvm/ADT/SmallPtrSet.h"
 #include "llvm/ADT/StringMap.h"
 
 #include <complex>
@@ -73,12 +74,18 @@ private:
   /// Generates `func`; with `inoutResults` (positions of `inout` tensor
   /// parameters), its variant for a map passing them as extra arguments:
   /// each such parameter is a leading result, which the map starts from
-  /// the argument's value.
+  /// the argument's value. With `accumulateResults` (the variant for a map
+  /// with `reduce +`), every assignment to one of func's own results adds
+  /// to what it writes, so that the map, which stores, reduces them.
   void genFunction(const FuncDecl &func,
-                   llvm::ArrayRef<unsigned> inoutResults = {});
+                   llvm::ArrayRef<unsigned> inoutResults = {},
+                   bool accumulateResults = false);
   /// The symbol of the variant of `func` for maps with `inout` extra
-  /// arguments.
-  std::string inoutVariantOf(const FuncDecl &func) const;
+  /// arguments, with `reduce +` or without.
+  std::string inoutVariantOf(const FuncDecl &func, bool reduce) const;
+  /// The result of the function being generated that an assignment to
+  /// `target` adds to (genFunction's accumulateResults), or null.
+  const VarDecl *accumulatedResultOf(const Expr &target) const;
   /// The symbol of a function (its instance name for generic instances).
   std::string symbolOf(const FuncDecl &func) const;
   mlir::FunctionType functionType(const FuncDecl &func);
@@ -224,6 +231,8 @@ private:
 
   // The function being generated.
   const FuncDecl *currentFunc = nullptr;
+  /// Its results that assignments add to (genFunction).
+  llvm::SmallPtrSet<const VarDecl *, 4> accumulatedResults;
   llvm::DenseMap<const VarDecl *, Binding> bindings;
   /// Tuple reads fixed to one position while a write is generated per
   /// endpoint.

@@ -209,6 +209,12 @@ Value IRGenerator::genIndexBodyOp(const Expr &e, IndexExprState &state) {
 void IRGenerator::genIndexAssign(const AssignStmt &stmt) {
   const Expr &target = *stmt.targets.front();
   const Expr &value = *stmt.value;
+  if (accumulatedResultOf(target)) {
+    unsupported(target.loc, "an index expression assigning a result in a "
+                            "function mapped with reduce and inout extra "
+                            "arguments");
+    return;
+  }
   IndexExprState state;
   for (const VarDecl *var : stmt.freeIndexVars)
     state.vars.push_back(var);

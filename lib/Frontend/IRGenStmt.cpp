@@ -254,8 +254,15 @@ void IRGenerator::genAssign(const AssignStmt &stmt) {
                               " targets");
     return;
   }
-  for (auto [target, value] : llvm::zip(stmt.targets, values))
+  for (auto [target, value] : llvm::zip(stmt.targets, values)) {
+    // In a function mapped with `reduce +` and `inout` extra arguments
+    // (run as a map that stores), a write to a result adds.
+    if (accumulatedResultOf(*target))
+      value = genElementwise(BinaryExpr::Op::Add, genExpr(*target), value,
+                             convertType(target->type, target->loc),
+                             stmt.value->loc);
     writeTarget(*target, value, stmt.value->loc);
+  }
 }
 
 void IRGenerator::writeTarget(const Expr &target, Value value, SMLoc where) {

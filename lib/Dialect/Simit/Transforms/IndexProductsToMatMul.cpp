@@ -6,7 +6,10 @@
 // patterns (a runtime-built product pattern). Each sum over one variable of
 // the product of two system matrices, each indexed by it once, becomes an
 // input `P(i,j)` with P = matmul(A, B) (operands transposed as their index
-// lists say); the variable leaves the expression.
+// lists say); the variable leaves the expression. On matrices of blocks a
+// variable runs over the set and then the block's rows or columns, so the
+// sum is the product of the matrices of scalars the blocks make up: that
+// of the blocked matrices.
 //
 //===----------------------------------------------------------------------===//
 
@@ -33,12 +36,21 @@ struct IndexProduct {
   int64_t var, row, col;
 };
 
-/// Whether `type` is a matrix over two sets with scalar components.
-bool isScalarSystemMatrix(Type type) {
+/// Whether `type` is a matrix over two sets of scalars or of matrix
+/// blocks (whose variables run over the set, then the block's rows or
+/// columns).
+bool isSystemMatrix(Type type) {
   auto tensor = dyn_cast<SystemTensorType>(type);
-  return tensor && tensor.getOrder() == 2 &&
-         isa<StringAttr>(tensor.getDims()[0]) &&
-         isa<StringAttr>(tensor.getDims()[1]) && tensor.getBlockShape().empty();
+  return tensor && tensor.isSetMatrix() &&
+         (tensor.getBlockShape().empty() || tensor.getBlockShape().size() == 2);
+}
+
+/// The block type of a system matrix whose blocks are `rows` x `cols` of
+/// `component` (a scalar when the matrix has scalar blocks).
+Type blockTypeOf(SystemTensorType like, int64_t rows, int64_t cols) {
+  if (like.getBlockShape().empty())
+    return like.getBlockType();
+  return RankedTensorType::get({rows, cols}, like.getComponentType());
 }
 
 /// The other variable of a two-variable index list containing `var` once.
@@ -65,8 +77,8 @@ bool matchProduct(IndexExprOp op, Value value, int64_t var,
   std::optional<int64_t> row = otherVariable(op.getInputIndexList(l), var);
   std::optional<int64_t> col = otherVariable(op.getInputIndexList(r), var);
   if (!row || !col || *row == var || *col == var ||
-      !isScalarSystemMatrix(op.getInputs()[l].getType()) ||
-      !isScalarSystemMatrix(op.getInputs()[r].getType()))
+      !isSystemMatrix(op.getInputs()[l].getType()) ||
+      !isSystemMatrix(op.getInputs()[r].getType()))
     return false;
   // No other input may be indexed by the summed variable.
   for (unsigned i = 0, e = op.getInputs().size(); i < e; ++i)
@@ -113,9 +125,11 @@ Value oriented(OpBuilder &b, Location loc, Value value, ArrayRef<int64_t> list,
   if (list[0] == first)
     return value;
   auto type = cast<SystemTensorType>(value.getType());
+  SmallVector<int64_t> block = type.getBlockShape();
   auto swapped = SystemTensorType::get(
       b.getContext(), b.getArrayAttr({type.getDims()[1], type.getDims()[0]}),
-      type.getBlockType());
+      block.empty() ? type.getBlockType()
+                    : blockTypeOf(type, block[1], block[0]));
   return TransposeOp::create(b, loc, swapped, value);
 }
 
@@ -130,10 +144,13 @@ IndexExprOp rewrite(IndexExprOp op, const IndexProduct &match) {
                        op.getInputIndexList(match.rhs), match.var);
   auto lhsType = cast<SystemTensorType>(lhs.getType());
   auto rhsType = cast<SystemTensorType>(rhs.getType());
+  SmallVector<int64_t> lhsBlock = lhsType.getBlockShape(),
+                       rhsBlock = rhsType.getBlockShape();
   auto productType = SystemTensorType::get(
       b.getContext(),
       b.getArrayAttr({lhsType.getDims()[0], rhsType.getDims()[1]}),
-      lhsType.getBlockType());
+      lhsBlock.empty() ? lhsType.getBlockType()
+                       : blockTypeOf(lhsType, lhsBlock[0], rhsBlock[1]));
   Value product = MatMulOp::create(b, loc, productType, lhs, rhs);
 
   // Variables after the summed one move down by one.

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <utility>
 
 extern "C" {
 #include <suitesparse/amd.h>
@@ -34,14 +35,14 @@ bool relaxes(int64_t columns, int64_t zeros, int64_t entries) {
 /// The adjacency of A + A^T without the diagonal, each neighbour once (as
 /// AMD needs), in lists that are not sorted: nothing below needs them
 /// sorted. Vertex v's list is neighbours[start[v] .. start[v] + length[v]),
-/// with gaps where a block and its mirror were both stored. It is read in
-/// AMD's numbering through `Numbering`, without being renumbered.
+/// with gaps where a block and its mirror were both stored.
 struct Graph {
   std::vector<int32_t> start, length, neighbours;
 
-  Graph(int64_t rows, const int32_t *rowptr, const int32_t *colidx) {
+  Graph() = default;
+  Graph(int32_t rows, const int32_t *rowptr, const int32_t *colidx) {
     start.assign(static_cast<size_t>(rows) + 1, 0);
-    for (int64_t r = 0; r < rows; ++r)
+    for (int32_t r = 0; r < rows; ++r)
       for (int32_t k = rowptr[r]; k < rowptr[r + 1]; ++k)
         if (colidx[k] != r) {
           ++start[r + 1];
@@ -50,7 +51,7 @@ struct Graph {
     std::partial_sum(start.begin(), start.end(), start.begin());
     neighbours.resize(static_cast<size_t>(start[rows]));
     std::vector<int32_t> fill(start.begin(), start.end() - 1);
-    for (int64_t r = 0; r < rows; ++r) {
+    for (int32_t r = 0; r < rows; ++r) {
       // The row's own cursor stays in a register; its mirrors' are stored.
       int32_t own = fill[r];
       for (int32_t k = rowptr[r]; k < rowptr[r + 1]; ++k) {
@@ -58,19 +59,19 @@ struct Graph {
         if (c == r)
           continue;
         neighbours[own++] = c;
-        neighbours[fill[c]++] = static_cast<int32_t>(r);
+        neighbours[fill[c]++] = r;
       }
       fill[r] = own;
     }
     // Each list keeps the first of its duplicates, in place.
     length.resize(static_cast<size_t>(rows));
     std::vector<int32_t> seenBy(static_cast<size_t>(rows), -1);
-    for (int64_t v = 0; v < rows; ++v) {
+    for (int32_t v = 0; v < rows; ++v) {
       int32_t kept = start[v];
       for (int32_t p = start[v]; p < start[v + 1]; ++p) {
         int32_t c = neighbours[p];
         if (seenBy[c] != v) {
-          seenBy[c] = static_cast<int32_t>(v);
+          seenBy[c] = v;
           neighbours[kept++] = c;
         }
       }
@@ -78,21 +79,50 @@ struct Graph {
     }
   }
 
-  int64_t size() const { return static_cast<int64_t>(length.size()); }
-  int32_t end(int64_t v) const { return start[v] + length[v]; }
+  int32_t size() const { return static_cast<int32_t>(length.size()); }
+  int32_t end(int32_t v) const { return start[v] + length[v]; }
+
+  /// The graph with vertex order[k] numbered k (index its inverse), its
+  /// lists packed: the elimination tree and the row subtrees then walk
+  /// their lists in order, without a lookup per neighbour.
+  Graph renumbered(const std::vector<int32_t> &order,
+                   const std::vector<int32_t> &index) const {
+    int32_t n = size();
+    Graph out;
+    out.start.resize(static_cast<size_t>(n) + 1);
+    out.length.resize(static_cast<size_t>(n));
+    out.neighbours.resize(neighbours.size());
+    int32_t used = 0;
+    for (int32_t k = 0; k < n; ++k) {
+      int32_t v = order[k];
+      out.start[k] = used;
+      out.length[k] = length[v];
+      for (int32_t p = start[v]; p < end(v); ++p)
+        out.neighbours[used++] = index[neighbours[p]];
+    }
+    out.start[n] = used;
+    return out;
+  }
 };
 
-/// AMD's fill-reducing order of the graph's vertices (order[k] is the one
-/// eliminated k-th), from amd_2 on a copy of the lists: amd_order would
-/// check the pattern, build A + A^T and allocate its workspace again,
-/// which costs more than the ordering itself on the graphs of small
-/// Newton systems (a few hundred blocks).
-std::vector<int32_t> minimumDegreeOrder(const Graph &graph) {
-  int32_t n = static_cast<int32_t>(graph.size());
-  std::vector<int32_t> order(static_cast<size_t>(n));
+/// AMD's fill-reducing order of a graph's vertices (order[k] is the one
+/// eliminated k-th) and its count of L's entries below the diagonal.
+struct Ordering {
+  std::vector<int32_t> order;
+  int64_t entriesBelow = 0;
+};
+
+/// AMD by amd_2 on a copy of the lists: amd_order would check the
+/// pattern, build A + A^T and allocate its workspace again, which costs
+/// more than the ordering itself on the graphs of small Newton systems (a
+/// few hundred blocks).
+Ordering minimumDegreeOrder(const Graph &graph) {
+  int32_t n = graph.size();
+  Ordering ordering;
+  ordering.order.resize(static_cast<size_t>(n));
   if (n == 0)
-    return order;
-  // The lists, with the elbow room amd_order gives: an fifth of their
+    return ordering;
+  // The lists, with the elbow room amd_order gives: a fifth of their
   // length and one entry per vertex.
   int32_t used = graph.start[n];
   int32_t room = used + used / 5 + n;
@@ -104,36 +134,28 @@ std::vector<int32_t> minimumDegreeOrder(const Graph &graph) {
           *degree = elen + n, *w = degree + n;
   double control[AMD_CONTROL], info[AMD_INFO];
   amd_defaults(control);
-  amd_2(n, pe.data(), iw.data(), len.data(), room, used, nv, next, order.data(),
-        head, elen, degree, w, control, info);
-  return order;
+  amd_2(n, pe.data(), iw.data(), len.data(), room, used, nv, next,
+        ordering.order.data(), head, elen, degree, w, control, info);
+  // AMD's count is an upper bound (mass elimination), used as a capacity.
+  ordering.entriesBelow = static_cast<int64_t>(info[AMD_LNZ]);
+  return ordering;
 }
 
-/// A numbering of the graph's vertices: vertex[k] is the k-th, index[v]
-/// the number of vertex v.
-struct Numbering {
-  const std::vector<int64_t> &vertex, &index;
-};
-
-/// The elimination tree of a graph in a numbering (Liu's algorithm with
-/// path compression), in that numbering; -1 for roots.
-std::vector<int64_t> eliminationTree(const Graph &graph,
-                                     const Numbering &numbering) {
-  int64_t n = static_cast<int64_t>(numbering.vertex.size());
-  std::vector<int64_t> parent(n, -1), ancestor(n, -1);
-  for (int64_t k = 0; k < n; ++k) {
-    int64_t v = numbering.vertex[k];
-    for (int32_t p = graph.start[v]; p < graph.end(v); ++p) {
-      int64_t i = numbering.index[graph.neighbours[p]];
-      while (i < k && i != -1) {
-        int64_t next = ancestor[i];
+/// The elimination tree of a graph numbered in elimination order (Liu's
+/// algorithm with path compression); -1 for roots.
+std::vector<int32_t> eliminationTree(const Graph &graph) {
+  int32_t n = graph.size();
+  std::vector<int32_t> parent(static_cast<size_t>(n), -1),
+      ancestor(static_cast<size_t>(n), -1);
+  for (int32_t k = 0; k < n; ++k)
+    for (int32_t p = graph.start[k]; p < graph.end(k); ++p)
+      for (int32_t i = graph.neighbours[p]; i != -1 && i < k;) {
+        int32_t next = ancestor[i];
         ancestor[i] = k;
         if (next == -1)
           parent[i] = k;
         i = next;
       }
-    }
-  }
   return parent;
 }
 
@@ -142,38 +164,38 @@ std::vector<int64_t> eliminationTree(const Graph &graph,
 /// child with the most rows comes last, next to its parent, where it can
 /// share its supernode (CHOLMOD's weighted postorder). Weights lie in
 /// [0, n).
-std::vector<int64_t> postorder(const std::vector<int64_t> &parent,
-                               const std::vector<int64_t> &weight) {
-  int64_t n = static_cast<int64_t>(parent.size());
+std::vector<int32_t> postorder(const std::vector<int32_t> &parent,
+                               const std::vector<int32_t> &weight) {
+  int32_t n = static_cast<int32_t>(parent.size());
   // The vertices by (weight, index), a counting sort; appended in that
   // order, each vertex's children come sorted.
-  std::vector<int64_t> byWeightStart(n + 1, 0);
-  for (int64_t v = 0; v < n; ++v)
+  std::vector<int32_t> byWeightStart(static_cast<size_t>(n) + 1, 0);
+  for (int32_t v = 0; v < n; ++v)
     ++byWeightStart[weight[v] + 1];
   std::partial_sum(byWeightStart.begin(), byWeightStart.end(),
                    byWeightStart.begin());
-  std::vector<int64_t> byWeight(static_cast<size_t>(n));
-  for (int64_t v = 0; v < n; ++v)
+  std::vector<int32_t> byWeight(static_cast<size_t>(n));
+  for (int32_t v = 0; v < n; ++v)
     byWeight[byWeightStart[weight[v]]++] = v;
-  std::vector<int64_t> childStart(n + 1, 0);
-  for (int64_t v = 0; v < n; ++v)
+  std::vector<int32_t> childStart(static_cast<size_t>(n) + 1, 0);
+  for (int32_t v = 0; v < n; ++v)
     if (parent[v] != -1)
       ++childStart[parent[v] + 1];
   std::partial_sum(childStart.begin(), childStart.end(), childStart.begin());
-  std::vector<int64_t> children(static_cast<size_t>(childStart[n]));
-  std::vector<int64_t> fill(childStart.begin(), childStart.end() - 1);
-  for (int64_t v : byWeight)
+  std::vector<int32_t> children(static_cast<size_t>(childStart[n]));
+  std::vector<int32_t> fill(childStart.begin(), childStart.end() - 1);
+  for (int32_t v : byWeight)
     if (parent[v] != -1)
       children[fill[parent[v]]++] = v;
-  std::vector<int64_t> order, stack,
+  std::vector<int32_t> order, stack,
       nextChild(childStart.begin(), childStart.end() - 1);
-  order.reserve(n);
-  for (int64_t root = 0; root < n; ++root) {
+  order.reserve(static_cast<size_t>(n));
+  for (int32_t root = 0; root < n; ++root) {
     if (parent[root] != -1)
       continue;
     stack.push_back(root);
     while (!stack.empty()) {
-      int64_t v = stack.back();
+      int32_t v = stack.back();
       if (nextChild[v] < childStart[v + 1]) {
         stack.push_back(children[nextChild[v]++]);
       } else {
@@ -188,18 +210,18 @@ std::vector<int64_t> postorder(const std::vector<int64_t> &parent,
 /// visit(j, i) for every entry (i, j), i > j, of L's block pattern, by
 /// increasing i: row i's entries are the columns up the tree from each of
 /// its neighbours below it, until one already visited for i (its row
-/// subtree). `parent` is the tree in the numbering's.
+/// subtree). The graph is numbered in elimination order, `parent` its
+/// tree.
 template <typename Visit>
-void rowSubtrees(const Graph &graph, const Numbering &numbering,
-                 const std::vector<int64_t> &parent, Visit visit) {
-  int64_t n = static_cast<int64_t>(parent.size());
-  std::vector<int64_t> mark(n, -1);
-  for (int64_t i = 0; i < n; ++i) {
+void rowSubtrees(const Graph &graph, const std::vector<int32_t> &parent,
+                 Visit visit) {
+  int32_t n = graph.size();
+  std::vector<int32_t> mark(static_cast<size_t>(n), -1);
+  for (int32_t i = 0; i < n; ++i) {
     mark[i] = i;
-    int64_t v = numbering.vertex[i];
-    for (int32_t p = graph.start[v]; p < graph.end(v); ++p)
-      for (int64_t j = numbering.index[graph.neighbours[p]];
-           j < i && mark[j] != i; j = parent[j]) {
+    for (int32_t p = graph.start[i]; p < graph.end(i); ++p)
+      for (int32_t j = graph.neighbours[p]; j < i && mark[j] != i;
+           j = parent[j]) {
         mark[j] = i;
         visit(j, i);
       }
@@ -211,7 +233,8 @@ void rowSubtrees(const Graph &graph, const Numbering &numbering,
 std::vector<int32_t> direct::minimumDegreeOrder(int64_t rows,
                                                 const int32_t *rowptr,
                                                 const int32_t *colidx) {
-  return ::minimumDegreeOrder(Graph(rows, rowptr, colidx));
+  return ::minimumDegreeOrder(Graph(static_cast<int32_t>(rows), rowptr, colidx))
+      .order;
 }
 
 SupernodeLayout SupernodalSymbolic::layout() const {
@@ -227,7 +250,7 @@ SupernodeLayout SupernodalSymbolic::layout() const {
 SupernodalSymbolic direct::analyse(int64_t blockRows, int64_t blockSize,
                                    const int32_t *rowptr,
                                    const int32_t *colidx) {
-  int64_t n = blockRows;
+  int32_t n = static_cast<int32_t>(blockRows);
   SupernodalSymbolic symbolic;
   if (n == 0) {
     symbolic.first = symbolic.rowStart = symbolic.valueStart = {0};
@@ -236,50 +259,54 @@ SupernodalSymbolic direct::analyse(int64_t blockRows, int64_t blockSize,
   // Fill-reducing order, then the elimination tree's postorder, which
   // keeps the fill and makes every supernode's columns consecutive.
   Graph graph(n, rowptr, colidx);
-  std::vector<int32_t> amd = ::minimumDegreeOrder(graph);
-  std::vector<int64_t> amdVertex(amd.begin(), amd.end()), amdIndex(n);
-  for (int64_t k = 0; k < n; ++k)
-    amdIndex[amd[k]] = k;
-  Numbering amdNumbering{amdVertex, amdIndex};
-  std::vector<int64_t> tree = eliminationTree(graph, amdNumbering);
+  Ordering amd = ::minimumDegreeOrder(graph);
+  std::vector<int32_t> amdIndex(static_cast<size_t>(n));
+  for (int32_t k = 0; k < n; ++k)
+    amdIndex[amd.order[k]] = k;
+  Graph eliminated = graph.renumbered(amd.order, amdIndex);
+  std::vector<int32_t> tree = eliminationTree(eliminated);
   // L's entries below the diagonal in AMD's numbering, row by row, and
   // their count per column.
   std::vector<std::pair<int32_t, int32_t>> entriesBelow; // (column, row)
-  std::vector<int64_t> amdCount(n, 0);
-  rowSubtrees(graph, amdNumbering, tree, [&](int64_t j, int64_t i) {
+  entriesBelow.reserve(static_cast<size_t>(
+      std::clamp<int64_t>(amd.entriesBelow, 0, int64_t(n) * (n - 1) / 2)));
+  std::vector<int32_t> amdCount(static_cast<size_t>(n), 0);
+  rowSubtrees(eliminated, tree, [&](int32_t j, int32_t i) {
     entriesBelow.emplace_back(j, i);
     ++amdCount[j];
   });
-  std::vector<int64_t> post = postorder(tree, amdCount);
-  std::vector<int64_t> blockOrder(n), positionInPost(n), count(n);
-  for (int64_t k = 0; k < n; ++k) {
-    blockOrder[k] = amd[post[k]];
+  std::vector<int32_t> post = postorder(tree, amdCount);
+  std::vector<int32_t> blockOrder(static_cast<size_t>(n)),
+      positionInPost(static_cast<size_t>(n)), count(static_cast<size_t>(n));
+  for (int32_t k = 0; k < n; ++k) {
+    blockOrder[k] = amd.order[post[k]];
     positionInPost[post[k]] = k;
     count[k] = amdCount[post[k]];
   }
-  std::vector<int64_t> parent(n, -1);
-  for (int64_t k = 0; k < n; ++k)
+  std::vector<int32_t> parent(static_cast<size_t>(n), -1);
+  for (int32_t k = 0; k < n; ++k)
     if (tree[post[k]] != -1)
       parent[k] = positionInPost[tree[post[k]]];
 
   // The rows below the diagonal of each column in the postorder, sorted:
   // a column's rows are its ancestors in the tree, which come in the same
   // order in both numberings, and were visited in AMD's.
-  std::vector<int64_t> columnStart(n + 1, 0);
-  std::partial_sum(count.begin(), count.end(), columnStart.begin() + 1);
-  std::vector<int64_t> belowRows(static_cast<size_t>(columnStart[n]));
+  std::vector<int64_t> columnStart(static_cast<size_t>(n) + 1, 0);
+  for (int32_t k = 0; k < n; ++k)
+    columnStart[k + 1] = columnStart[k] + count[k];
+  std::vector<int32_t> belowRows(static_cast<size_t>(columnStart[n]));
   std::vector<int64_t> filled(columnStart.begin(), columnStart.end() - 1);
   for (auto [j, i] : entriesBelow)
     belowRows[filled[positionInPost[j]]++] = positionInPost[i];
 
   // Fundamental supernodes: a column joins the previous one's supernode
   // when it is that column's parent, its only child, and has one row less.
-  std::vector<int64_t> children(n, 0);
-  for (int64_t k = 0; k < n; ++k)
+  std::vector<int32_t> children(static_cast<size_t>(n), 0);
+  for (int32_t k = 0; k < n; ++k)
     if (parent[k] != -1)
       ++children[parent[k]];
-  std::vector<int64_t> firstColumn; // of each supernode, in block columns
-  for (int64_t k = 0; k < n; ++k)
+  std::vector<int32_t> firstColumn; // of each supernode, in block columns
+  for (int32_t k = 0; k < n; ++k)
     if (k == 0 || parent[k - 1] != k || children[k] != 1 ||
         count[k - 1] != count[k] + 1)
       firstColumn.push_back(k);
@@ -292,16 +319,16 @@ SupernodalSymbolic direct::analyse(int64_t blockRows, int64_t blockSize,
   // through the later supernode).
   // `stored` counts the entries of L's pattern (not zeros) in the
   // supernode being grown, which starts at merged.back().
-  auto storedIn = [&](int64_t f, int64_t l) { // columns [f, l)
+  auto storedIn = [&](int32_t f, int32_t l) { // columns [f, l)
     int64_t entries = 0;
-    for (int64_t c = f; c < l; ++c)
+    for (int32_t c = f; c < l; ++c)
       entries += count[c] + 1;
     return entries;
   };
-  std::vector<int64_t> merged{0};
+  std::vector<int32_t> merged{0};
   int64_t stored = storedIn(0, firstColumn[1]);
   for (size_t s = 1; s + 1 < firstColumn.size(); ++s) {
-    int64_t f = merged.back(), l = firstColumn[s], next = firstColumn[s + 1];
+    int32_t f = merged.back(), l = firstColumn[s], next = firstColumn[s + 1];
     int64_t storedNext = storedIn(l, next);
     if (parent[l - 1] == l) {
       int64_t columns = next - f, height = columns + count[next - 1];
@@ -317,28 +344,31 @@ SupernodalSymbolic direct::analyse(int64_t blockRows, int64_t blockSize,
   merged.push_back(n);
 
   // Scalar arrays: each block column and row stands for blockSize.
-  int64_t bs = blockSize;
+  int64_t bs = blockSize, supernodes = static_cast<int64_t>(merged.size()) - 1;
   symbolic.permutation.resize(static_cast<size_t>(n * bs));
   for (int64_t k = 0; k < n; ++k)
     for (int64_t c = 0; c < bs; ++c)
       symbolic.permutation[k * bs + c] = blockOrder[k] * bs + c;
-  symbolic.first.push_back(0);
-  symbolic.rowStart.push_back(0);
-  symbolic.valueStart.push_back(0);
-  for (size_t s = 0; s + 1 < merged.size(); ++s) {
+  symbolic.first.resize(static_cast<size_t>(supernodes) + 1);
+  symbolic.rowStart.resize(static_cast<size_t>(supernodes) + 1);
+  symbolic.valueStart.resize(static_cast<size_t>(supernodes) + 1);
+  symbolic.first[0] = symbolic.rowStart[0] = symbolic.valueStart[0] = 0;
+  for (int64_t s = 0; s < supernodes; ++s) {
     int64_t f = merged[s], l = merged[s + 1];
-    for (int64_t b = f; b < l; ++b)
-      for (int64_t c = 0; c < bs; ++c)
-        symbolic.rows.push_back(b * bs + c);
+    int64_t height = (l - f + count[l - 1]) * bs;
+    symbolic.first[s + 1] = l * bs;
+    symbolic.rowStart[s + 1] = symbolic.rowStart[s] + height;
+    symbolic.valueStart[s + 1] = symbolic.valueStart[s] + height * (l - f) * bs;
+  }
+  symbolic.rows.resize(static_cast<size_t>(symbolic.rowStart[supernodes]));
+  int64_t *row = symbolic.rows.data();
+  for (int64_t s = 0; s < supernodes; ++s) {
+    int64_t f = merged[s], l = merged[s + 1];
+    for (int64_t b = f * bs; b < l * bs; ++b)
+      *row++ = b;
     for (int64_t p = columnStart[l - 1]; p < columnStart[l]; ++p)
       for (int64_t c = 0; c < bs; ++c)
-        symbolic.rows.push_back(belowRows[p] * bs + c);
-    int64_t height =
-        static_cast<int64_t>(symbolic.rows.size()) - symbolic.rowStart.back();
-    symbolic.first.push_back(l * bs);
-    symbolic.rowStart.push_back(static_cast<int64_t>(symbolic.rows.size()));
-    symbolic.valueStart.push_back(symbolic.valueStart.back() +
-                                  height * (l - f) * bs);
+        *row++ = belowRows[p] * bs + c;
   }
   return symbolic;
 }

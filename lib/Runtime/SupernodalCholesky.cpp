@@ -222,66 +222,74 @@ direct::blockPlacements(const SupernodeLayout &layout,
                         const int64_t *permutation, int64_t blockRows,
                         int64_t blockSize, const int32_t *rowptr,
                         const int32_t *colidx) {
-  int64_t n = layout.size(), bs = blockSize;
-  std::vector<int64_t> inverse(static_cast<size_t>(n));
-  for (int64_t k = 0; k < n; ++k)
-    inverse[permutation[k]] = k;
-  // A block's unknowns must be consecutive in L for its entries to lie at
-  // fixed strides.
-  for (int64_t b = 0; b < blockRows; ++b)
-    for (int64_t i = 1; i < bs; ++i)
-      if (inverse[b * bs + i] != inverse[b * bs] + i)
+  int64_t bs = blockSize;
+  // Everything below is in blocks: L's block column k holds the matrix's
+  // block row blockOrder[k]. A block's unknowns must be consecutive in L
+  // (and supernodes whole blocks) for its entries to lie at fixed strides.
+  std::vector<int32_t> blockPosition(static_cast<size_t>(blockRows));
+  for (int64_t k = 0; k < blockRows; ++k) {
+    int64_t first = permutation[k * bs];
+    for (int64_t i = 0; i < bs; ++i)
+      if (first % bs != 0 || permutation[k * bs + i] != first + i)
         llvm::report_fatal_error("simit: the Cholesky analysis split the "
                                  "unknowns of a block");
-  std::vector<int64_t> supernodeOf = supernodeOfColumns(layout);
-  // Block (r, c), c <= r, in L's order: (max, min) of its rows' and
-  // columns' first unknowns. The blocks are sorted by the supernode of
-  // L's column (counting sort), so that each panel's rows are indexed once
+    blockPosition[first / bs] = static_cast<int32_t>(k);
+  }
+  std::vector<int32_t> supernodeOf(static_cast<size_t>(blockRows));
+  for (int64_t s = 0; s < layout.supernodes; ++s) {
+    if (layout.first[s] % bs != 0)
+      llvm::report_fatal_error("simit: a Cholesky supernode splits a block");
+    std::fill(supernodeOf.begin() + layout.first[s] / bs,
+              supernodeOf.begin() + layout.first[s + 1] / bs,
+              static_cast<int32_t>(s));
+  }
+  // Block (r, c), c <= r, in L's order: (max, min) of its row's and
+  // column's positions. The blocks are sorted by the supernode of L's
+  // column (counting sort), so that each panel's rows are indexed once
   // for all of its blocks.
   int64_t blocks = rowptr[blockRows];
-  std::vector<int64_t> lower(static_cast<size_t>(blocks), -1),
+  std::vector<int32_t> lower(static_cast<size_t>(blocks), -1),
       upper(static_cast<size_t>(blocks)),
       bucketStart(static_cast<size_t>(layout.supernodes) + 1, 0);
-  // Whether the block's rows come first in L's order: then its columns are
+  // Whether the block's row comes first in L's order: then its columns are
   // L's rows (the block is read transposed).
   std::vector<bool> transposed(static_cast<size_t>(blocks));
   for (int64_t r = 0; r < blockRows; ++r)
     for (int32_t k = rowptr[r]; k < rowptr[r + 1]; ++k) {
       if (colidx[k] > r)
         continue;
-      int64_t row = inverse[r * bs], column = inverse[colidx[k] * bs];
+      int32_t row = blockPosition[r], column = blockPosition[colidx[k]];
       lower[k] = std::min(row, column);
       upper[k] = std::max(row, column);
       transposed[k] = row < column;
       ++bucketStart[supernodeOf[lower[k]] + 1];
     }
   std::partial_sum(bucketStart.begin(), bucketStart.end(), bucketStart.begin());
-  std::vector<int64_t> sorted(static_cast<size_t>(bucketStart.back())),
+  std::vector<int32_t> sorted(static_cast<size_t>(bucketStart.back())),
       filled(bucketStart.begin(), bucketStart.end() - 1);
   for (int64_t k = 0; k < blocks; ++k)
     if (lower[k] >= 0)
-      sorted[filled[supernodeOf[lower[k]]]++] = k;
+      sorted[filled[supernodeOf[lower[k]]]++] = static_cast<int32_t>(k);
 
   std::vector<BlockPlacement> placements(static_cast<size_t>(blocks));
-  std::vector<int64_t> indexInPanel(static_cast<size_t>(n));
+  std::vector<int32_t> indexInPanel(static_cast<size_t>(blockRows));
   for (int64_t s = 0; s < layout.supernodes; ++s) {
     int64_t height = layout.rowStart[s + 1] - layout.rowStart[s];
     const int64_t *rows = layout.rows + layout.rowStart[s];
-    for (int64_t r = 0; r < height; ++r)
-      indexInPanel[rows[r]] = r;
-    for (int64_t q = bucketStart[s]; q < bucketStart[s + 1]; ++q) {
-      int64_t k = sorted[q];
+    for (int64_t r = 0; r < height; r += bs)
+      indexInPanel[rows[r] / bs] = static_cast<int32_t>(r);
+    for (int32_t q = bucketStart[s]; q < bucketStart[s + 1]; ++q) {
+      int32_t k = sorted[q];
       int64_t row = indexInPanel[upper[k]];
       // A symbolic analysis that missed an entry of A would have it land
       // on another entry of L: never a wrong factor, stop instead.
       for (int64_t i = 0; i < bs; ++i)
-        if (row + i >= height || rows[row + i] != upper[k] + i ||
-            supernodeOf[lower[k] + i] != s)
+        if (row + i >= height || rows[row + i] != upper[k] * bs + i)
           llvm::report_fatal_error("simit: the Cholesky analysis lost an "
                                    "entry of the matrix's pattern");
       BlockPlacement &placement = placements[k];
-      placement.position =
-          layout.valueStart[s] + (lower[k] - layout.first[s]) * height + row;
+      placement.position = layout.valueStart[s] +
+                           (lower[k] * bs - layout.first[s]) * height + row;
       placement.rowStride = transposed[k] ? height : 1;
       placement.columnStride = transposed[k] ? 1 : height;
     }

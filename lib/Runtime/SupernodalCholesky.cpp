@@ -37,12 +37,18 @@ namespace {
 /// cost (packing, dispatch) outweighs its faster kernel.
 constexpr int64_t kBlasProductWork = 128 * 1024;
 
-/// Which supernode each column belongs to.
-std::vector<int64_t> supernodeOfColumns(const SupernodeLayout &layout) {
-  std::vector<int64_t> supernodeOf(static_cast<size_t>(layout.size()));
-  for (int64_t s = 0; s < layout.supernodes; ++s)
-    std::fill(supernodeOf.begin() + layout.first[s],
-              supernodeOf.begin() + layout.first[s + 1], s);
+/// Which supernode each group of `width` consecutive columns belongs to
+/// (each column for width 1, each block column for a block's width).
+std::vector<int32_t> supernodeOfColumns(const SupernodeLayout &layout,
+                                        int64_t width = 1) {
+  std::vector<int32_t> supernodeOf(static_cast<size_t>(layout.size() / width));
+  for (int64_t s = 0; s < layout.supernodes; ++s) {
+    if (layout.first[s] % width != 0)
+      llvm::report_fatal_error("simit: a Cholesky supernode splits a block");
+    std::fill(supernodeOf.begin() + layout.first[s] / width,
+              supernodeOf.begin() + layout.first[s + 1] / width,
+              static_cast<int32_t>(s));
+  }
   return supernodeOf;
 }
 
@@ -223,9 +229,10 @@ direct::blockPlacements(const SupernodeLayout &layout,
                         int64_t blockSize, const int32_t *rowptr,
                         const int32_t *colidx) {
   int64_t bs = blockSize;
-  // Everything below is in blocks: L's block column k holds the matrix's
-  // block row blockOrder[k]. A block's unknowns must be consecutive in L
-  // (and supernodes whole blocks) for its entries to lie at fixed strides.
+  // Everything below is in blocks: blockPosition[b] is the block column
+  // of L that holds the matrix's block row b. A block's unknowns must be
+  // consecutive in L (and supernodes whole blocks) for its entries to lie
+  // at fixed strides.
   std::vector<int32_t> blockPosition(static_cast<size_t>(blockRows));
   for (int64_t k = 0; k < blockRows; ++k) {
     int64_t first = permutation[k * bs];
@@ -235,14 +242,7 @@ direct::blockPlacements(const SupernodeLayout &layout,
                                  "unknowns of a block");
     blockPosition[first / bs] = static_cast<int32_t>(k);
   }
-  std::vector<int32_t> supernodeOf(static_cast<size_t>(blockRows));
-  for (int64_t s = 0; s < layout.supernodes; ++s) {
-    if (layout.first[s] % bs != 0)
-      llvm::report_fatal_error("simit: a Cholesky supernode splits a block");
-    std::fill(supernodeOf.begin() + layout.first[s] / bs,
-              supernodeOf.begin() + layout.first[s + 1] / bs,
-              static_cast<int32_t>(s));
-  }
+  std::vector<int32_t> supernodeOf = supernodeOfColumns(layout, bs);
   // Block (r, c), c <= r, in L's order: (max, min) of its row's and
   // column's positions. The blocks are sorted by the supernode of L's
   // column (counting sort), so that each panel's rows are indexed once
@@ -299,7 +299,7 @@ direct::blockPlacements(const SupernodeLayout &layout,
 
 int64_t direct::factorise(const SupernodeLayout &layout, double *values) {
   int64_t n = layout.size(), supernodes = layout.supernodes;
-  std::vector<int64_t> supernodeOf = supernodeOfColumns(layout);
+  std::vector<int32_t> supernodeOf = supernodeOfColumns(layout);
   // Left-looking: the supernodes whose panels still have rows to give are
   // kept in lists, one per supernode their next row falls in (head, next),
   // with the position of that row in their panel (nextRow).

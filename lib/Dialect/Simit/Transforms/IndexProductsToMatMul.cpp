@@ -15,6 +15,8 @@
 
 #include "simit/Dialect/Simit/Transforms/Passes.h"
 
+#include <algorithm>
+
 namespace mlir {
 namespace simit {
 #define GEN_PASS_DEF_SIMITINDEXPRODUCTSTOMATMUL
@@ -45,12 +47,14 @@ bool isSystemMatrix(Type type) {
          (tensor.getBlockShape().empty() || tensor.getBlockShape().size() == 2);
 }
 
-/// The block type of a system matrix whose blocks are `rows` x `cols` of
-/// `component` (a scalar when the matrix has scalar blocks).
-Type blockTypeOf(SystemTensorType like, int64_t rows, int64_t cols) {
-  if (like.getBlockShape().empty())
-    return like.getBlockType();
-  return RankedTensorType::get({rows, cols}, like.getComponentType());
+/// A matrix over (rows, cols) with `like`'s components, in blocks of
+/// `block` (empty: scalars).
+SystemTensorType matrixOf(SystemTensorType like, Attribute rows, Attribute cols,
+                          ArrayRef<int64_t> block) {
+  Type component = like.getComponentType();
+  return SystemTensorType::get(
+      like.getContext(), ArrayAttr::get(like.getContext(), {rows, cols}),
+      block.empty() ? component : RankedTensorType::get(block, component));
 }
 
 /// The other variable of a two-variable index list containing `var` once.
@@ -126,11 +130,10 @@ Value oriented(OpBuilder &b, Location loc, Value value, ArrayRef<int64_t> list,
     return value;
   auto type = cast<SystemTensorType>(value.getType());
   SmallVector<int64_t> block = type.getBlockShape();
-  auto swapped = SystemTensorType::get(
-      b.getContext(), b.getArrayAttr({type.getDims()[1], type.getDims()[0]}),
-      block.empty() ? type.getBlockType()
-                    : blockTypeOf(type, block[1], block[0]));
-  return TransposeOp::create(b, loc, swapped, value);
+  std::reverse(block.begin(), block.end());
+  return TransposeOp::create(
+      b, loc, matrixOf(type, type.getDims()[1], type.getDims()[0], block),
+      value);
 }
 
 /// Replaces `match` in `op` by an input P(row, col), P the product; returns
@@ -144,13 +147,12 @@ IndexExprOp rewrite(IndexExprOp op, const IndexProduct &match) {
                        op.getInputIndexList(match.rhs), match.var);
   auto lhsType = cast<SystemTensorType>(lhs.getType());
   auto rhsType = cast<SystemTensorType>(rhs.getType());
-  SmallVector<int64_t> lhsBlock = lhsType.getBlockShape(),
-                       rhsBlock = rhsType.getBlockShape();
-  auto productType = SystemTensorType::get(
-      b.getContext(),
-      b.getArrayAttr({lhsType.getDims()[0], rhsType.getDims()[1]}),
-      lhsBlock.empty() ? lhsType.getBlockType()
-                       : blockTypeOf(lhsType, lhsBlock[0], rhsBlock[1]));
+  // Blocks of a x k times blocks of k x b are a x b.
+  SmallVector<int64_t> block = lhsType.getBlockShape();
+  if (!block.empty())
+    block.back() = rhsType.getBlockShape().back();
+  SystemTensorType productType =
+      matrixOf(lhsType, lhsType.getDims()[0], rhsType.getDims()[1], block);
   Value product = MatMulOp::create(b, loc, productType, lhs, rhs);
 
   // Variables after the summed one move down by one.

@@ -378,7 +378,8 @@ public:
   std::array<Value, 3> bcsrArrays(Location loc, const Storage &storage,
                                   Value matrix);
   /// Asserts, at run time, that a matrix stored as `storage` over two sets
-  /// (a solve's or factorisation's, `what`) is square; nothing over one.
+  /// (that of the solve `what`) is square; nothing over one set.
+  /// (Factorisations take matrix[N,N]: their verifier rules two sets out.)
   void assertSquare(Operation *op, const Storage &storage, StringRef what);
   /// An empty memref<?xi32> for runtime functions whose index arrays a
   /// layout does not use.

@@ -369,7 +369,6 @@ LogicalResult FunctionLowering::lowerSystemFactorisation(Operation *op) {
   // factorisation or solve fails, and names the statement in statistics.
   Value where = stringConstant(loc, name + sourcePositionSuffix(op));
   if (factorize) {
-    assertSquare(op, storage, name);
     auto type =
         FunctionType::get(ctx, {indexArray, indexArray, values, ptr}, {ptr});
     func::FuncOp callee = declareRuntime(loc, runtimeName, type);
